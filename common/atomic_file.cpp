@@ -1,0 +1,68 @@
+// Atomic output: temporary file in the target directory, checked writes, fsync, rename.
+#include "common/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "common/input_error.hpp"
+
+namespace mppm {
+
+std::string temporary_name_for(const std::string& path) {
+  const std::filesystem::path p(path);
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, PR105329) on "." + std::string.
+  std::string name(1, '.');
+  name += p.filename().string();
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  return (p.parent_path() / name).string();
+}
+
+void commit_temporary(const std::string& temporary, const std::string& path) {
+  // fsync the data before the rename so a crash never exposes an empty file under `path`.
+  const int fd = ::open(temporary.c_str(), O_RDONLY);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    std::filesystem::remove(temporary);
+    throw InputError(path + ": cannot write the file (" + why + ")");
+  }
+  ::close(fd);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::filesystem::remove(temporary);
+    throw InputError(path + ": cannot write the file (" + why + ")");
+  }
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  const std::string temporary = temporary_name_for(path);
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw InputError(path + ": cannot create the file (" + std::string(std::strerror(errno)) + ")");
+    }
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      std::filesystem::remove(temporary);
+      throw;
+    }
+    out.flush();
+    if (!out) {
+      const std::string why = std::strerror(errno);
+      out.close();
+      std::filesystem::remove(temporary);
+      throw InputError(path + ": writing failed (" + why + "; is the disk full?)");
+    }
+  }
+  commit_temporary(temporary, path);
+}
+
+}  // namespace mppm

@@ -1,0 +1,42 @@
+// Files of a run directory other than snapshots (SCENE.md "Files between stages"):
+// the contract between mppm-solve (writer) and mppm-postprocess / restart (readers).
+//
+// load.csv   header: time_s, then for every loaded boundary NAME (scene order) its mean
+//            displacement and its reaction (kinematic) or applied (traction) force:
+//              NAME_ux_m, NAME_uy_m[, NAME_uz_m], NAME_Fx_N, NAME_Fy_N[, NAME_Fz_N]
+//            (2-D forces are for the scene thickness). One row per load_interval.
+// energy.csv header: time_s, kinetic_J, rotational_kinetic_J, elastic_J, stabilization_J,
+//            plastic_dissipation_J, fracture_dissipation_J, external_work_J, balance_error
+//            balance_error = (kinetic + elastic + stabilization + dissipations - external
+//            work - initial total) / max(|external work|, total energy, tiny): relative.
+// run_info.json (rewritten atomically at each snapshot and at the end):
+//   {"status": "running" | "completed" | "numerical_failure" | "interrupted",
+//    "message": "...", "points": N, "bonds": N, "steps": N, "time_s": t,
+//    "wall_seconds": s, "threads": n, "effects": ["micropolar", ...],
+//    "dimension": d, "time_step_s": dt, "critical_time_step_s": dt_c,
+//    "limiting_mode": "translational" | "rotational",
+//    "snapshots": [{"file": "snapshots/snapshot_000000.snap", "step": 0, "time_s": 0.0}, ...],
+//    "detached_points": N}
+#pragma once
+#include <string>
+#include <vector>
+
+namespace mppm::run_files {
+
+inline const std::vector<std::string>& energy_columns() {
+  static const std::vector<std::string> columns{
+      "time_s", "kinetic_J", "rotational_kinetic_J", "elastic_J", "stabilization_J",
+      "plastic_dissipation_J", "fracture_dissipation_J", "external_work_J", "balance_error"};
+  return columns;
+}
+
+// Column names of one loaded boundary in load.csv.
+inline std::vector<std::string> load_columns(const std::string& boundary, int dimension) {
+  static const char* axes = "xyz";
+  std::vector<std::string> columns;
+  for (int c = 0; c < dimension; ++c) columns.push_back(boundary + "_u" + axes[c] + "_m");
+  for (int c = 0; c < dimension; ++c) columns.push_back(boundary + "_F" + axes[c] + "_N");
+  return columns;
+}
+
+}  // namespace mppm::run_files

@@ -1,0 +1,850 @@
+// Scene reading: YAML -> overrides -> defaults -> validation -> resolved Scene (SI units).
+// Every problem is reported as "FILE:LINE: key.path: what is wrong (what was expected)".
+#include "common/scene.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "common/input_error.hpp"
+#include "common/units.hpp"
+
+namespace mppm {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kEffectNames{"micropolar", "viscoplasticity", "damage", "gravity"};
+
+// Fields a snapshot can hold, and the effect each one needs (empty: always available).
+const std::vector<std::pair<std::string, std::string>> kOutputFields{
+    {"displacement", ""},      {"velocity", ""},          {"rotation", "micropolar"},
+    {"angular_velocity", "micropolar"}, {"strain", ""},   {"stress", ""},
+    {"wryness", "micropolar"}, {"couple_stress", "micropolar"}, {"porosity", ""},
+    {"damage", "damage"},      {"plastic_strain", "viscoplasticity"},
+    {"plastic_shear_strain", "viscoplasticity"}, {"equivalent_plastic_strain", "viscoplasticity"},
+    {"detached", ""}};
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];
+  return out;
+}
+
+// Nearest known name, if close enough to be a likely typo.
+std::string suggestion(const std::string& name, const std::vector<std::string>& known) {
+  std::string best;
+  std::size_t best_distance = 3;
+  for (const auto& k : known) {
+    const auto d = edit_distance(name, k);
+    if (d < best_distance) {
+      best_distance = d;
+      best = k;
+    }
+  }
+  return best.empty() ? "" : "; did you mean '" + best + "'?";
+}
+
+std::string format_number(double v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << v;
+  return out.str();
+}
+
+class SceneReader {
+ public:
+  SceneReader(std::string display_path, std::string scene_dir)
+      : file_(std::move(display_path)), dir_(std::move(scene_dir)) {}
+
+  Scene read(const std::string& text, const std::vector<std::string>& overrides) {
+    YAML::Node root;
+    try {
+      root = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+      throw InputError(file_ + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+    }
+    if (!root.IsDefined() || root.IsNull()) throw InputError(file_ + ": the scene is empty (expected a YAML map with keys mppm, dimension, geometry, material, ...)");
+    if (!root.IsMap()) throw InputError(file_ + ":" + std::to_string(root.Mark().line + 1) + ": the scene must be a YAML map of keys (mppm, dimension, geometry, ...)");
+    for (const auto& o : overrides) apply_override(root, o);
+
+    scene_.path = file_;
+    check_keys(root, "", {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects",
+                          "gravity", "boundary_conditions", "time", "output", "numerics", "derived",
+                          "mppm_version"});
+    read_header(root);
+    read_effects(root);
+    read_geometry(require(root, "", "geometry"));
+    read_material(require(root, "", "material"));
+    read_gravity(root);
+    read_boundary_conditions(root);
+    read_time(require(root, "", "time"));
+    read_output(root["output"]);
+    read_numerics(root["numerics"]);
+    scene_.key_lines = key_lines_;
+    return scene_;
+  }
+
+ private:
+  std::string file_, dir_;
+  std::map<std::string, std::string> overridden_;  // canonical path -> "--set ..." text
+  std::map<std::string, int> key_lines_;
+  Scene scene_;
+
+  // ---------------------------------------------------------------- locations and errors
+  std::string override_for(const std::string& path) const {
+    for (const auto& [p, text] : overridden_) {
+      if (path == p || path.rfind(p + ".", 0) == 0 || path.rfind(p + "[", 0) == 0) return text;
+    }
+    return {};
+  }
+  std::string location(const YAML::Node& node, const std::string& path) const {
+    if (auto o = override_for(path); !o.empty()) return file_ + ": " + o;
+    if (node.IsDefined() && node.Mark().line >= 0) return file_ + ":" + std::to_string(node.Mark().line + 1);
+    return file_;
+  }
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& path, const std::string& what) const {
+    throw InputError(location(node, path) + ": " + (path.empty() ? "(top level)" : path) + ": " + what);
+  }
+  static std::string child_path(const std::string& parent, const std::string& key) {
+    return parent.empty() ? key : parent + "." + key;
+  }
+  void note_line(const YAML::Node& node, const std::string& path) {
+    if (node.IsDefined() && node.Mark().line >= 0) key_lines_[path] = node.Mark().line + 1;
+  }
+
+  // ---------------------------------------------------------------- --set
+  static std::vector<std::string> split_path(const std::string& path) {
+    std::vector<std::string> parts;
+    std::string cur;
+    for (char c : path) {
+      if (c == '.' || c == '[' || c == ']') {
+        if (!cur.empty()) parts.push_back(cur);
+        cur.clear();
+      } else {
+        cur += c;
+      }
+    }
+    if (!cur.empty()) parts.push_back(cur);
+    return parts;
+  }
+  static bool is_index(const std::string& s) {
+    return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  }
+
+  void apply_override(YAML::Node& root, const std::string& text) {
+    const auto eq = text.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError("--set " + text + ": expected key.path=value (e.g. --set material.mu=14GPa)");
+    }
+    const std::string path = text.substr(0, eq);
+    const std::string value_text = text.substr(eq + 1);
+    const auto parts = split_path(path);
+    if (parts.empty()) throw InputError("--set " + text + ": empty key path");
+    YAML::Node value;
+    try {
+      value = YAML::Load(value_text);
+    } catch (const YAML::Exception& e) {
+      throw InputError("--set " + text + ": the value is not valid YAML: " + e.msg);
+    }
+    YAML::Node node;
+    node.reset(root);
+    std::string canonical;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      const bool last = k + 1 == parts.size();
+      const auto& part = parts[k];
+      if (node.IsSequence()) {
+        if (!is_index(part) || std::stoul(part) >= node.size()) {
+          throw InputError("--set " + text + ": '" + part + "' is not an index of the list " +
+                           (canonical.empty() ? "" : canonical) + " (it has " + std::to_string(node.size()) + " entries, counted from 0)");
+        }
+        canonical += "[" + part + "]";
+        const std::size_t index = std::stoul(part);
+        if (last) {
+          node[index] = value;
+        } else {
+          YAML::Node child = node[index];
+          node.reset(child);
+        }
+      } else {
+        if (node.IsDefined() && !node.IsNull() && !node.IsMap()) {
+          throw InputError("--set " + text + ": " + canonical + " is a single value, it has no key '" + part + "'");
+        }
+        canonical = child_path(canonical, part);
+        if (last) {
+          node[part] = value;
+        } else {
+          if (!node[part].IsDefined() || node[part].IsNull()) node[part] = YAML::Node(YAML::NodeType::Map);
+          YAML::Node child = node[part];
+          node.reset(child);
+        }
+      }
+    }
+    overridden_[canonical] = "--set " + text;
+  }
+
+  // ---------------------------------------------------------------- typed accessors
+  void check_keys(const YAML::Node& map, const std::string& path, const std::vector<std::string>& allowed) {
+    if (!map.IsMap()) fail(map, path, "expected a map of keys (" + join(allowed) + ")");
+    for (const auto& kv : map) {
+      const auto key = kv.first.as<std::string>();
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        fail(kv.first, child_path(path, key), "unknown key (expected one of: " + join(allowed) + ")" + suggestion(key, allowed));
+      }
+    }
+  }
+  YAML::Node require(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& hint = "") {
+    YAML::Node node = map[key];
+    if (!node.IsDefined() || node.IsNull()) {
+      fail(map, child_path(path, key), "missing required key" + (hint.empty() ? "" : " (" + hint + ")"));
+    }
+    return node;
+  }
+  std::string scalar(const YAML::Node& node, const std::string& path, const std::string& expected) {
+    if (!node.IsScalar()) fail(node, path, "expected " + expected + ", got a " + (node.IsSequence() ? "list" : node.IsMap() ? "map" : "null value"));
+    note_line(node, path);
+    return node.Scalar();
+  }
+  double quantity(const YAML::Node& node, const std::string& path, const Dimension& d) {
+    const auto text = scalar(node, path, d.to_string());
+    try {
+      return parse_quantity_as(text, d);
+    } catch (const std::invalid_argument& e) {
+      fail(node, path, e.what());
+    }
+  }
+  double quantity_or(const YAML::Node& map, const std::string& path, const std::string& key, const Dimension& d, double fallback) {
+    const YAML::Node node = map[key];
+    if (!node.IsDefined() || node.IsNull()) return fallback;
+    return quantity(node, child_path(path, key), d);
+  }
+  int integer(const YAML::Node& node, const std::string& path) {
+    const auto text = scalar(node, path, "an integer");
+    try {
+      std::size_t used = 0;
+      const int v = std::stoi(text, &used);
+      if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    fail(node, path, "\"" + text + "\" is not an integer");
+  }
+  std::vector<double> quantity_list(const YAML::Node& node, const std::string& path, const Dimension& d, std::size_t count) {
+    if (!node.IsSequence() || node.size() != count) {
+      fail(node, path, "expected a list of " + std::to_string(count) + " values (" + d.to_string() + ")");
+    }
+    std::vector<double> out;
+    for (std::size_t k = 0; k < count; ++k) out.push_back(quantity(node[k], path + "[" + std::to_string(k) + "]", d));
+    return out;
+  }
+  void positive(const YAML::Node& node, const std::string& path, double v, const std::string& what = "must be > 0") {
+    if (!(v > 0.0)) fail(node, path, format_number(v) + " " + what);
+  }
+
+  // ---------------------------------------------------------------- sections
+  void read_header(const YAML::Node& root) {
+    const auto version = integer(require(root, "", "mppm", "the scene format version: mppm: 1"), "mppm");
+    if (version != 1) fail(root["mppm"], "mppm", "unsupported scene format version " + std::to_string(version) + " (this mppm reads version 1)");
+    scene_.format_version = version;
+    if (root["name"].IsDefined() && !root["name"].IsNull()) {
+      scene_.name = scalar(root["name"], "name", "a name");
+    } else {
+      scene_.name = fs::path(file_).stem().string();
+    }
+    const auto dimension = integer(require(root, "", "dimension", "2 for plane strain or 3"), "dimension");
+    if (dimension != 2 && dimension != 3) fail(root["dimension"], "dimension", std::to_string(dimension) + " is not supported (expected 2 = plane strain, or 3)");
+    scene_.dimension = dimension;
+    if (dimension == 2) {
+      scene_.thickness = quantity(require(root, "", "thickness", "out-of-plane thickness of the plane-strain body, e.g. 1 mm"), "thickness", dim::length);
+      positive(root["thickness"], "thickness", scene_.thickness);
+    } else if (root["thickness"].IsDefined()) {
+      scene_.warnings.push_back(location(root["thickness"], "thickness") + ": thickness: ignored in 3-D");
+    }
+  }
+
+  void read_effects(const YAML::Node& root) {
+    const YAML::Node node = root["effects"];
+    if (!node.IsDefined() || node.IsNull()) return;  // purely elastic non-polar model
+    YAML::Node list = node;
+    if (node.IsScalar()) {  // "--set effects=micropolar" or "effects: micropolar"
+      list = YAML::Node(YAML::NodeType::Sequence);
+      list.push_back(node);
+    }
+    if (!list.IsSequence()) fail(node, "effects", "expected a list of effects (" + join(kEffectNames) + ")");
+    std::set<std::string> seen;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const auto path = "effects[" + std::to_string(k) + "]";
+      const auto name = scalar(list[k], path, "an effect name");
+      if (!seen.insert(name).second) fail(list[k], path, "'" + name + "' is listed twice");
+      if (name == "micropolar") scene_.effects.micropolar = true;
+      else if (name == "viscoplasticity") scene_.effects.viscoplasticity = true;
+      else if (name == "damage") scene_.effects.damage = true;
+      else if (name == "gravity") scene_.effects.gravity = true;
+      else if (name == "none" && list.size() == 1) {}
+      else fail(list[k], path, "unknown effect '" + name + "' (expected one of: " + join(kEffectNames) + ")" + suggestion(name, kEffectNames));
+    }
+  }
+
+  Selector read_selector(const YAML::Node& node, const std::string& path, bool allow_plain_name) {
+    Selector s;
+    if (node.IsScalar() && allow_plain_name) {
+      s.physical_group = scalar(node, path, "a physical group name");
+      return s;
+    }
+    if (!node.IsMap()) fail(node, path, "expected a physical group name, {entities: [...]} or {box: [[x0,y0,z0],[x1,y1,z1]]}");
+    check_keys(node, path, {"boundary", "entities", "box"});
+    read_selector_keys(node, path, s);
+    return s;
+  }
+
+  // Reads boundary / entities / box from a map (exactly one of them).
+  void read_selector_keys(const YAML::Node& map, const std::string& path, Selector& s) {
+    int given = 0;
+    if (map["boundary"].IsDefined()) {
+      s.physical_group = scalar(map["boundary"], child_path(path, "boundary"), "a physical group name");
+      ++given;
+    }
+    if (map["entities"].IsDefined()) {
+      const YAML::Node e = map["entities"];
+      const auto p = child_path(path, "entities");
+      if (!e.IsSequence() || e.size() == 0) fail(e, p, "expected a non-empty list of gmsh entity tags");
+      for (std::size_t k = 0; k < e.size(); ++k) {
+        const int tag = integer(e[k], p + "[" + std::to_string(k) + "]");
+        if (tag <= 0) fail(e[k], p, "entity tags are positive integers");
+        s.entities.push_back(tag);
+      }
+      ++given;
+    }
+    if (map["box"].IsDefined()) {
+      const YAML::Node b = map["box"];
+      const auto p = child_path(path, "box");
+      if (!b.IsSequence() || b.size() != 2) fail(b, p, "expected [[x0, y0(, z0)], [x1, y1(, z1)]]");
+      std::array<std::array<double, 3>, 2> box{};
+      for (std::size_t corner = 0; corner < 2; ++corner) {
+        const YAML::Node c = b[corner];
+        const auto cp = p + "[" + std::to_string(corner) + "]";
+        if (!c.IsSequence() || (c.size() != 2 && c.size() != 3)) fail(c, cp, "expected a corner [x, y] or [x, y, z]");
+        for (std::size_t k = 0; k < 3; ++k) {
+          // A 2-D box may omit z: it then spans every z.
+          box[corner][k] = k < c.size() ? quantity(c[k], cp + "[" + std::to_string(k) + "]", dim::length)
+                                        : (corner == 0 ? -1e300 : 1e300);
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (box[0][k] > box[1][k]) fail(b, p, "the first corner must be the lower one (x0 <= x1, y0 <= y1, z0 <= z1)");
+      }
+      s.box = box;
+      ++given;
+    }
+    if (given != 1) {
+      fail(map, path, given == 0 ? "missing the selection: give one of boundary (physical group name), entities ([tags]) or box ([[x0,y0,z0],[x1,y1,z1]])"
+                                 : "give only one of boundary, entities or box");
+    }
+  }
+
+  void read_geometry(const YAML::Node& g) {
+    const std::string p = "geometry";
+    check_keys(g, p, {"file", "unit", "spacing", "horizon_factor", "precracks"});
+    const auto file = scalar(require(g, p, "file", "path of a .geo .msh .step .stp .brep or .stl file"), "geometry.file", "a file path");
+    fs::path fp(file);
+    if (fp.is_relative()) fp = fs::path(dir_) / fp;
+    scene_.geometry.file = fp.lexically_normal().string();
+    const auto ext = fp.extension().string();
+    static const std::vector<std::string> exts{".geo", ".msh", ".step", ".stp", ".brep", ".stl", ".STEP", ".STP", ".STL", ".BREP"};
+    if (std::find(exts.begin(), exts.end(), ext) == exts.end()) {
+      fail(g["file"], "geometry.file", "unsupported file type '" + ext + "' (expected .geo .msh .step .stp .brep or .stl)");
+    }
+    if (g["unit"].IsDefined()) {
+      const auto unit = scalar(g["unit"], "geometry.unit", "a length unit (m, mm, cm, um, in, ft)");
+      try {
+        scene_.geometry.unit = length_unit_in_metres(unit);
+      } catch (const std::invalid_argument& e) {
+        fail(g["unit"], "geometry.unit", e.what());
+      }
+    }
+    scene_.geometry.spacing = quantity(require(g, p, "spacing", "lattice spacing dx, e.g. 0.5 mm"), "geometry.spacing", dim::length);
+    positive(g["spacing"], "geometry.spacing", scene_.geometry.spacing);
+    scene_.geometry.horizon_factor = quantity(require(g, p, "horizon_factor", "delta / dx, e.g. 3.015 or 4.05"), "geometry.horizon_factor", dim::none);
+    if (!(scene_.geometry.horizon_factor >= 1.0)) {
+      fail(g["horizon_factor"], "geometry.horizon_factor", format_number(scene_.geometry.horizon_factor) + " leaves points without neighbours (expected >= 1; 2.05 to 5 is usual)");
+    }
+    if (g["precracks"].IsDefined() && !g["precracks"].IsNull()) {
+      const YAML::Node list = g["precracks"];
+      if (!list.IsSequence()) fail(list, "geometry.precracks", "expected a list of physical group names or {entities: [...]} / {box: ...} entries");
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        scene_.geometry.precracks.push_back(read_selector(list[k], "geometry.precracks[" + std::to_string(k) + "]", true));
+      }
+    }
+  }
+
+  void read_material(const YAML::Node& m) {
+    const std::string p = "material";
+    check_keys(m, p, {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli",
+                      "length_scale", "damage", "viscoplasticity"});
+    auto& mat = scene_.material;
+    if (m["model"].IsDefined()) {
+      mat.model = scalar(m["model"], "material.model", "a material model name");
+      static const std::vector<std::string> models{"cosserat-elastic"};
+      if (std::find(models.begin(), models.end(), mat.model) == models.end()) {
+        fail(m["model"], "material.model", "unknown model '" + mat.model + "' (expected one of: " + join(models) +
+                                               "; viscoplasticity is an effect with its own block material.viscoplasticity)" + suggestion(mat.model, models));
+      }
+    }
+    mat.density = quantity(require(m, p, "density", "skeleton density, e.g. 2650 kg/m^3"), "material.density", dim::density);
+    positive(m["density"], "material.density", mat.density);
+    mat.solid_fraction = quantity_or(m, p, "solid_fraction", dim::none, 1.0);
+    if (!(mat.solid_fraction > 0.0 && mat.solid_fraction <= 1.0)) {
+      fail(m["solid_fraction"], "material.solid_fraction", format_number(mat.solid_fraction) + " is not a volume fraction (expected 0 < phi <= 1)");
+    }
+    mat.lambda = quantity(require(m, p, "lambda", "Lame constant, e.g. 14 GPa"), "material.lambda", dim::pressure);
+    mat.mu = quantity(require(m, p, "mu", "shear modulus, e.g. 14 GPa"), "material.mu", dim::pressure);
+    positive(m["mu"], "material.mu", mat.mu);
+    const int d = scene_.dimension;
+    if (!(mat.lambda + 2.0 * mat.mu / d > 0.0)) {
+      fail(m["lambda"], "material.lambda", "lambda + 2 mu / d = " + format_number(mat.lambda + 2.0 * mat.mu / d) + " must be > 0 (bulk modulus)");
+    }
+    const bool polar = scene_.effects.micropolar;
+    const std::vector<std::string> polar_keys{"mu_c", "couple_moduli", "length_scale"};
+    if (polar) {
+      mat.mu_c = quantity(require(m, p, "mu_c", "Cosserat couple modulus, e.g. 4.667 GPa (micropolar is on)"), "material.mu_c", dim::pressure);
+      if (mat.mu_c < 0.0) fail(m["mu_c"], "material.mu_c", format_number(mat.mu_c) + " must be >= 0");
+      const auto a = quantity_list(require(m, p, "couple_moduli", "[a1, a2, a3] in N (micropolar is on)"), "material.couple_moduli", dim::force, 3);
+      mat.couple_moduli = {a[0], a[1], a[2]};
+      if (d == 2 && !(a[2] > 0.0)) {
+        fail(m["couple_moduli"], "material.couple_moduli", "in 2-D the bending modulus B_w = a3 must be > 0 (got " + format_number(a[2]) + " N)");
+      }
+      if (d == 3) {
+        // Curvature energy 1/2 [(3a1+a2+a3)|sph|^2 + (a2+a3)|dev|^2 + (a2-a3)|skew|^2] must be positive.
+        if (!(3 * a[0] + a[1] + a[2] > 0.0 && a[1] + a[2] > 0.0 && a[1] - a[2] > 0.0)) {
+          fail(m["couple_moduli"], "material.couple_moduli",
+               "a1, a2, a3 make the curvature energy indefinite in 3-D (need 3 a1 + a2 + a3 > 0, a2 + a3 > 0 and a2 > a3)");
+        }
+      }
+      mat.length_scale = quantity(require(m, p, "length_scale", "micro-polar length l (mean grain size), e.g. 2 mm"), "material.length_scale", dim::length);
+      positive(m["length_scale"], "material.length_scale", mat.length_scale);
+    } else {
+      std::vector<std::string> ignored;
+      for (const auto& k : polar_keys) {
+        if (m[k].IsDefined()) ignored.push_back("material." + k);
+      }
+      if (!ignored.empty()) {
+        scene_.warnings.push_back(location(m[ignored.front().substr(9)], ignored.front()) + ": " + join(ignored) +
+                                  ": ignored because the effect 'micropolar' is not listed in effects");
+      }
+    }
+    read_damage(m);
+    read_viscoplasticity(m);
+  }
+
+  void warn_effect_off(const YAML::Node& node, const std::string& path, const std::string& effect) {
+    scene_.warnings.push_back(location(node, path) + ": " + path + ": ignored because the effect '" + effect + "' is not listed in effects");
+  }
+
+  void read_damage(const YAML::Node& m) {
+    const YAML::Node node = m["damage"];
+    const std::string p = "material.damage";
+    if (!scene_.effects.damage) {
+      if (node.IsDefined()) warn_effect_off(node, p, "damage");
+      return;
+    }
+    if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
+    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth"});
+    DamageParameters dp;
+    dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"), p + ".critical_energy_release_rate", dim::energy_per_area);
+    positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate", dp.critical_energy_release_rate);
+    dp.no_fail_depth = quantity_or(node, p, "no_fail_depth", dim::length, 0.0);
+    if (dp.no_fail_depth < 0.0) fail(node["no_fail_depth"], p + ".no_fail_depth", "must be >= 0");
+    scene_.material.damage = dp;
+  }
+
+  void read_viscoplasticity(const YAML::Node& m) {
+    const YAML::Node node = m["viscoplasticity"];
+    const std::string p = "material.viscoplasticity";
+    if (!scene_.effects.viscoplasticity) {
+      if (node.IsDefined()) warn_effect_off(node, p, "viscoplasticity");
+      return;
+    }
+    if (!node.IsDefined() || node.IsNull()) {
+      fail(m, p, "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, viscosity}");
+    }
+    check_keys(node, p, {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
+                         "residual_cohesion", "cone_match"});
+    ViscoplasticParameters vp;
+    if (node["model"].IsDefined()) vp.model = scalar(node["model"], p + ".model", "a model name");
+    vp.friction_angle = quantity(require(node, p, "friction_angle", "e.g. 35 deg"), p + ".friction_angle", dim::angle);
+    vp.dilatancy_angle = quantity(require(node, p, "dilatancy_angle", "e.g. 15 deg"), p + ".dilatancy_angle", dim::angle);
+    const double right = std::numbers::pi / 2;
+    if (!(vp.friction_angle >= 0.0 && vp.friction_angle < right)) fail(node["friction_angle"], p + ".friction_angle", "must be in [0, 90) deg");
+    if (!(vp.dilatancy_angle >= 0.0 && vp.dilatancy_angle < right)) fail(node["dilatancy_angle"], p + ".dilatancy_angle", "must be in [0, 90) deg");
+    if (vp.dilatancy_angle > vp.friction_angle) {
+      scene_.warnings.push_back(location(node["dilatancy_angle"], p) + ": " + p + ".dilatancy_angle: larger than the friction angle (the flow dilates more than an associated one)");
+    }
+    vp.cohesion = quantity(require(node, p, "cohesion", "c0, e.g. 0.35 MPa"), p + ".cohesion", dim::pressure);
+    if (vp.cohesion < 0.0) fail(node["cohesion"], p + ".cohesion", "must be >= 0");
+    vp.hardening = quantity_or(node, p, "hardening", dim::pressure, 0.0);
+    vp.viscosity = quantity(require(node, p, "viscosity", "eta, e.g. 0.01 MPa*s"), p + ".viscosity", dim::viscosity);
+    if (vp.viscosity < 0.0) fail(node["viscosity"], p + ".viscosity", "must be >= 0 (0 = rate-independent)");
+    // A softening cohesion is floored so the cone keeps an apex; 1 % of c0 unless given.
+    vp.residual_cohesion = quantity_or(node, p, "residual_cohesion", dim::pressure, 0.01 * vp.cohesion);
+    if (vp.residual_cohesion < 0.0 || vp.residual_cohesion > vp.cohesion) {
+      fail(node["residual_cohesion"], p + ".residual_cohesion", "must be in [0, cohesion]");
+    }
+    if (node["cone_match"].IsDefined()) {
+      vp.cone_match = scalar(node["cone_match"], p + ".cone_match", "triaxial-compression or plane-strain");
+      if (vp.cone_match != "triaxial-compression" && vp.cone_match != "plane-strain") {
+        fail(node["cone_match"], p + ".cone_match", "unknown match '" + vp.cone_match + "' (expected triaxial-compression or plane-strain)");
+      }
+    }
+    scene_.material.viscoplasticity = vp;
+  }
+
+  void read_gravity(const YAML::Node& root) {
+    const int d = scene_.dimension;
+    scene_.gravity = d == 2 ? std::array<double, 3>{0.0, -9.81, 0.0} : std::array<double, 3>{0.0, 0.0, -9.81};
+    const YAML::Node node = root["gravity"];
+    if (!node.IsDefined() || node.IsNull()) return;
+    if (!scene_.effects.gravity) {
+      warn_effect_off(node, "gravity", "gravity");
+      return;
+    }
+    const auto g = quantity_list(node, "gravity", dim::acceleration, static_cast<std::size_t>(d));
+    scene_.gravity = {g[0], g[1], d == 3 ? g[2] : 0.0};
+  }
+
+  // Reads `value`, `ramp`, `history` of one boundary condition into a History.
+  void read_boundary_value(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
+    const int d = scene_.dimension;
+    const bool is_pressure = bc.type == BoundaryType::pressure;
+    const std::size_t n = is_pressure ? 1 : static_cast<std::size_t>(d);
+    const Dimension unit = bc.type == BoundaryType::velocity ? dim::velocity
+                           : bc.type == BoundaryType::displacement ? dim::length
+                                                                   : dim::pressure;
+    std::vector<double> value(n, 0.0);
+    bc.constrained.assign(n, true);
+    const YAML::Node v = node["value"];
+    const YAML::Node ramp = node["ramp"];
+    const YAML::Node history = node["history"];
+    if (v.IsDefined()) {
+      if (is_pressure) {
+        value[0] = quantity(v, p + ".value", unit);
+      } else {
+        if (!v.IsSequence() || v.size() != n) fail(v, p + ".value", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+        for (std::size_t c = 0; c < n; ++c) {
+          const auto cp = p + ".value[" + std::to_string(c) + "]";
+          const YAML::Node comp = v[c];
+          if (comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free")) {
+            if (!is_kinematic(bc.type)) fail(comp, cp, "only velocity and displacement components can be free");
+            bc.constrained[c] = false;
+            note_line(comp, cp);
+          } else {
+            value[c] = quantity(comp, cp, unit);
+          }
+        }
+      }
+    } else if (!history.IsDefined()) {
+      fail(node, p + ".value", "missing: give value (with an optional ramp) or history");
+    }
+    if (ramp.IsDefined() && history.IsDefined()) fail(ramp, p + ".ramp", "give either ramp or history, not both");
+    if (ramp.IsDefined()) {
+      const double t0 = quantity(ramp, p + ".ramp", dim::time);
+      positive(ramp, p + ".ramp", t0);
+      bc.value.times = {0.0, t0};
+      bc.value.values = {std::vector<double>(n, 0.0), value};
+    } else if (history.IsDefined()) {
+      if (!history.IsSequence() || history.size() == 0) fail(history, p + ".history", "expected a list of rows [t, v]");
+      // With `value`, rows are [t, factor]; without, rows are [t, v] (scalar) or [t, [v...]].
+      for (std::size_t r = 0; r < history.size(); ++r) {
+        const auto rp = p + ".history[" + std::to_string(r) + "]";
+        const YAML::Node row = history[r];
+        if (!row.IsSequence() || row.size() != 2) fail(row, rp, v.IsDefined() ? "expected [t, factor]" : "expected [t, value]");
+        const double t = quantity(row[0], rp + "[0]", dim::time);
+        if (!bc.value.times.empty() && t < bc.value.times.back()) fail(row, rp, "times must not decrease");
+        std::vector<double> rowv(n);
+        if (v.IsDefined()) {
+          const double factor = quantity(row[1], rp + "[1]", dim::none);
+          for (std::size_t c = 0; c < n; ++c) rowv[c] = factor * value[c];
+        } else if (n == 1 && row[1].IsScalar()) {
+          rowv[0] = quantity(row[1], rp + "[1]", unit);
+        } else {
+          const YAML::Node vals = row[1];
+          if (!vals.IsSequence() || vals.size() != n) fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+          for (std::size_t c = 0; c < n; ++c) {
+            const YAML::Node comp = vals[c];
+            const bool free = comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free");
+            if (free && !is_kinematic(bc.type)) fail(comp, rp, "only velocity and displacement components can be free");
+            if (r > 0 && free == bc.constrained[c]) fail(comp, rp, "a component is free in some rows and prescribed in others");
+            bc.constrained[c] = !free;
+            rowv[c] = free ? 0.0 : quantity(comp, rp + "[1][" + std::to_string(c) + "]", unit);
+          }
+        }
+        bc.value.times.push_back(t);
+        bc.value.values.push_back(rowv);
+      }
+    } else {
+      bc.value.times = {0.0};
+      bc.value.values = {value};
+    }
+    // Rotation on a kinematic layer follows the same time profile as the value.
+    const char* rotation_key = bc.type == BoundaryType::velocity ? "rotation_rate" : "rotation";
+    const char* other_key = bc.type == BoundaryType::velocity ? "rotation" : "rotation_rate";
+    if (node[other_key].IsDefined()) {
+      fail(node[other_key], p + "." + other_key, std::string("does not fit a ") + to_string(bc.type) + " condition (use " + rotation_key + ")");
+    }
+    const YAML::Node rot = node[rotation_key];
+    const YAML::Node rot_history = node["rotation_history"];
+    if (rot_history.IsDefined()) {
+      // Full rotation history [[t, r], ...] (written by the resolved-scene writer).
+      const auto rp = p + ".rotation_history";
+      if (rot.IsDefined()) fail(rot_history, rp, std::string("give either ") + rotation_key + " or rotation_history");
+      if (!is_kinematic(bc.type)) fail(rot_history, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
+      if (!rot_history.IsSequence() || rot_history.size() == 0) fail(rot_history, rp, "expected a list of rows [t, rotation]");
+      const Dimension rd = bc.type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
+      const std::size_t nr = d == 2 ? 1 : 3;
+      History h;
+      for (std::size_t r = 0; r < rot_history.size(); ++r) {
+        const auto rowp = rp + "[" + std::to_string(r) + "]";
+        const YAML::Node row = rot_history[r];
+        if (!row.IsSequence() || row.size() != 2) fail(row, rowp, "expected [t, rotation]");
+        const double t = quantity(row[0], rowp + "[0]", dim::time);
+        if (!h.times.empty() && t < h.times.back()) fail(row, rowp, "times must not decrease");
+        h.times.push_back(t);
+        if (nr == 1 && row[1].IsScalar()) h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
+        else h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
+      }
+      if (scene_.effects.micropolar) bc.rotation = h;
+      else warn_effect_off(rot_history, rp, "micropolar");
+      return;
+    }
+    if (rot.IsDefined()) {
+      const auto rp = p + "." + rotation_key;
+      if (!is_kinematic(bc.type)) fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
+      if (!scene_.effects.micropolar) {
+        warn_effect_off(rot, rp, "micropolar");
+        return;
+      }
+      const Dimension rd = bc.type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
+      const std::size_t nr = d == 2 ? 1 : 3;
+      std::vector<double> r(nr);
+      if (nr == 1 && rot.IsScalar()) r[0] = quantity(rot, rp, rd);
+      else r = quantity_list(rot, rp, rd, nr);
+      History h;
+      if (ramp.IsDefined() || (history.IsDefined() && v.IsDefined())) {
+        h.times = bc.value.times;
+        for (std::size_t row = 0; row < h.times.size(); ++row) {
+          // factor of this row relative to the value (ramp: 0 then 1).
+          double factor = ramp.IsDefined() ? (row == 0 ? 0.0 : 1.0) : quantity(history[row][1], p, dim::none);
+          std::vector<double> rv(nr);
+          for (std::size_t c = 0; c < nr; ++c) rv[c] = factor * r[c];
+          h.values.push_back(rv);
+        }
+      } else {
+        h.times = {0.0};
+        h.values = {r};
+      }
+      bc.rotation = h;
+    }
+  }
+
+  void read_boundary_conditions(const YAML::Node& root) {
+    const YAML::Node list = root["boundary_conditions"];
+    if (!list.IsDefined() || list.IsNull()) return;
+    if (!list.IsSequence()) fail(list, "boundary_conditions", "expected a list of conditions {boundary: ..., type: ..., value: ...}");
+    std::set<std::string> names;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const auto p = "boundary_conditions[" + std::to_string(k) + "]";
+      const YAML::Node node = list[k];
+      check_keys(node, p, {"name", "boundary", "entities", "box", "type", "value", "ramp", "history",
+                           "rotation", "rotation_rate", "rotation_history", "depth"});
+      BoundaryCondition bc;
+      bc.line = node.Mark().line + 1;
+      read_selector_keys(node, p, bc.selector);
+      const auto type = scalar(require(node, p, "type", "velocity, displacement, traction or pressure"), p + ".type", "a condition type");
+      static const std::vector<std::string> types{"velocity", "displacement", "traction", "pressure"};
+      if (type == "velocity") bc.type = BoundaryType::velocity;
+      else if (type == "displacement") bc.type = BoundaryType::displacement;
+      else if (type == "traction") bc.type = BoundaryType::traction;
+      else if (type == "pressure") bc.type = BoundaryType::pressure;
+      else fail(node["type"], p + ".type", "unknown type '" + type + "' (expected one of: " + join(types) + ")" + suggestion(type, types));
+      read_boundary_value(node, p, bc);
+      if (node["depth"].IsDefined()) {
+        if (is_kinematic(bc.type)) fail(node["depth"], p + ".depth", "only traction and pressure conditions have a loaded depth (kinematic layers are as deep as the horizon)");
+        bc.traction_depth = quantity(node["depth"], p + ".depth", dim::length);
+        positive(node["depth"], p + ".depth", bc.traction_depth);
+      } else {
+        bc.traction_depth = scene_.geometry.spacing;
+      }
+      if (node["name"].IsDefined()) bc.name = scalar(node["name"], p + ".name", "a label");
+      else if (!bc.selector.physical_group.empty()) bc.name = bc.selector.physical_group;
+      else bc.name = "bc" + std::to_string(k + 1);
+      if (!names.insert(bc.name).second) {
+        fail(node, p + ".name", "the label '" + bc.name + "' is used by an earlier condition (give each a distinct name: it labels load.csv)");
+      }
+      scene_.boundary_conditions.push_back(bc);
+    }
+  }
+
+  void read_time(const YAML::Node& t) {
+    const std::string p = "time";
+    check_keys(t, p, {"end", "step", "safety"});
+    scene_.time.end = quantity(require(t, p, "end", "end time, e.g. 60 us"), "time.end", dim::time);
+    positive(t["end"], "time.end", scene_.time.end);
+    const YAML::Node step = t["step"];
+    if (step.IsDefined() && !(step.IsScalar() && step.Scalar() == "auto")) {
+      scene_.time.step = quantity(step, "time.step", dim::time);
+      positive(step, "time.step", *scene_.time.step);
+      if (*scene_.time.step > scene_.time.end) fail(step, "time.step", "is longer than time.end");
+      if (t["safety"].IsDefined()) scene_.warnings.push_back(location(t["safety"], "time.safety") + ": time.safety: ignored because time.step is given");
+    }
+    scene_.time.safety = quantity_or(t, p, "safety", dim::none, 0.8);
+    if (!(scene_.time.safety > 0.0 && scene_.time.safety <= 1.0)) fail(t["safety"], "time.safety", format_number(scene_.time.safety) + " must be in (0, 1]");
+  }
+
+  void read_output(const YAML::Node& o) {
+    auto& out = scene_.output;
+    out.interval = scene_.time.end / 20.0;
+    out.fields.clear();
+    out.fields.push_back("displacement");
+    if (scene_.effects.micropolar) out.fields.push_back("rotation");
+    if (scene_.effects.damage) out.fields.push_back("damage");
+    if (scene_.effects.viscoplasticity) out.fields.push_back("plastic_shear_strain");
+    if (!o.IsDefined() || o.IsNull()) return;
+    const std::string p = "output";
+    check_keys(o, p, {"interval", "load_interval", "fields", "checkpoint_interval"});
+    out.interval = quantity_or(o, p, "interval", dim::time, out.interval);
+    out.load_interval = quantity_or(o, p, "load_interval", dim::time, 0.0);
+    out.checkpoint_interval = quantity_or(o, p, "checkpoint_interval", dim::time, 0.0);
+    for (const char* key : {"interval", "load_interval", "checkpoint_interval"}) {
+      if (o[key].IsDefined() && quantity(o[key], p + "." + key, dim::time) < 0.0) fail(o[key], p + "." + key, "must be >= 0");
+    }
+    if (o["fields"].IsDefined()) {
+      const YAML::Node f = o["fields"];
+      if (!f.IsSequence()) fail(f, "output.fields", "expected a list of field names");
+      std::vector<std::string> known;
+      for (const auto& [name, effect] : kOutputFields) known.push_back(name);
+      out.fields.clear();
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        const auto fp = "output.fields[" + std::to_string(k) + "]";
+        const auto name = scalar(f[k], fp, "a field name");
+        const auto it = std::find_if(kOutputFields.begin(), kOutputFields.end(), [&](const auto& e) { return e.first == name; });
+        if (it == kOutputFields.end()) fail(f[k], fp, "unknown field '" + name + "' (expected one of: " + join(known) + ")" + suggestion(name, known));
+        const auto& effect = it->second;
+        const bool on = effect.empty() || (effect == "micropolar" && scene_.effects.micropolar) ||
+                        (effect == "damage" && scene_.effects.damage) ||
+                        (effect == "viscoplasticity" && scene_.effects.viscoplasticity);
+        if (!on) {
+          scene_.warnings.push_back(location(f[k], fp) + ": " + fp + ": '" + name + "' is not written because the effect '" + effect + "' is off");
+          continue;
+        }
+        if (std::find(out.fields.begin(), out.fields.end(), name) == out.fields.end()) out.fields.push_back(name);
+      }
+    }
+  }
+
+  void read_numerics(const YAML::Node& n) {
+    if (!n.IsDefined() || n.IsNull()) return;
+    const std::string p = "numerics";
+    check_keys(n, p, {"stabilization", "damping", "energy_check_tolerance"});
+    auto& num = scene_.numerics;
+    num.stabilization = quantity_or(n, p, "stabilization", dim::none, num.stabilization);
+    if (num.stabilization < 0.0) fail(n["stabilization"], "numerics.stabilization", "must be >= 0 (0 disables the zero-energy-mode control)");
+    num.damping = quantity_or(n, p, "damping", dim::rate, num.damping);
+    if (num.damping < 0.0) fail(n["damping"], "numerics.damping", "must be >= 0");
+    num.energy_check_tolerance = quantity_or(n, p, "energy_check_tolerance", dim::none, num.energy_check_tolerance);
+    positive(n["energy_check_tolerance"], "numerics.energy_check_tolerance", num.energy_check_tolerance);
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> EffectSet::names() const {
+  std::vector<std::string> out;
+  if (micropolar) out.push_back("micropolar");
+  if (viscoplasticity) out.push_back("viscoplasticity");
+  if (damage) out.push_back("damage");
+  if (gravity) out.push_back("gravity");
+  return out;
+}
+
+std::string Selector::describe() const {
+  if (!physical_group.empty()) return "'" + physical_group + "'";
+  std::ostringstream out;
+  if (!entities.empty()) {
+    out << "entities [";
+    for (std::size_t k = 0; k < entities.size(); ++k) out << (k ? ", " : "") << entities[k];
+    out << "]";
+  } else if (box) {
+    out << "box [[" << (*box)[0][0] << ", " << (*box)[0][1] << ", " << (*box)[0][2] << "], [" << (*box)[1][0]
+        << ", " << (*box)[1][1] << ", " << (*box)[1][2] << "]] m";
+  }
+  return out.str();
+}
+
+const char* to_string(BoundaryType type) {
+  switch (type) {
+    case BoundaryType::velocity: return "velocity";
+    case BoundaryType::displacement: return "displacement";
+    case BoundaryType::traction: return "traction";
+    case BoundaryType::pressure: return "pressure";
+  }
+  return "?";
+}
+
+double Material::micro_inertia() const {
+  return 0.5 * std::numbers::pi * partial_density() * length_scale * length_scale;
+}
+
+double Material::bending_modulus(int dimension) const {
+  return dimension == 2 ? couple_moduli[2] : couple_moduli[1] + couple_moduli[2];
+}
+
+std::string Scene::where(const std::string& key_path) const {
+  // The key itself, else the nearest enclosing key that has a line.
+  std::string p = key_path;
+  while (!p.empty()) {
+    if (auto it = key_lines.find(p); it != key_lines.end()) return path + ":" + std::to_string(it->second) + ": " + key_path;
+    const auto cut = p.find_last_of(".[");
+    if (cut == std::string::npos) break;
+    p = p.substr(0, cut);
+  }
+  for (const auto& [k, line] : key_lines) {
+    if (k.rfind(key_path, 0) == 0) return path + ":" + std::to_string(line) + ": " + key_path;
+  }
+  return path + ": " + key_path;
+}
+
+Scene parse_scene(const std::string& text, const std::string& path, const std::vector<std::string>& overrides) {
+  const auto dir = std::filesystem::absolute(std::filesystem::path(path)).parent_path().string();
+  SceneReader reader(path, dir);
+  return reader.read(text, overrides);
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": scene file not found");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, expected a scene file (.yaml)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path, overrides);
+}
+
+}  // namespace mppm

@@ -1,0 +1,165 @@
+// The scene: one YAML file that describes a simulation completely (SCENE.md).
+// Everything here is resolved: SI units, every default filled in, paths absolute.
+#pragma once
+#include <array>
+#include <map>
+#include <utility>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mppm {
+
+// The effects a scene can call for (SPEC section 10).
+struct EffectSet {
+  bool micropolar = false;
+  bool viscoplasticity = false;
+  bool damage = false;
+  bool gravity = false;
+
+  std::vector<std::string> names() const;  // in canonical order
+  friend bool operator==(const EffectSet&, const EffectSet&) = default;
+};
+
+// Which part of the boundary (or which pre-crack) an entry means: a physical group name,
+// gmsh entity tags, or the boundary of the body inside an axis-aligned box (SI metres).
+struct Selector {
+  std::string physical_group;                         // empty if not used
+  std::vector<int> entities;                          // empty if not used
+  std::optional<std::array<std::array<double, 3>, 2>> box;  // [[x0,y0,z0],[x1,y1,z1]]
+
+  std::string describe() const;  // "top", "entities [12, 15]", "box [[..],[..]]"
+};
+
+// A piecewise-linear history of a vector value, held constant outside its table.
+// Constant values have one row; `ramp: t0` gives rows (0, 0) and (t0, value).
+struct History {
+  std::vector<double> times;                 // strictly increasing
+  std::vector<std::vector<double>> values;   // values[row][component]
+
+  std::vector<double> at(double t) const;
+  double component_at(double t, std::size_t c) const;
+};
+
+enum class BoundaryType { velocity, displacement, traction, pressure };
+const char* to_string(BoundaryType type);
+
+// True for conditions carried by a fictitious layer outside the body (SPEC section 8).
+inline bool is_kinematic(BoundaryType type) {
+  return type == BoundaryType::velocity || type == BoundaryType::displacement;
+}
+
+struct BoundaryCondition {
+  std::string name;        // label used in load.csv, POINTS.vtp and summaries
+  Selector selector;
+  BoundaryType type = BoundaryType::traction;
+  // Components (d of them; 1 for pressure). For kinematic conditions a component may be
+  // free (not prescribed): constrained[c] == false.
+  History value;
+  std::vector<bool> constrained;
+  // Micro-rotation condition on a kinematic layer (micropolar only): rotation rate
+  // (velocity type) or rotation (displacement type); 1 component in 2-D, 3 in 3-D.
+  std::optional<History> rotation;
+  double traction_depth = 0.0;  // traction/pressure: depth of the loaded layer [m] (default dx)
+  int line = 0;                 // line in the scene file, for messages
+};
+
+struct DamageParameters {
+  double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
+  double no_fail_depth = 0.0;                  // [m] from kinematic and loaded boundaries
+};
+
+struct ViscoplasticParameters {
+  std::string model = "drucker-prager-perzyna";
+  double friction_angle = 0.0;     // [rad]
+  double dilatancy_angle = 0.0;    // [rad]
+  double cohesion = 0.0;           // c0 [Pa]
+  double hardening = 0.0;          // h [Pa]
+  double viscosity = 0.0;          // eta [Pa s]
+  double residual_cohesion = 0.0;  // floor of c [Pa]
+  std::string cone_match = "triaxial-compression";  // or "plane-strain"
+};
+
+struct Material {
+  std::string model = "cosserat-elastic";
+  double density = 0.0;          // skeleton partial density rho^s [kg/m^3]
+  double solid_fraction = 1.0;   // phi0^s
+  double lambda = 0.0;           // [Pa]
+  double mu = 0.0;               // [Pa]
+  double mu_c = 0.0;             // Cosserat couple modulus [Pa]
+  std::array<double, 3> couple_moduli{0.0, 0.0, 0.0};  // a1 a2 a3 [N]
+  double length_scale = 0.0;     // micro-polar length l [m]
+  std::optional<DamageParameters> damage;
+  std::optional<ViscoplasticParameters> viscoplasticity;
+
+  double partial_density() const { return solid_fraction * density; }       // rho [kg/m^3]
+  // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (SPEC section 4).
+  double micro_inertia() const;
+  // Effective bending modulus B_w [N]: a3 in 2-D (SPEC section 5); a2 + a3 in 3-D.
+  double bending_modulus(int dimension) const;
+};
+
+struct Geometry {
+  std::string file;                // absolute path
+  double unit = 1.0;               // metres per geometry-file length unit
+  double spacing = 0.0;            // dx [m]
+  double horizon_factor = 0.0;     // delta / dx
+  std::vector<Selector> precracks;
+  double horizon() const { return spacing * horizon_factor; }
+};
+
+struct TimeSettings {
+  double end = 0.0;                // [s]
+  std::optional<double> step;      // [s]; empty = auto
+  double safety = 0.8;             // dt = safety * critical when auto
+};
+
+struct OutputSettings {
+  double interval = 0.0;           // snapshot interval [s] (0 = only first and last)
+  double load_interval = 0.0;      // load/energy rows [s] (0 = every step)
+  std::vector<std::string> fields{"displacement", "rotation", "damage"};
+  double checkpoint_interval = 0.0;  // [s] (0 = none)
+};
+
+struct Numerics {
+  double stabilization = 0.1;      // G_s
+  double damping = 0.0;            // mass-proportional damping coefficient [1/s] (quasi-static runs)
+  double energy_check_tolerance = 0.05;  // relative unexplained energy growth that stops a run
+};
+
+struct Scene {
+  std::string path;                // absolute path of the scene file
+  int format_version = 1;
+  std::string name;
+  int dimension = 2;
+  double thickness = 1.0;          // [m], 2-D only
+  Geometry geometry;
+  Material material;
+  EffectSet effects;
+  std::array<double, 3> gravity{0.0, -9.81, 0.0};  // [m/s^2], used with the gravity effect
+  std::vector<BoundaryCondition> boundary_conditions;
+  TimeSettings time;
+  OutputSettings output;
+  Numerics numerics;
+  std::vector<std::string> warnings;  // non-fatal findings (e.g. parameters of an effect that is off)
+  std::map<std::string, int> key_lines;  // "boundary_conditions[1].boundary" -> line in the file
+
+  // "scene.yaml:12: boundary_conditions[1].boundary" for messages about a key found invalid
+  // by a later stage (e.g. a physical group the geometry does not have).
+  std::string where(const std::string& key_path) const;
+};
+
+// Reads, overrides (`--set key.path=value`, applied before validation), fills defaults and
+// validates a scene. Throws InputError("scene.yaml:LINE: key.path: problem (expected ...)").
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Same, from text (tests); `path` is used in messages and to resolve relative paths.
+Scene parse_scene(const std::string& text, const std::string& path,
+                  const std::vector<std::string>& overrides = {});
+
+// The resolved scene as YAML (SI numbers, every default and derived value written out).
+// `derived` adds solver-derived values (e.g. {"time_step_s", 2.5e-8}) under the key `derived`.
+std::string resolved_scene_yaml(const Scene& scene,
+                                const std::vector<std::pair<std::string, double>>& derived = {});
+
+}  // namespace mppm

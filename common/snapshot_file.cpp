@@ -1,0 +1,172 @@
+// Binary snapshot files (layout in snapshot_file.hpp): checksummed, written atomically.
+#include "common/snapshot_file.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+
+namespace mppm {
+namespace {
+
+constexpr char kMagic[8] = {'M', 'P', 'P', 'M', 'S', 'N', 'A', 'P'};
+constexpr char kEnd[8] = {'M', 'P', 'P', 'M', 'E', 'N', 'D', '!'};
+constexpr std::uint32_t kVersion = 1;
+
+// FNV-1a 64-bit: cheap, detects truncation and corruption (not a cryptographic hash).
+struct Fnv1a {
+  std::uint64_t h = 1469598103934665603ull;
+  void add(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+      h ^= p[i];
+      h *= 1099511628211ull;
+    }
+  }
+};
+
+class Writer {
+ public:
+  explicit Writer(std::ostream& out) : out_(out) {}
+  void bytes(const void* data, std::size_t n) {
+    out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
+    hash_.add(data, n);
+  }
+  template <class T>
+  void value(T v) {
+    bytes(&v, sizeof v);
+  }
+  std::uint64_t checksum() const { return hash_.h; }
+
+ private:
+  std::ostream& out_;
+  Fnv1a hash_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& path, std::string data) : path_(path), data_(std::move(data)) {}
+  void bytes(void* out, std::size_t n, const char* what) {
+    if (pos_ + n > data_.size()) {
+      throw InputError(path_ + ": truncated snapshot (ends inside " + std::string(what) + "; was the run killed while writing?)");
+    }
+    std::memcpy(out, data_.data() + pos_, n);
+    hash_.add(data_.data() + pos_, n);
+    pos_ += n;
+  }
+  template <class T>
+  T value(const char* what) {
+    T v;
+    bytes(&v, sizeof v, what);
+    return v;
+  }
+  std::uint64_t checksum() const { return hash_.h; }
+  std::size_t remaining() const { return data_.size() - pos_; }
+
+ private:
+  std::string path_;
+  std::string data_;
+  std::size_t pos_ = 0;
+  Fnv1a hash_;
+};
+
+}  // namespace
+
+const SnapshotField* Snapshot::find(const std::string& name) const {
+  for (const auto& f : fields) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
+void write_snapshot(const Snapshot& s, const std::string& path) {
+  for (const auto& f : s.fields) {
+    if (f.components <= 0 || f.data.size() != s.point_count * static_cast<std::uint64_t>(f.components)) {
+      throw std::logic_error("snapshot field '" + f.name + "' has " + std::to_string(f.data.size()) +
+                             " values for " + std::to_string(s.point_count) + " points");
+    }
+  }
+  write_file_atomically(path, [&](std::ostream& out) {
+    Writer w(out);
+    w.bytes(kMagic, sizeof kMagic);
+    w.value<std::uint32_t>(kVersion);
+    w.value<std::uint32_t>(static_cast<std::uint32_t>(s.dimension));
+    w.value<std::int64_t>(s.step);
+    w.value<double>(s.time);
+    w.value<std::uint64_t>(s.point_count);
+    w.value<std::uint32_t>(static_cast<std::uint32_t>(s.fields.size()));
+    for (const auto& f : s.fields) {
+      w.value<std::uint32_t>(static_cast<std::uint32_t>(f.name.size()));
+      w.bytes(f.name.data(), f.name.size());
+      w.value<std::uint32_t>(static_cast<std::uint32_t>(f.components));
+      w.bytes(f.data.data(), f.data.size() * sizeof(double));
+    }
+    const std::uint64_t sum = w.checksum();
+    out.write(reinterpret_cast<const char*>(&sum), sizeof sum);
+    out.write(kEnd, sizeof kEnd);
+  });
+}
+
+Snapshot read_snapshot(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": snapshot not found or not readable");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  Reader r(path, buffer.str());
+  char magic[8];
+  r.bytes(magic, sizeof magic, "the header");
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0) throw InputError(path + ": not an mppm snapshot (bad magic bytes)");
+  const auto version = r.value<std::uint32_t>("the header");
+  if (version != kVersion) throw InputError(path + ": snapshot format version " + std::to_string(version) + " is not supported (this mppm reads 1)");
+  Snapshot s;
+  s.dimension = static_cast<int>(r.value<std::uint32_t>("the header"));
+  if (s.dimension != 2 && s.dimension != 3) throw InputError(path + ": corrupted snapshot (dimension " + std::to_string(s.dimension) + ")");
+  s.step = r.value<std::int64_t>("the header");
+  s.time = r.value<double>("the header");
+  s.point_count = r.value<std::uint64_t>("the header");
+  const auto field_count = r.value<std::uint32_t>("the header");
+  if (field_count > 1000) throw InputError(path + ": corrupted snapshot (" + std::to_string(field_count) + " fields)");
+  for (std::uint32_t k = 0; k < field_count; ++k) {
+    SnapshotField f;
+    const auto name_length = r.value<std::uint32_t>("a field name");
+    if (name_length == 0 || name_length > 256) throw InputError(path + ": corrupted snapshot (field name of length " + std::to_string(name_length) + ")");
+    f.name.resize(name_length);
+    r.bytes(f.name.data(), name_length, "a field name");
+    f.components = static_cast<int>(r.value<std::uint32_t>("a field header"));
+    if (f.components <= 0 || f.components > 64) throw InputError(path + ": corrupted snapshot (field '" + f.name + "' has " + std::to_string(f.components) + " components)");
+    // Compare by division first so a corrupted point count cannot overflow the product.
+    if (s.point_count > r.remaining() / sizeof(double) / static_cast<std::uint64_t>(f.components)) {
+      throw InputError(path + ": truncated snapshot (field '" + f.name + "' needs " + std::to_string(s.point_count) +
+                       " points x " + std::to_string(f.components) + " values; was the run killed while writing?)");
+    }
+    const std::uint64_t count = s.point_count * static_cast<std::uint64_t>(f.components);
+    if (count * sizeof(double) > r.remaining()) {
+      throw InputError(path + ": truncated snapshot (field '" + f.name + "' needs " + std::to_string(count) + " values; was the run killed while writing?)");
+    }
+    f.data.resize(count);
+    r.bytes(f.data.data(), count * sizeof(double), "field data");
+    s.fields.push_back(std::move(f));
+  }
+  const std::uint64_t expected = r.checksum();
+  const auto stored = r.value<std::uint64_t>("the checksum");
+  char end[8];
+  r.bytes(end, sizeof end, "the end marker");
+  if (stored != expected || std::memcmp(end, kEnd, sizeof end) != 0) {
+    throw InputError(path + ": corrupted snapshot (checksum mismatch)");
+  }
+  if (r.remaining() != 0) throw InputError(path + ": corrupted snapshot (trailing bytes after the end marker)");
+  return s;
+}
+
+namespace run_layout {
+std::string snapshot_name(std::int64_t index) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "snapshot_%06lld.snap", static_cast<long long>(index));
+  return buf;
+}
+}  // namespace run_layout
+
+}  // namespace mppm

@@ -1,0 +1,55 @@
+// The run directory's binary snapshot format, shared by the solver (writer), the
+// postprocessor and restart (readers). One file per snapshot, written atomically.
+//
+// Layout (little-endian):
+//   "MPPMSNAP" (8 bytes), u32 format version (1), u32 dimension,
+//   i64 step, f64 time, u64 point count, u32 field count,
+//   per field: u32 name length, name bytes, u32 components, f64 data[points*components]
+//              (point-major: value of point i, component c at [i*components + c]),
+//   u64 FNV-1a checksum of every preceding byte, "MPPMEND!" (8 bytes).
+// A truncated or corrupted file fails the checksum or the end marker and is reported.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mppm {
+
+struct SnapshotField {
+  std::string name;        // in words: "displacement", "rotation", "damage", ...
+  int components = 1;
+  std::vector<double> data;
+};
+
+struct Snapshot {
+  int dimension = 2;
+  std::int64_t step = 0;
+  double time = 0.0;
+  std::uint64_t point_count = 0;
+  std::vector<SnapshotField> fields;
+
+  const SnapshotField* find(const std::string& name) const;
+};
+
+// Throws InputError on write failure; never leaves a partial file under `path`.
+void write_snapshot(const Snapshot& snapshot, const std::string& path);
+
+// Throws InputError naming the file and what is wrong (missing, truncated, bad checksum).
+Snapshot read_snapshot(const std::string& path);
+
+// Run directory layout (SCENE.md):
+//   scene.resolved.yaml, log.txt, load.csv, energy.csv, run_info.json,
+//   reference.snap   (fields: position(3), volume, region, boundary_id: the points as run)
+//   snapshots/snapshot_000000.snap, ...   (step number in the name, 6+ digits)
+namespace run_layout {
+inline constexpr const char* resolved_scene = "scene.resolved.yaml";
+inline constexpr const char* log = "log.txt";
+inline constexpr const char* load = "load.csv";
+inline constexpr const char* energy = "energy.csv";
+inline constexpr const char* run_info = "run_info.json";
+inline constexpr const char* reference = "reference.snap";
+inline constexpr const char* snapshot_dir = "snapshots";
+std::string snapshot_name(std::int64_t index);  // "snapshot_000012.snap"
+}  // namespace run_layout
+
+}  // namespace mppm

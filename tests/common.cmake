@@ -1,0 +1,7 @@
+# Tests of common/: units, scene parsing and validation, file formats.
+set(MPPM_TEST_LIBS mppm_common)
+mppm_add_gtest(test_common unit
+  unit/test_units.cpp
+  unit/test_scene.cpp
+  unit/test_snapshot_file.cpp
+)

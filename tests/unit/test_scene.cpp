@@ -1,0 +1,199 @@
+// Scene parsing: SCENE.md example, defaults, --set overrides, error locations, resolved round trip.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "common/input_error.hpp"
+#include "common/scene.hpp"
+
+using namespace mppm;
+
+namespace {
+// The crack-branching example of SCENE.md (line numbers matter for the error tests).
+const std::string kExample = R"(mppm: 1
+name: crack-branching
+dimension: 2
+thickness: 1 mm
+geometry:
+  file: ../../geometry/branching_plate.geo
+  unit: m
+  spacing: 0.5 mm
+  horizon_factor: 4.05
+  precracks: [notch]
+material:
+  density: 2650
+  solid_fraction: 0.95
+  lambda: 14 GPa
+  mu: 14 GPa
+  mu_c: 4.667 GPa
+  couple_moduli: [0, 0, 56 kN]
+  length_scale: 2 mm
+  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm}
+effects: [micropolar, damage]
+boundary_conditions:
+  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}
+  - {boundary: bottom, type: traction, value: [0, -8 MPa], ramp: 6.25 us}
+time:
+  end: 60 us
+  step: 0.025 us
+output:
+  interval: 0.25 us
+  load_interval: 0.025 us
+  fields: [displacement, rotation, damage]
+numerics:
+  stabilization: 0.1
+)";
+
+const std::string kPath = "/cases/crack/scene.yaml";
+
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_scene(text, kPath, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+}  // namespace
+
+TEST(Scene, ReadsTheSceneExampleInSI) {
+  const Scene s = parse_scene(kExample, kPath);
+  EXPECT_EQ(s.name, "crack-branching");
+  EXPECT_EQ(s.dimension, 2);
+  EXPECT_DOUBLE_EQ(s.thickness, 1e-3);
+  EXPECT_EQ(s.geometry.file, "/geometry/branching_plate.geo");  // relative to the scene file
+  EXPECT_DOUBLE_EQ(s.geometry.spacing, 0.5e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.horizon(), 4.05 * 0.5e-3);
+  ASSERT_EQ(s.geometry.precracks.size(), 1u);
+  EXPECT_EQ(s.geometry.precracks[0].physical_group, "notch");
+  EXPECT_DOUBLE_EQ(s.material.lambda, 14e9);
+  EXPECT_DOUBLE_EQ(s.material.couple_moduli[2], 56e3);
+  EXPECT_DOUBLE_EQ(s.material.partial_density(), 2650 * 0.95);
+  EXPECT_DOUBLE_EQ(s.material.micro_inertia(), 0.5 * std::numbers::pi * 2650 * 0.95 * 4e-6);
+  ASSERT_TRUE(s.material.damage.has_value());
+  EXPECT_DOUBLE_EQ(s.material.damage->critical_energy_release_rate, 160.0);
+  EXPECT_TRUE(s.effects.micropolar && s.effects.damage && !s.effects.viscoplasticity && !s.effects.gravity);
+  ASSERT_EQ(s.boundary_conditions.size(), 2u);
+  const auto& top = s.boundary_conditions[0];
+  EXPECT_EQ(top.name, "top");
+  EXPECT_EQ(top.type, BoundaryType::traction);
+  EXPECT_DOUBLE_EQ(top.traction_depth, 0.5e-3);  // default: dx
+  // Ramp: 0 at t = 0, half at t0/2, full value from t0 on.
+  EXPECT_DOUBLE_EQ(top.value.component_at(0.0, 1), 0.0);
+  EXPECT_DOUBLE_EQ(top.value.component_at(3.125e-6, 1), 4e6);
+  EXPECT_DOUBLE_EQ(top.value.component_at(50e-6, 1), 8e6);
+  EXPECT_DOUBLE_EQ(*s.time.step, 0.025e-6);
+  EXPECT_DOUBLE_EQ(s.output.interval, 0.25e-6);
+  EXPECT_TRUE(s.warnings.empty());
+  EXPECT_EQ(s.where("material.lambda"), kPath + ":14: material.lambda");
+}
+
+TEST(Scene, OverridesApplyBeforeValidation) {
+  const Scene s = parse_scene(kExample, kPath,
+                              {"material.mu=20GPa", "effects=[micropolar]", "time.step=auto",
+                               "boundary_conditions[1].value=[0, -4 MPa]", "geometry.spacing=1 mm"});
+  EXPECT_DOUBLE_EQ(s.material.mu, 20e9);
+  EXPECT_FALSE(s.effects.damage);
+  EXPECT_FALSE(s.time.step.has_value());
+  EXPECT_DOUBLE_EQ(s.boundary_conditions[1].value.component_at(1.0, 1), -4e6);
+  EXPECT_DOUBLE_EQ(s.geometry.spacing, 1e-3);
+  // The damage block is now the parameter set of an effect that is off: a warning names it.
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings[0].find("material.damage"), std::string::npos) << s.warnings[0];
+  // An override that creates a new block.
+  const Scene v = parse_scene(kExample, kPath,
+                              {"effects=[micropolar,viscoplasticity]",
+                               "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, cohesion: 0.35 MPa, viscosity: 0.01 MPa*s}",
+                               "material.viscoplasticity.friction_angle=30deg"});
+  ASSERT_TRUE(v.material.viscoplasticity.has_value());
+  EXPECT_NEAR(v.material.viscoplasticity->friction_angle, 30 * std::numbers::pi / 180, 1e-15);
+}
+
+TEST(Scene, ErrorsNameFileLineKeyAndExpectation) {
+  // Unknown key, with a suggestion.
+  auto e = error_of(replace(kExample, "  lambda: 14 GPa", "  lamda: 14 GPa"));
+  EXPECT_NE(e.find(kPath + ":14: material.lamda: unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'lambda'"), std::string::npos) << e;
+  // Wrong dimension names the key and both units.
+  e = error_of(replace(kExample, "mu: 14 GPa", "mu: 14 mm"));
+  EXPECT_NE(e.find(kPath + ":15: material.mu:"), std::string::npos) << e;
+  EXPECT_NE(e.find("length"), std::string::npos) << e;
+  EXPECT_NE(e.find("pressure"), std::string::npos) << e;
+  // Missing required key names the parent's line.
+  e = error_of(replace(kExample, "  spacing: 0.5 mm\n", ""));
+  EXPECT_NE(e.find("geometry.spacing: missing required key"), std::string::npos) << e;
+  // Physically impossible values.
+  e = error_of(replace(kExample, "solid_fraction: 0.95", "solid_fraction: 1.5"));
+  EXPECT_NE(e.find(":13: material.solid_fraction"), std::string::npos) << e;
+  e = error_of(replace(kExample, "mu: 14 GPa", "mu: -1 GPa"));
+  EXPECT_NE(e.find("material.mu"), std::string::npos) << e;
+  // Unknown effect.
+  e = error_of(replace(kExample, "[micropolar, damage]", "[micropolar, dammage]"));
+  EXPECT_NE(e.find("effects[1]: unknown effect 'dammage'"), std::string::npos) << e;
+  // An effect listed without its parameters.
+  e = error_of(replace(kExample, "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm}\n", ""));
+  EXPECT_NE(e.find("material.damage: missing"), std::string::npos) << e;
+  // Errors from --set name the override.
+  e = error_of(kExample, {"material.mu=14 m"});
+  EXPECT_NE(e.find("--set material.mu=14 m"), std::string::npos) << e;
+  e = error_of(kExample, {"boundary_conditions[5].value=1"});
+  EXPECT_NE(e.find("not an index"), std::string::npos) << e;
+  // YAML syntax error reports the line.
+  e = error_of("mppm: 1\ndimension: [2\n");
+  EXPECT_NE(e.find(kPath + ":"), std::string::npos) << e;
+  EXPECT_NE(e.find("not valid YAML"), std::string::npos) << e;
+  // Empty scene.
+  EXPECT_NE(error_of("").find("empty"), std::string::npos);
+}
+
+TEST(Scene, FreeComponentsHistoriesAndRotation) {
+  const std::string text = replace(replace(kExample, "effects: [micropolar, damage]", "effects: [micropolar]"),
+      "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
+      "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0,\n"
+      "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n"
+      "  - {name: left, box: [[-1 mm, 0], [0, 40 mm]], type: pressure, value: 0.1 MPa}\n");
+  const Scene s = parse_scene(text, kPath);
+  const auto& top = s.boundary_conditions[0];
+  EXPECT_FALSE(top.constrained[0]);
+  EXPECT_TRUE(top.constrained[1]);
+  EXPECT_DOUBLE_EQ(top.value.component_at(0.05, 1), -0.05);
+  EXPECT_DOUBLE_EQ(top.value.component_at(0.09, 1), 0.0);  // the jump applies from its time on
+  ASSERT_TRUE(top.rotation.has_value());
+  EXPECT_DOUBLE_EQ(top.rotation->component_at(0.05, 0), 0.0);
+  const auto& left = s.boundary_conditions[1];
+  EXPECT_EQ(left.name, "left");
+  ASSERT_TRUE(left.selector.box.has_value());
+  EXPECT_DOUBLE_EQ((*left.selector.box)[0][0], -1e-3);
+}
+
+TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
+  const std::string text = replace(kExample, "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
+      "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0.5,\n"
+      "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n");
+  const Scene a = parse_scene(text, kPath);
+  const std::string yaml = resolved_scene_yaml(a, {{"time_step_s", 2.5e-8}});
+  const Scene b = parse_scene(yaml, "/elsewhere/scene.resolved.yaml");
+  EXPECT_EQ(b.geometry.file, a.geometry.file);
+  EXPECT_EQ(b.material.mu_c, a.material.mu_c);
+  EXPECT_EQ(b.material.damage->no_fail_depth, a.material.damage->no_fail_depth);
+  EXPECT_EQ(b.effects, a.effects);
+  ASSERT_EQ(b.boundary_conditions.size(), a.boundary_conditions.size());
+  for (std::size_t k = 0; k < a.boundary_conditions.size(); ++k) {
+    EXPECT_EQ(b.boundary_conditions[k].value.times, a.boundary_conditions[k].value.times);
+    EXPECT_EQ(b.boundary_conditions[k].value.values, a.boundary_conditions[k].value.values);
+    EXPECT_EQ(b.boundary_conditions[k].constrained, a.boundary_conditions[k].constrained);
+    EXPECT_EQ(b.boundary_conditions[k].rotation.has_value(), a.boundary_conditions[k].rotation.has_value());
+    if (a.boundary_conditions[k].rotation) {
+      EXPECT_EQ(b.boundary_conditions[k].rotation->values, a.boundary_conditions[k].rotation->values);
+    }
+  }
+  EXPECT_EQ(b.time.step, a.time.step);
+  EXPECT_EQ(b.output.fields, a.output.fields);
+  EXPECT_NE(yaml.find("time_step_s"), std::string::npos);
+}
