@@ -1,0 +1,110 @@
+// mppm-postprocess RUN_DIR -o POST_DIR: the thin main of the postprocessing stage.
+#include <iostream>
+#include <sstream>
+
+#include "common/command_line.hpp"
+#include "common/input_error.hpp"
+#include "postprocess/external_tools.hpp"
+#include "postprocess/postprocess_run.hpp"
+
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const auto first = item.find_first_not_of(' ');
+    const auto last = item.find_last_not_of(' ');
+    if (first != std::string::npos) items.push_back(item.substr(first, last - first + 1));
+  }
+  return items;
+}
+
+const char* kUsage =
+    "Usage: mppm-postprocess RUN_DIR -o POST_DIR [options]\n"
+    "\n"
+    "Turns a run directory of mppm-solve into what ParaView and plots open:\n"
+    "  POST_DIR/results.pvd + results/*.vtu   one frame per snapshot, points at their reference\n"
+    "                                         positions (Warp By Vector 'displacement' deforms them)\n"
+    "  POST_DIR/load_curve.csv, load_curve.png  displacement and force of every loaded boundary\n"
+    "  POST_DIR/summary.json                  counts, material, boundary conditions, peak load,\n"
+    "                                         shear-band and crack metrics (see postprocess/README.md)\n"
+    "\n"
+    "Options:\n"
+    "  -o POST_DIR          output directory (created if needed)\n"
+    "  --figures            also render PNG contour images (ParaView pvbatch, headless) into\n"
+    "                       POST_DIR/figures/FIELD_STEP.png\n"
+    "  --fields a,b         fields of the figures (default: damage, plastic_shear_strain,\n"
+    "                       rotation, those the run has)\n"
+    "  --times t1,t2|all    snapshot times of the figures, with units ('20 us'); the nearest\n"
+    "                       snapshot is used (default: the last one)\n"
+    "  --warp-scale S       displacement scale of the deformed configuration in figures (default 1)\n"
+    "  --compression KIND   .vtu compression: zlib (default), lz4 or none\n"
+    "  --no-plot            skip load_curve.png (no matplotlib needed)\n"
+    "  --partial            postprocess a run that did not finish (status 'running': it crashed\n"
+    "                       or is still running), up to its last snapshot\n"
+    "  --threads N          OpenMP threads (results do not depend on it)\n"
+    "  --quiet              no progress output\n"
+    "  --help, --version\n"
+    "\n"
+    "Exit codes: 0 success, 2 bad input (not a run directory, missing or truncated snapshot,\n"
+    "crashed run, unknown field), 1 anything else (e.g. pvbatch or matplotlib missing).\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const mppm::CommandLineSpec spec{
+      "mppm-postprocess", kUsage,
+      {"-o", "--fields", "--times", "--warp-scale", "--compression"},
+      {"--figures", "--partial", "--no-plot"}};
+  return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) -> int {
+    using mppm::InputError;
+    if (cl.positional.size() != 1)
+      throw InputError("expected one run directory (mppm-postprocess RUN_DIR -o POST_DIR; see --help)");
+    const auto output = cl.option("-o");
+    if (!output) throw InputError("missing -o POST_DIR (the output directory; see --help)");
+    if (!cl.overrides.empty()) throw InputError("--set does not apply to mppm-postprocess (it reads the resolved scene)");
+    mppm::post::PostprocessOptions options;
+    options.run_directory = cl.positional[0];
+    options.output_directory = *output;
+    options.quiet = cl.quiet;
+    options.allow_unfinished = cl.has_flag("--partial");
+    options.plot_load_curve = !cl.has_flag("--no-plot");
+    options.figures = cl.has_flag("--figures");
+    if (const auto fields = cl.option("--fields")) options.figure_fields = split_list(*fields);
+    if (const auto times = cl.option("--times")) options.figure_times = split_list(*times);
+    if ((cl.option("--fields") || cl.option("--times")) && !options.figures)
+      throw InputError("--fields and --times choose the figures: add --figures");
+    if (const auto scale = cl.option("--warp-scale")) {
+      try {
+        std::size_t used = 0;
+        options.warp_scale = std::stod(*scale, &used);
+        if (used != scale->size()) throw std::invalid_argument("trailing text");
+      } catch (const std::exception&) {
+        throw InputError("--warp-scale: '" + *scale + "' is not a number");
+      }
+    }
+    if (const auto kind = cl.option("--compression")) {
+      if (*kind == "zlib") options.compression = mppm::post::VtuCompression::zlib;
+      else if (*kind == "lz4") options.compression = mppm::post::VtuCompression::lz4;
+      else if (*kind == "none") options.compression = mppm::post::VtuCompression::none;
+      else throw InputError("--compression: '" + *kind + "' (expected zlib, lz4 or none)");
+    }
+    try {
+      const auto result = mppm::post::postprocess_run(options);
+      for (const auto& note : result.notes) std::cerr << "mppm-postprocess: note: " << note << "\n";
+      if (!cl.quiet) {
+        std::cout << "mppm-postprocess: " << result.frames << " frames -> " << options.output_directory
+                  << "/results.pvd, load_curve.csv" << (options.plot_load_curve ? ", load_curve.png" : "")
+                  << ", summary.json";
+        if (!result.figures.empty()) std::cout << ", " << result.figures.size() << " figures";
+        std::cout << "\n";
+      }
+    } catch (const mppm::post::ExternalToolError& e) {
+      std::cerr << "mppm-postprocess: error: " << e.what() << "\n";
+      return mppm::kExitOther;
+    }
+    return mppm::kExitSuccess;
+  });
+}

@@ -1,0 +1,457 @@
+// The postprocessing driver: checks the run directory, streams the snapshots one at a time
+// (ParaView frames, crack tracking), then writes the load curve, the summary and the figures.
+// Outputs are committed atomically; results.pvd is rewritten after every frame so that an
+// interrupted postprocess (or a truncated snapshot) leaves a readable partial series.
+#include "postprocess/postprocess_run.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+#include "common/progress.hpp"
+#include "common/run_directory.hpp"
+#include "common/snapshot_file.hpp"
+#include "common/units.hpp"
+#include "postprocess/boundary_layer_mask.hpp"
+#include "postprocess/crack_metrics.hpp"
+#include "postprocess/derived_fields.hpp"
+#include "postprocess/external_tools.hpp"
+#include "postprocess/field_units.hpp"
+#include "postprocess/load_curve.hpp"
+#include "postprocess/run_directory_reader.hpp"
+#include "postprocess/shear_band_metrics.hpp"
+#include "postprocess/yaml_to_json.hpp"
+
+namespace mppm::post {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPlotScript = "mppm_plot_load_curve.py";
+constexpr const char* kFigureScript = "mppm_figures_pvbatch.py";
+constexpr const char* kVtuDirectory = "results";
+
+void write_text(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+// A temporary name that keeps the extension (matplotlib and ParaView choose the format by it).
+std::string temporary_with_extension(const fs::path& path) {
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, PR105329) on "." + std::string.
+  std::string name(1, '.');
+  name += path.stem().string();
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  name += path.extension().string();
+  return (path.parent_path() / name).string();
+}
+
+std::string frame_file_name(std::int64_t step) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "results_%06lld.vtu", static_cast<long long>(step));
+  return buffer;
+}
+
+// The arrays of one frame as written: 2-component vectors of a 2-D run padded to 3 (ParaView
+// warps and glyphs only by 3-vectors), plus the derived invariants.
+struct FrameArrays {
+  std::vector<std::vector<double>> storage;
+  std::vector<PointArray> arrays;
+};
+
+FrameArrays frame_arrays(const Snapshot& snapshot, std::vector<std::string>& notes) {
+  FrameArrays frame;
+  frame.storage.reserve(snapshot.fields.size() + 4);  // keep pointers stable
+  const std::size_t n = snapshot.point_count;
+  for (const auto& field : snapshot.fields) {
+    if (snapshot.dimension == 2 && field.components == 2) {
+      std::vector<double> padded(3 * n);
+      for (std::size_t i = 0; i < n; ++i) {
+        padded[3 * i] = field.data[2 * i];
+        padded[3 * i + 1] = field.data[2 * i + 1];
+        padded[3 * i + 2] = 0.0;
+      }
+      frame.storage.push_back(std::move(padded));
+      frame.arrays.push_back({field.name, 3, frame.storage.back().data()});
+    } else {
+      frame.arrays.push_back({field.name, field.components, field.data.data()});
+    }
+  }
+  if (const SnapshotField* stress = snapshot.find("stress")) {
+    const std::vector<double>* tensor = nullptr;
+    std::vector<double> embedded;
+    if (stress->components == 9) {
+      tensor = &stress->data;
+    } else if (stress->components == 4 && snapshot.dimension == 2) {
+      // The in-plane block only (xx, xy, yx, yy): embedded with sigma_zz = 0.
+      embedded.assign(9 * n, 0.0);
+      for (std::size_t i = 0; i < n; ++i) {
+        embedded[9 * i] = stress->data[4 * i];
+        embedded[9 * i + 1] = stress->data[4 * i + 1];
+        embedded[9 * i + 3] = stress->data[4 * i + 2];
+        embedded[9 * i + 4] = stress->data[4 * i + 3];
+      }
+      tensor = &embedded;
+      const std::string note = "stress has the 4 in-plane components only: von_mises_stress and mean_stress "
+                               "are those of the in-plane state (sigma_zz taken as 0)";
+      if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
+    } else {
+      const std::string note = "stress has " + std::to_string(stress->components) +
+                               " components (expected 9, or 4 in 2-D): no stress invariants";
+      if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
+    }
+    if (tensor) {
+      frame.storage.push_back(von_mises_stress(*tensor));
+      frame.arrays.push_back({"von_mises_stress", 1, frame.storage.back().data()});
+      frame.storage.push_back(mean_stress(*tensor));
+      frame.arrays.push_back({"mean_stress", 1, frame.storage.back().data()});
+    }
+  }
+  if (const SnapshotField* couple = snapshot.find("couple_stress")) {
+    frame.storage.push_back(magnitude(couple->data, couple->components));
+    frame.arrays.push_back({"couple_stress_magnitude", 1, frame.storage.back().data()});
+  }
+  return frame;
+}
+
+std::vector<int> integer_field(const Snapshot& reference, const char* name) {
+  const SnapshotField* field = reference.find(name);
+  std::vector<int> values(reference.point_count, 0);
+  if (field)
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<int>(std::lround(field->data[i]));
+  return values;
+}
+
+// `layout`: the fields (name, components) of the first snapshot, which every frame must hold.
+void check_snapshot(const Snapshot& snapshot, const RunDirectory& run, const SnapshotEntry& entry,
+                    const std::vector<std::pair<std::string, int>>& layout) {
+  if (static_cast<std::int64_t>(snapshot.point_count) != run.info.points)
+    throw InputError(entry.path + ": holds " + std::to_string(snapshot.point_count) +
+                     " points, the run has " + std::to_string(run.info.points));
+  if (snapshot.dimension != run.info.dimension)
+    throw InputError(entry.path + ": dimension " + std::to_string(snapshot.dimension) +
+                     " differs from the run's " + std::to_string(run.info.dimension));
+  if (std::fabs(snapshot.time - entry.time) > 1e-9 * std::max(1.0, std::fabs(entry.time)) + 1e-15)
+    throw InputError(entry.path + ": time " + std::to_string(snapshot.time) + " s differs from run_info.json (" +
+                     std::to_string(entry.time) + " s)");
+  for (const auto& [name, components] : layout) {
+    const SnapshotField* same = snapshot.find(name);
+    if (!same)
+      throw InputError(entry.path + ": field '" + name + "' is missing (the first snapshot has it)");
+    if (same->components != components)
+      throw InputError(entry.path + ": field '" + name + "' has " + std::to_string(same->components) +
+                       " components, " + std::to_string(components) + " in the first snapshot");
+  }
+}
+
+std::string format_time(double seconds) {
+  char buffer[48];
+  if (seconds != 0.0 && std::fabs(seconds) < 1e-3)
+    std::snprintf(buffer, sizeof buffer, "t = %.4g us", seconds * 1e6);
+  else if (seconds != 0.0 && std::fabs(seconds) < 1.0)
+    std::snprintf(buffer, sizeof buffer, "t = %.4g ms", seconds * 1e3);
+  else
+    std::snprintf(buffer, sizeof buffer, "t = %.4g s", seconds);
+  return buffer;
+}
+
+// Snapshot indices for the figures.
+std::vector<std::size_t> figure_frames(const std::vector<std::string>& times, const std::vector<SnapshotEntry>& snapshots) {
+  std::vector<std::size_t> frames;
+  if (times.empty()) return {snapshots.size() - 1};
+  if (times.size() == 1 && times[0] == "all") {
+    for (std::size_t k = 0; k < snapshots.size(); ++k) frames.push_back(k);
+    return frames;
+  }
+  // Half the largest gap between snapshots: a requested time farther than that from every
+  // snapshot is outside the series.
+  double gap = 0.0;
+  for (std::size_t k = 1; k < snapshots.size(); ++k) gap = std::max(gap, snapshots[k].time - snapshots[k - 1].time);
+  for (const auto& text : times) {
+    double t = 0.0;
+    try {
+      t = parse_quantity_as(text, dim::time);
+    } catch (const std::exception& e) {
+      throw InputError("--times: '" + text + "': " + e.what() + " (expected times such as '20 us', or 'all')");
+    }
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < snapshots.size(); ++k)
+      if (std::fabs(snapshots[k].time - t) < std::fabs(snapshots[best].time - t)) best = k;
+    if (std::fabs(snapshots[best].time - t) > 0.5 * gap + 1e-12 * std::fabs(t))
+      throw InputError("--times: no snapshot near " + text + " (the run has snapshots from " +
+                       std::to_string(snapshots.front().time) + " s to " + std::to_string(snapshots.back().time) + " s)");
+    if (std::find(frames.begin(), frames.end(), best) == frames.end()) frames.push_back(best);
+  }
+  std::sort(frames.begin(), frames.end());
+  return frames;
+}
+
+}  // namespace
+
+PostprocessResult postprocess_run(const PostprocessOptions& options) {
+  PostprocessResult result;
+  RunDirectory run = open_run_directory(options.run_directory, options.allow_unfinished);
+  std::vector<std::string>& notes = result.notes;
+  notes.insert(notes.end(), run.notes.begin(), run.notes.end());
+  const auto& snapshots = run.info.snapshots;
+  const std::size_t n = run.reference.point_count;
+  const int dimension = run.info.dimension;
+
+  // Read the first snapshot before writing anything: options that name fields are checked.
+  Snapshot first = read_snapshot(snapshots.front().path);
+  check_snapshot(first, run, snapshots.front(), {});
+  std::vector<std::pair<std::string, int>> layout;
+  for (const auto& field : first.fields) layout.emplace_back(field.name, field.components);
+  std::vector<std::string> array_names;
+  {
+    std::vector<std::string> ignored;
+    for (const auto& a : frame_arrays(first, ignored).arrays) array_names.push_back(a.name);
+  }
+  std::vector<std::string> figure_fields = options.figure_fields;
+  if (figure_fields.empty())
+    for (const char* name : {"damage", "plastic_shear_strain", "rotation"})
+      if (first.find(name)) figure_fields.emplace_back(name);
+  if (figure_fields.empty() && first.find("displacement")) figure_fields.emplace_back("displacement");
+  for (const auto& name : figure_fields)
+    if (std::find(array_names.begin(), array_names.end(), name) == array_names.end()) {
+      std::string available;
+      for (const auto& a : array_names) available += (available.empty() ? "" : ", ") + a;
+      throw InputError("--fields: the run has no field '" + name + "' (available: " + available + ")");
+    }
+  const std::vector<std::size_t> frames_for_figures = figure_frames(options.figure_times, snapshots);
+
+  const fs::path post(options.output_directory);
+  std::error_code ec;
+  fs::create_directories(post / kVtuDirectory, ec);
+  if (ec) throw InputError(options.output_directory + ": cannot create the output directory (" + ec.message() + ")");
+
+  // Geometry for the metrics.
+  const SnapshotField* position = run.reference.find("position");
+  std::vector<double> x(n), y(n), z(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = position->data[3 * i];
+    y[i] = position->data[3 * i + 1];
+    z[i] = position->data[3 * i + 2];
+  }
+  const std::vector<int> region = integer_field(run.reference, "region");
+  const std::vector<int> boundary_id = integer_field(run.reference, "boundary_id");
+  std::vector<char> body(n);
+  for (std::size_t i = 0; i < n; ++i) body[i] = region[i] == 0;
+
+  const bool has_damage = first.find("damage") != nullptr;
+  const bool track_crack = has_damage && dimension == 2;
+  std::optional<CrackTracker> crack;
+  if (track_crack) {
+    CrackSettings settings;
+    settings.spacing = run.spacing;
+    settings.horizon = run.horizon;
+    crack.emplace(x, y, z, body, settings);
+  }
+
+  // Frames.
+  VtuSeriesWriter writer(run.reference, options.compression);
+  std::vector<PvdEntry> entries;
+  std::vector<double> last_plastic_shear;
+  double last_plastic_time = 0.0;
+  Progress progress("postprocess", static_cast<std::int64_t>(snapshots.size()), options.quiet);
+  for (std::size_t k = 0; k < snapshots.size(); ++k) {
+    Snapshot snapshot = k == 0 ? std::move(first) : read_snapshot(snapshots[k].path);
+    if (k == 0) first = Snapshot{};
+    check_snapshot(snapshot, run, snapshots[k], layout);
+    const FrameArrays arrays = frame_arrays(snapshot, notes);
+    const std::string file = frame_file_name(snapshots[k].step);
+    writer.write_frame((post / kVtuDirectory / file).string(), snapshot.time, snapshot.step, arrays.arrays);
+    entries.push_back({snapshot.time, std::string(kVtuDirectory) + "/" + file});
+    // Rewritten as frames are added, so an interrupted series stays readable; for long series
+    // only every ~1/64 of the way (rewriting after every frame would grow quadratically).
+    const std::size_t every = std::max<std::size_t>(1, snapshots.size() / 64);
+    if (k < 64 || (k + 1) % every == 0 || k + 1 == snapshots.size())
+      write_text((post / "results.pvd").string(), pvd_text(entries));
+    if (crack) crack->add_frame(snapshot.time, snapshot.find("damage")->data);
+    if (const SnapshotField* e = snapshot.find("plastic_shear_strain"); e && e->components == 1) {
+      last_plastic_shear = e->data;
+      last_plastic_time = snapshot.time;
+    }
+    progress.update(static_cast<std::int64_t>(k + 1), format_time(snapshot.time));
+  }
+  progress.finish();
+  result.frames = entries.size();
+
+  // Load curve.
+  const LoadTable table = read_load_table((fs::path(run.path) / run_layout::load).string());
+  notes.insert(notes.end(), table.notes.begin(), table.notes.end());
+  const LoadCurve curve = make_load_curve(table);
+  write_text((post / "load_curve.csv").string(), load_curve_csv(curve));
+  std::vector<std::string> kinematic;
+  if (const YAML::Node bcs = run.scene["boundary_conditions"]; bcs && bcs.IsSequence())
+    for (const auto& bc : bcs) {
+      const std::string type = bc["type"] ? bc["type"].as<std::string>() : "";
+      if ((type == "velocity" || type == "displacement") && bc["name"]) kinematic.push_back(bc["name"].as<std::string>());
+    }
+  const PeakLoad peak = find_peak_load(curve, kinematic);
+
+  // Summary.
+  JsonValue summary = JsonValue::object();
+  summary.set("run_directory", fs::absolute(run.path).lexically_normal().string());
+  summary.set("status", run.info.status);
+  if (!run.info.message.empty()) summary.set("message", run.info.message);
+  summary.set("dimension", dimension);
+  summary.set("points", run.info.points);
+  summary.set("bonds", run.info.bonds);
+  summary.set("steps", run.info.steps);
+  summary.set("wall_seconds", run.info.wall_seconds);
+  summary.set("threads", run.info.threads);
+  auto effects = JsonValue::array();
+  for (const auto& e : run.info.effects) effects.push(e);
+  summary.set("effects", effects);
+  summary.set("detached_points", run.info.detached_points);
+  summary.set("snapshots", static_cast<std::int64_t>(entries.size()));
+  summary.set("first_time_s", snapshots.front().time);
+  summary.set("last_time_s", snapshots.back().time);
+  summary.set("spacing_m", run.spacing);
+  summary.set("horizon_m", run.horizon);
+  auto fields = JsonValue::array();
+  for (const auto& name : array_names) fields.push(name);
+  summary.set("fields", fields);
+  summary.set("material", run.scene["material"] ? yaml_to_json(run.scene["material"]) : JsonValue());
+  summary.set("boundary_conditions",
+              run.scene["boundary_conditions"] ? yaml_to_json(run.scene["boundary_conditions"]) : JsonValue::array());
+  summary.set("main_boundary", peak.boundary.empty() ? JsonValue() : JsonValue(peak.boundary));
+  summary.set("main_axis", peak.boundary.empty() ? JsonValue() : JsonValue(std::string(1, "xyz"[peak.axis])));
+  summary.set("peak_load_N", peak.peak_load_N);
+  summary.set("displacement_at_peak_m", peak.displacement_at_peak_m);
+  summary.set("time_at_peak_s", peak.time_at_peak_s);
+
+  const bool has_plastic = !last_plastic_shear.empty();
+  if (has_plastic && dimension == 2) {
+    const std::vector<char> interior = points_away_from_boundaries(x, y, z, region, boundary_id, 2.0 * run.horizon);
+    ShearBandSettings settings;
+    settings.spacing = run.spacing;
+    const ShearBandResult bands = measure_shear_bands(x, y, last_plastic_shear, interior, settings);
+    auto angles = JsonValue::array(), widths = JsonValue::array();
+    for (const auto& b : bands.bands) {
+      angles.push(b.angle_deg);
+      widths.push(b.width_m);
+    }
+    summary.set("shear_band_time_s", last_plastic_time);
+    summary.set("shear_band_count", static_cast<std::int64_t>(bands.bands.size()));
+    summary.set("shear_band_angle_deg", bands.mean_angle_deg);
+    summary.set("shear_band_angles_deg", angles);
+    summary.set("shear_band_width_m", bands.mean_width_m);
+    summary.set("shear_band_widths_m", widths);
+    if (!bands.note.empty()) notes.push_back("shear bands: " + bands.note);
+  } else if (has_plastic) {
+    notes.push_back("shear-band metrics are measured in 2-D runs only");
+  }
+  if (crack) {
+    const CrackMetrics m = crack->finish();
+    summary.set("crack_start_time_s", m.start_time_s);
+    summary.set("crack_branch_time_s", m.branch_time_s);
+    summary.set("crack_end_time_s", m.end_time_s);
+    summary.set("crack_end_reason", m.end_reason.empty() ? JsonValue() : JsonValue(m.end_reason));
+    summary.set("crack_tip_speed_max_m_per_s", m.tip_speed_max_m_per_s);
+    summary.set("crack_length_m", m.crack_length_m);
+    if (!m.note.empty()) notes.push_back("crack: " + m.note);
+  } else if (has_damage || std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
+    if (dimension != 2) notes.push_back("crack metrics are measured in 2-D runs only");
+  }
+  auto note_array = JsonValue::array();
+  for (const auto& note : notes) note_array.push(note);
+  summary.set("notes", note_array);
+  write_text((post / "summary.json").string(), summary.dump());
+  result.summary = summary;
+
+  // Load-curve plot (matplotlib).
+  if (options.plot_load_curve) {
+    const std::string script = companion_script(kPlotScript, options.script_directory);
+    const std::string python = "/usr/bin/python3";
+    if (::access(python.c_str(), X_OK) != 0)
+      throw ExternalToolError("/usr/bin/python3 is missing: install the Debian packages python3 and python3-matplotlib");
+    const fs::path png = post / "load_curve.png";
+    const std::string temporary = temporary_with_extension(png);
+    const int status = run_program({python, script, (post / "load_curve.csv").string(), temporary,
+                                    peak.boundary}, true);
+    if (status != 0 || !fs::exists(temporary)) {
+      fs::remove(temporary, ec);
+      throw ExternalToolError("plotting load_curve.png failed (" + python + " " + script + " exited with " +
+                              std::to_string(status) + "; is python3-matplotlib installed?)");
+    }
+    commit_temporary(temporary, png.string());
+  }
+
+  // Figures (ParaView pvbatch under xvfb-run).
+  if (options.figures) {
+    const std::string script = companion_script(kFigureScript, options.script_directory);
+    const auto pvbatch = find_program("pvbatch");
+    if (!pvbatch)
+      throw ExternalToolError("--figures needs ParaView's pvbatch, which is not on PATH: install the Debian "
+                              "packages paraview, xvfb and xauth");
+    const auto xvfb = find_program("xvfb-run");
+    const std::vector<std::string> environment = paraview_python_environment();
+    const fs::path figures = post / "figures";
+    fs::create_directories(figures, ec);
+    if (ec) throw InputError(figures.string() + ": cannot create (" + ec.message() + ")");
+    JsonValue spec = JsonValue::object();
+    spec.set("spacing", run.spacing);
+    spec.set("dimension", dimension);
+    spec.set("warp_scale", options.warp_scale);
+    auto images = JsonValue::array();
+    std::vector<std::pair<std::string, std::string>> outputs;  // temporary, final
+    for (std::size_t k : frames_for_figures)
+      for (const auto& field : figure_fields) {
+        char name[160];
+        std::snprintf(name, sizeof name, "%s_%06lld.png", field.c_str(), static_cast<long long>(snapshots[k].step));
+        const fs::path final_path = figures / name;
+        const std::string temporary = temporary_with_extension(final_path);
+        std::string unit = field_unit(field);
+        auto image = JsonValue::object();
+        image.set("vtu", fs::absolute(post / entries[k].file).string());
+        image.set("field", field);
+        image.set("title", field + (unit.empty() ? std::string() : " [" + unit + "]"));
+        image.set("time_label", format_time(snapshots[k].time));
+        image.set("output", fs::absolute(temporary).string());
+        images.push(image);
+        outputs.emplace_back(temporary, final_path.string());
+      }
+    spec.set("images", images);
+    const std::string spec_path = (figures / (".figures.tmp-" + std::to_string(::getpid()) + ".json")).string();
+    write_text(spec_path, spec.dump());
+    std::vector<std::string> command;
+    // xvfb-run -a starts its search at display 99, so concurrent runs race for the same display;
+    // starting from a number derived from the process id avoids that. 24-bit: OpenGL needs it.
+    // -noreset: Xvfb otherwise resets when pvbatch's first (probing) connection closes, and a
+    // connection made during the reset fails ("bad X server connection") on a loaded machine.
+    const std::string display = std::to_string(100 + ::getpid() % 800);
+    if (xvfb) command = {*xvfb, "-a", "-n", display, "-s", "-screen 0 1920x1080x24 -nolisten tcp -noreset", *pvbatch, script, spec_path};
+    else command = {*pvbatch, "--force-offscreen-rendering", script, spec_path};
+    // One retry: under load, Xvfb is sometimes not ready when pvbatch connects ("bad X server
+    // connection", SIGABRT); a second attempt on a fresh server succeeds.
+    int status = run_program(command, true, environment);
+    if (status != 0 && xvfb) status = run_program(command, true, environment);
+    fs::remove(spec_path, ec);
+    bool complete = status == 0;
+    for (const auto& [temporary, final_path] : outputs)
+      if (!fs::exists(temporary)) complete = false;
+    if (!complete) {
+      for (const auto& output : outputs) fs::remove(output.first, ec);
+      throw ExternalToolError("rendering the figures failed (pvbatch exited with " + std::to_string(status) +
+                              (xvfb ? "" : "; xvfb-run is missing: install xvfb and xauth") + ")");
+    }
+    for (const auto& [temporary, final_path] : outputs) {
+      commit_temporary(temporary, final_path);
+      result.figures.push_back(final_path);
+    }
+  }
+  return result;
+}
+
+}  // namespace mppm::post

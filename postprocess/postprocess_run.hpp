@@ -1,0 +1,38 @@
+// The postprocessing stage as a library call: run directory -> post directory (SCENE.md):
+// results.pvd + results/*.vtu, load_curve.csv + load_curve.png, summary.json, and with
+// `figures` PNG contour images through ParaView's pvbatch. mppm-postprocess is a thin main.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "postprocess/json_value.hpp"
+#include "postprocess/vtu_series_writer.hpp"
+
+namespace mppm::post {
+
+struct PostprocessOptions {
+  std::string run_directory;
+  std::string output_directory;
+  bool quiet = false;
+  bool allow_unfinished = false;         // --partial: a run whose status is still "running"
+  bool plot_load_curve = true;           // load_curve.png through matplotlib
+  VtuCompression compression = VtuCompression::zlib;
+  std::string script_directory;          // helper scripts; empty = next to the executable
+  // Figures (--figures, --fields, --times, --warp-scale).
+  bool figures = false;
+  std::vector<std::string> figure_fields;  // empty = damage, plastic_shear_strain, rotation (those present)
+  std::vector<std::string> figure_times;   // texts with units ("20 us"); {"all"}; empty = last snapshot
+  double warp_scale = 1.0;
+};
+
+struct PostprocessResult {
+  JsonValue summary;
+  std::vector<std::string> notes;        // also in summary.json "notes"
+  std::size_t frames = 0;
+  std::vector<std::string> figures;      // PNG files written
+};
+
+// Throws InputError (bad run directory or options), ExternalToolError (python/pvbatch).
+PostprocessResult postprocess_run(const PostprocessOptions& options);
+
+}  // namespace mppm::post

@@ -1,0 +1,20 @@
+# Tests of postprocess/ (label unit). test_post_stage and test_post_paraview run the built
+# mppm-postprocess on run directories generated at test time (unit/test_post_run_fixture).
+set(MPPM_TEST_LIBS mppm_postprocess)
+mppm_add_gtest(test_post_metrics unit
+  unit/test_post_shear_band.cpp
+  unit/test_post_crack.cpp
+  unit/test_post_fields.cpp
+)
+mppm_add_gtest(test_post_stage unit
+  unit/test_post_output.cpp
+  unit/test_post_bad_input.cpp
+  unit/test_post_run_fixture.cpp
+)
+add_dependencies(test_post_stage mppm-postprocess)
+# Needs ParaView (pvbatch) and xvfb-run: fails, never skips, when they are missing.
+mppm_add_gtest(test_post_paraview unit
+  unit/test_post_pvbatch.cpp
+  unit/test_post_run_fixture.cpp
+)
+add_dependencies(test_post_paraview mppm-postprocess)
