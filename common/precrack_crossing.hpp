@@ -1,0 +1,49 @@
+// Pre-crack cuts (SPEC section 8): does the straight bond between two material points cross a
+// pre-crack (2-D: segments of a curve, 3-D: triangles of a surface, as stored in
+// PointCloud::precrack_vertices)? Exact predicates (CGAL), so the same bonds are cut on every
+// machine and for every thread count. Free of gmsh so that the solver can use it.
+//
+// Rule: the bond and the pre-crack are closed sets; a bond that touches a pre-crack (even at its
+// tip or with one end point on it) counts as crossing. Lattice points exactly on a zero-width
+// pre-crack therefore lose the bonds that touch it: put pre-cracks between lattice rows.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace mppm {
+
+using Point3 = std::array<double, 3>;
+
+// Brute force over every pre-crack element (tests, a handful of queries). `dimension` 2 uses x, y
+// of 2-vertex segments; 3 uses 3-vertex triangles. Degenerate elements cut nothing.
+bool bond_crosses_precrack(const Point3& a, const Point3& b, int dimension,
+                           const std::vector<double>& precrack_vertices);
+
+// The same test for many bonds: pre-crack elements binned on a uniform grid of `cell_size`
+// (pass the horizon: a bond then touches at most 2^d cells per axis). Immutable after
+// construction, so concurrent `crosses` calls from OpenMP threads are safe.
+class PrecrackIndex {
+ public:
+  PrecrackIndex(int dimension, const std::vector<double>& precrack_vertices, double cell_size);
+
+  bool crosses(const Point3& a, const Point3& b) const;
+  bool empty() const { return elements_ == 0; }
+  std::size_t element_count() const { return elements_; }
+
+ private:
+  struct CellEntry {
+    std::array<std::int64_t, 3> cell;
+    std::int32_t element;
+  };
+  bool element_crosses(std::int32_t element, const Point3& a, const Point3& b) const;
+
+  int dimension_;
+  double cell_size_;
+  std::vector<double> vertices_;      // valid (non-degenerate) elements only
+  std::size_t elements_ = 0;
+  std::array<double, 3> low_{}, high_{};  // bounding box of all elements
+  std::vector<CellEntry> entries_;    // sorted by cell
+};
+
+}  // namespace mppm

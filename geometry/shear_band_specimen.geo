@@ -1,0 +1,19 @@
+// Biaxial shear-band specimen (CASES.md case 1), in METRES (scenes: geometry.unit: m).
+// 100 mm wide (x) by 200 mm tall (y); at dx = 2.5 mm the lattice is 40 x 80 points.
+W = 0.100;
+H = 0.200;
+Point(1) = {0, 0, 0};
+Point(2) = {W, 0, 0};
+Point(3) = {W, H, 0};
+Point(4) = {0, H, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3};
+Physical Curve("left") = {4};
+Physical Surface("body") = {1};
