@@ -1,0 +1,59 @@
+// Families within the horizon (SPEC section 1), stored from both ends in CSR form: the bonds of
+// owned point i are offset[i] .. offset[i+1]-1, each with its neighbour's local index and the
+// reference bond vector xi = x_j - x_i. Every point owns its own bond list, so kernels write
+// only the point they loop over (no atomics, no races).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+struct BondFamilies {
+  int dimension = 2;
+  std::vector<std::int64_t> offset;    // owned + 1 entries
+  std::vector<std::int32_t> neighbor;  // local index (owned or ghost)
+  std::vector<double> xi;              // D per bond
+  std::vector<std::uint8_t> intact;    // damage effect only (empty otherwise): 1 = bond acts
+
+  std::size_t bond_count() const { return neighbor.size(); }
+};
+
+struct FamilyOptions {
+  double horizon = 0.0;
+  double spacing = 0.0;  // tolerance 1e-9 * spacing keeps lattice points on the sphere in
+  // Period of the lattice along each axis (0 = not periodic). For verification lattices
+  // (waves, layers): bonds then use the minimum image, and each period must exceed 2 horizons.
+  std::array<double, 3> period{0.0, 0.0, 0.0};
+};
+
+// Cell-list search (brute force with minimum images when periodic). Neighbours of each point
+// are sorted by index, so the storage does not depend on the search order or thread count.
+BondFamilies build_families(const PointData& points, const FamilyOptions& options);
+
+// Removes the bonds for which cut(bond) is true from both ends; `cut` must be symmetric.
+template <class Predicate>
+void remove_bonds(BondFamilies& families, Predicate&& cut) {
+  const int D = families.dimension;
+  std::size_t kept = 0;
+  std::int64_t start = 0;
+  for (std::size_t i = 0; i + 1 < families.offset.size(); ++i) {
+    const std::int64_t end = families.offset[i + 1];
+    for (std::int64_t b = start; b < end; ++b) {
+      if (cut(i, static_cast<std::size_t>(b))) continue;
+      families.neighbor[kept] = families.neighbor[b];
+      for (int c = 0; c < D; ++c) families.xi[kept * D + c] = families.xi[b * D + c];
+      ++kept;
+    }
+    start = end;
+    families.offset[i + 1] = static_cast<std::int64_t>(kept);
+  }
+  families.neighbor.resize(kept);
+  families.xi.resize(kept * D);
+  if (!families.intact.empty()) families.intact.assign(kept, 1);
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,212 @@
+// Boundary conditions: matching scene and points file, prescribed motion, surface loads,
+// reactions.
+#include "solver/boundary_conditions.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/input_error.hpp"
+
+namespace mppm::solver {
+
+double history_integral(const History& h, double t, std::size_t c) {
+  if (h.times.empty() || t <= 0.0) return 0.0;
+  auto value = [&](std::size_t k) { return h.values[k][c]; };
+  double sum = 0.0;
+  double a = 0.0;  // integrated up to a
+  const std::size_t n = h.times.size();
+  // Before the first row the value is the first row's.
+  if (h.times.front() > 0.0) {
+    const double b = std::min(t, h.times.front());
+    sum += value(0) * (b - a);
+    a = b;
+  }
+  for (std::size_t k = 0; k + 1 < n && a < t; ++k) {
+    const double t0 = h.times[k], t1 = h.times[k + 1];
+    if (t1 <= a || t1 <= t0) continue;
+    const double lo = std::max(a, t0), hi = std::min(t, t1);
+    if (hi <= lo) continue;
+    auto at = [&](double s) { return value(k) + (value(k + 1) - value(k)) * (s - t0) / (t1 - t0); };
+    sum += 0.5 * (at(lo) + at(hi)) * (hi - lo);  // exact for a linear piece
+    a = hi;
+  }
+  if (a < t) sum += value(n - 1) * (t - a);
+  return sum;
+}
+
+double history_slope(const History& h, double t, std::size_t c) {
+  const std::size_t n = h.times.size();
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double t0 = h.times[k], t1 = h.times[k + 1];
+    if (t >= t0 && t < t1 && t1 > t0) return (h.values[k + 1][c] - h.values[k][c]) / (t1 - t0);
+  }
+  return 0.0;
+}
+
+BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& cloud, const PointData& p,
+                                       const std::string& points_file) {
+  dimension_ = p.dimension;
+  rotation_components_ = p.rotation_components;
+  const int D = dimension_;
+  const int R = rotation_components_;
+  condition_count_ = scene.boundary_conditions.size();
+  prescribed_u_.assign(p.total() * D, 0);
+  prescribed_w_.assign(p.total() * R, 0);
+  if (cloud.boundaries.size() != condition_count_)
+    throw InputError(points_file + ": holds " + std::to_string(cloud.boundaries.size()) +
+                     " boundaries but the scene has " + std::to_string(condition_count_) +
+                     " boundary conditions (rerun mppm-preprocess with this scene)");
+  std::vector<std::vector<std::int32_t>> layer_points(condition_count_ + 1), loaded_points(condition_count_ + 1);
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const auto r = p.region[i];
+    const auto b = p.boundary_id[i];
+    if (r < 0 || static_cast<std::size_t>(r) > condition_count_)
+      throw InputError(points_file + ": point " + std::to_string(i) + " has region " + std::to_string(r) +
+                       " but the scene has " + std::to_string(condition_count_) + " boundary conditions");
+    if (r > 0) layer_points[r].push_back(static_cast<std::int32_t>(i));
+    else if (b > 0 && static_cast<std::size_t>(b) <= condition_count_)
+      loaded_points[b].push_back(static_cast<std::int32_t>(i));
+  }
+  for (std::size_t k = 0; k < condition_count_; ++k) {
+    const BoundaryCondition& bc = scene.boundary_conditions[k];
+    const BoundaryInfo& info = cloud.boundaries[k];
+    names_.push_back(bc.name);
+    if (info.type != to_string(bc.type))
+      throw InputError(points_file + ": boundary " + std::to_string(k + 1) + " ('" + info.name + "') is of type '" +
+                       info.type + "' but scene boundary condition '" + bc.name + "' is '" +
+                       to_string(bc.type) + "' (rerun mppm-preprocess with this scene)");
+    if (is_kinematic(bc.type)) {
+      if (layer_points[k + 1].empty())
+        throw InputError(points_file + ": kinematic boundary condition '" + bc.name +
+                         "' has no layer points (region " + std::to_string(k + 1) + ")");
+      KinematicLayer layer;
+      layer.condition = k;
+      layer.name = bc.name;
+      layer.points = std::move(layer_points[k + 1]);
+      layer.constrained.assign(D, 1);
+      for (int c = 0; c < D && c < static_cast<int>(bc.constrained.size()); ++c)
+        layer.constrained[c] = bc.constrained[c] ? 1 : 0;
+      layer.displacement_type = bc.type == BoundaryType::displacement;
+      layer.value = bc.value;
+      if (bc.rotation && R > 0) layer.rotation = bc.rotation;
+      for (auto i : layer.points) {
+        for (int c = 0; c < D; ++c) prescribed_u_[i * D + c] = layer.constrained[c];
+        if (layer.rotation)
+          for (int c = 0; c < R; ++c) prescribed_w_[i * R + c] = 1;
+      }
+      layers_.push_back(std::move(layer));
+    } else {
+      LoadedSurface s;
+      s.condition = k;
+      s.name = bc.name;
+      s.points = std::move(loaded_points[k + 1]);
+      s.pressure = bc.type == BoundaryType::pressure;
+      s.value = bc.value;
+      s.area = info.area;
+      for (auto i : s.points) s.volume_sum += p.volume[i];
+      if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
+        throw InputError(points_file + ": loaded boundary '" + bc.name +
+                         "' has no loaded points or no area (boundary_id " + std::to_string(k + 1) + ")");
+      surfaces_.push_back(std::move(s));
+    }
+  }
+}
+
+void BoundaryConditions::prescribe(PointData& p, double t) const {
+  const int D = dimension_;
+  const int R = rotation_components_;
+  for (const KinematicLayer& layer : layers_) {
+    double u[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+    for (int c = 0; c < D; ++c) {
+      if (!layer.constrained[c]) continue;
+      if (layer.displacement_type) {
+        u[c] = layer.value.component_at(t, c);
+        v[c] = history_slope(layer.value, t, c);
+      } else {
+        u[c] = history_integral(layer.value, t, c);
+        v[c] = layer.value.component_at(t, c);
+      }
+    }
+    double w[3] = {0, 0, 0}, s[3] = {0, 0, 0};
+    if (layer.rotation)
+      for (int c = 0; c < R; ++c) {
+        if (layer.displacement_type) {
+          w[c] = layer.rotation->component_at(t, c);
+          s[c] = history_slope(*layer.rotation, t, c);
+        } else {
+          w[c] = history_integral(*layer.rotation, t, c);
+          s[c] = layer.rotation->component_at(t, c);
+        }
+      }
+    for (auto i : layer.points) {
+      for (int c = 0; c < D; ++c)
+        if (layer.constrained[c]) {
+          p.displacement[i * D + c] = u[c];
+          p.velocity[i * D + c] = v[c];
+        }
+      if (layer.rotation)
+        for (int c = 0; c < R; ++c) {
+          p.rotation[i * R + c] = w[c];
+          p.spin[i * R + c] = s[c];
+        }
+    }
+  }
+}
+
+void BoundaryConditions::add_surface_loads(const PointData& p, double t, std::vector<double>& b) const {
+  const int D = dimension_;
+  for (const LoadedSurface& s : surfaces_) {
+    const double scale = s.area / s.volume_sum;
+    if (s.pressure) {
+      const double pressure = s.value.component_at(t, 0);
+      for (auto i : s.points)
+        for (int c = 0; c < D; ++c) b[i * D + c] -= pressure * scale * p.normal[i * D + c];
+    } else {
+      double tbar[3] = {0, 0, 0};
+      for (int c = 0; c < D; ++c) tbar[c] = s.value.component_at(t, c);
+      for (auto i : s.points)
+        for (int c = 0; c < D; ++c) b[i * D + c] += tbar[c] * scale;
+    }
+  }
+}
+
+std::vector<BoundaryConditions::LoadValues> BoundaryConditions::load_values(const PointData& p, double t) const {
+  const int D = dimension_;
+  std::vector<LoadValues> out(condition_count_);
+  for (std::size_t k = 0; k < condition_count_; ++k) {
+    out[k].name = names_[k];
+    out[k].displacement.assign(D, 0.0);
+    out[k].force.assign(D, 0.0);
+  }
+  auto mean_displacement = [&](const std::vector<std::int32_t>& pts, std::vector<double>& u) {
+    double vsum = 0.0;
+    for (auto i : pts) {
+      vsum += p.volume[i];
+      for (int c = 0; c < D; ++c) u[c] += p.volume[i] * p.displacement[i * D + c];
+    }
+    if (vsum > 0.0)
+      for (int c = 0; c < D; ++c) u[c] /= vsum;
+  };
+  for (const KinematicLayer& layer : layers_) {
+    LoadValues& v = out[layer.condition];
+    mean_displacement(layer.points, v.displacement);
+    for (auto i : layer.points)
+      for (int c = 0; c < D; ++c)
+        if (layer.constrained[c]) v.force[c] -= p.force[i * D + c] * p.volume[i];
+  }
+  for (const LoadedSurface& s : surfaces_) {
+    LoadValues& v = out[s.condition];
+    mean_displacement(s.points, v.displacement);
+    const double scale = s.area / s.volume_sum;
+    if (s.pressure) {
+      const double pressure = s.value.component_at(t, 0);
+      for (auto i : s.points)
+        for (int c = 0; c < D; ++c) v.force[c] -= pressure * scale * p.normal[i * D + c] * p.volume[i];
+    } else {
+      for (int c = 0; c < D; ++c) v.force[c] = s.value.component_at(t, c) * s.area;
+    }
+  }
+  return out;
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,90 @@
+// Boundary conditions on the preprocessor's layers (SPEC section 8): kinematic conditions
+// (velocity / displacement, optional micro-rotation) prescribe the motion of the fictitious
+// layer points of region k = condition k-1; tractions and pressures become a body force
+// density b = t_bar A / sum V on the body points with boundary_id k.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/point_cloud.hpp"
+#include "common/scene.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+// Exact integral over [0, t] of component c of a piecewise-linear history held constant
+// outside its table (velocity -> displacement of a layer).
+double history_integral(const History& h, double t, std::size_t c);
+// Slope of component c at t (displacement -> velocity of a layer); right derivative.
+double history_slope(const History& h, double t, std::size_t c);
+
+struct KinematicLayer {
+  std::size_t condition = 0;  // index into Scene::boundary_conditions
+  std::string name;
+  std::vector<std::int32_t> points;
+  std::vector<std::uint8_t> constrained;  // D flags
+  bool displacement_type = false;         // else velocity
+  History value;
+  std::optional<History> rotation;        // rotation (displacement) or rotation rate (velocity)
+};
+
+struct LoadedSurface {
+  std::size_t condition = 0;
+  std::string name;
+  std::vector<std::int32_t> points;
+  bool pressure = false;
+  History value;
+  double area = 0.0;          // BoundaryInfo::area
+  double volume_sum = 0.0;    // sum of V over the loaded points
+};
+
+class BoundaryConditions {
+ public:
+  // No conditions at all (a free body).
+  explicit BoundaryConditions(const PointData& points)
+      : dimension_(points.dimension), rotation_components_(points.rotation_components),
+        prescribed_u_(points.total() * points.dimension, 0),
+        prescribed_w_(points.total() * points.rotation_components, 0) {}
+  // Matches the scene's conditions with the cloud's regions and boundary ids; throws
+  // InputError naming the points file when they do not agree.
+  BoundaryConditions(const Scene& scene, const PointCloud& cloud, const PointData& points,
+                     const std::string& points_file);
+
+  // Sets the prescribed components of u, v (and w, spin) at time t.
+  void prescribe(PointData& points, double t) const;
+  // Body force density [N/m^3] of tractions and pressures at time t, added to `b` (D per point).
+  void add_surface_loads(const PointData& points, double t, std::vector<double>& b) const;
+
+  // 1 where a displacement / rotation component is prescribed (D / R per point).
+  const std::vector<std::uint8_t>& prescribed_displacement() const { return prescribed_u_; }
+  const std::vector<std::uint8_t>& prescribed_rotation() const { return prescribed_w_; }
+
+  const std::vector<KinematicLayer>& layers() const { return layers_; }
+  const std::vector<LoadedSurface>& surfaces() const { return surfaces_; }
+
+  // Per scene condition (scene order): mean displacement of its points and its force [N]:
+  // kinematic: reaction = -sum_layer f V on the constrained components (the force the layer
+  // transmits to the body; positive along the prescribed motion when the body resists);
+  // traction/pressure: the applied force sum b V.
+  struct LoadValues {
+    std::string name;
+    std::vector<double> displacement;  // D
+    std::vector<double> force;         // D
+  };
+  std::vector<LoadValues> load_values(const PointData& points, double t) const;
+
+  std::size_t condition_count() const { return condition_count_; }
+
+ private:
+  int dimension_ = 2;
+  int rotation_components_ = 0;
+  std::size_t condition_count_ = 0;
+  std::vector<std::string> names_;
+  std::vector<KinematicLayer> layers_;
+  std::vector<LoadedSurface> surfaces_;
+  std::vector<std::uint8_t> prescribed_u_, prescribed_w_;
+};
+
+}  // namespace mppm::solver

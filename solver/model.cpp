@@ -1,0 +1,73 @@
+// Assembly of the discrete model: family search, pre-crack cuts, shape tensors.
+#include "solver/parallel_policy.hpp"
+#include "solver/model.hpp"
+
+#include "common/precrack_crossing.hpp"
+#include "solver/shape_tensor.hpp"
+
+namespace mppm::solver {
+
+namespace {
+
+// Bonds whose segment touches a pre-crack element are removed from both ends before the first
+// step. The crossing test is symmetric in its end points, so both ends agree.
+std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamilies& f, double horizon) {
+  if (cloud.precrack_vertices.empty()) return 0;  // (not used with periodic lattices)
+  const PrecrackIndex index(cloud.dimension, cloud.precrack_vertices, horizon);
+  if (index.empty()) return 0;
+  const int D = p.dimension;
+  std::vector<std::uint8_t> cut(f.bond_count(), 0);
+  const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp parallel for schedule(static) if (thread_bond_loop(f.bond_count()))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    Point3 a{0, 0, 0}, b{0, 0, 0};
+    for (int c = 0; c < D; ++c) a[c] = p.position[i * D + c];
+    for (std::int64_t k = f.offset[i]; k < f.offset[i + 1]; ++k) {
+      // The same call (lower index first, stored positions) from both ends gives the same
+      // answer, so a bond is cut from both ends or from neither.
+      const auto j = static_cast<std::size_t>(f.neighbor[k]);
+      for (int c = 0; c < D; ++c) b[c] = p.position[j * D + c];
+      cut[k] = (j > i ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
+    }
+  }
+  std::size_t removed = 0;
+  for (auto v : cut) removed += v;
+  remove_bonds(f, [&](std::size_t, std::size_t k) { return cut[k] != 0; });
+  return removed / 2;
+}
+
+}  // namespace
+
+Model build_model(const PointCloud& cloud, const ModelOptions& o) {
+  Model m;
+  m.constants = o.constants;
+  m.effects = o.effects;
+  m.points = make_point_data(cloud, o.effects.micropolar, o.effects.viscoplasticity);
+  FamilyOptions fo;
+  fo.horizon = o.horizon;
+  fo.spacing = o.spacing;
+  fo.period = o.period;
+  m.bonds = build_families(m.points, fo);
+  m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
+  if (o.effects.damage) m.bonds.intact.assign(m.bonds.bond_count(), 1);
+  for (std::size_t i = 0; i < m.points.owned; ++i)
+    m.points.bond_count_at_start[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.offset[i]);
+  m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
+  m.kernel = internal_force_functions(m.points.dimension, o.effects);
+  return m;
+}
+
+InternalEnergy internal_energy(const Model& model) {
+  InternalEnergy e;
+  const PointData& p = model.points;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    e.force_stress += p.force_stress_energy[i];
+    e.stabilization += p.stabilization_energy[i];
+  }
+  for (std::size_t i = 0; i < p.couple_stress_energy.size() && i < p.owned; ++i)
+    e.couple_stress += p.couple_stress_energy[i];
+  return e;
+}
+
+}  // namespace mppm::solver

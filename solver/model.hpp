@@ -1,0 +1,55 @@
+// The discrete model as built for a run: points, bonds (pre-crack cuts applied), constants,
+// shape tensors, and the chosen kernel instantiation. Tests build it from an in-memory cloud.
+#pragma once
+#include <cstddef>
+
+#include "common/point_cloud.hpp"
+#include "common/scene.hpp"
+#include "solver/bond_families.hpp"
+#include "solver/cosserat_material.hpp"
+#include "solver/internal_forces.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+struct ModelOptions {
+  CosseratConstants constants;
+  EffectSet effects;
+  double horizon = 0.0;
+  double spacing = 0.0;
+  std::array<double, 3> period{0.0, 0.0, 0.0};  // verification lattices only
+};
+
+struct Model {
+  CosseratConstants constants;
+  EffectSet effects;
+  PointData points;
+  BondFamilies bonds;
+  InternalForceFunctions kernel;
+  std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
+  std::size_t detached_points = 0;
+
+  int dimension() const { return points.dimension; }
+  bool micropolar() const { return effects.micropolar; }
+
+  // Force and moment per unit volume of every owned point; energies too if asked.
+  void compute_internal_forces(bool with_energy = false) {
+    (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants);
+  }
+};
+
+// Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.
+Model build_model(const PointCloud& cloud, const ModelOptions& options);
+
+// Totals of the per-point energies of the last evaluation with energies [J], summed serially in
+// index order (the same result for any thread count).
+struct InternalEnergy {
+  double force_stress = 0.0;   // 1/2 eps:sigma
+  double couple_stress = 0.0;  // 1/2 kap:m
+  double stabilization = 0.0;
+  double elastic() const { return force_stress + couple_stress; }
+  double total() const { return force_stress + couple_stress + stabilization; }
+};
+InternalEnergy internal_energy(const Model& model);
+
+}  // namespace mppm::solver

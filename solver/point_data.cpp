@@ -1,0 +1,63 @@
+// Construction of the solver's point storage from a point cloud.
+#include "solver/point_data.hpp"
+
+#include "solver/compiled_effects.hpp"
+
+namespace mppm::solver {
+
+PointData make_point_data(const PointCloud& cloud, bool micropolar, bool viscoplasticity) {
+  PointData p;
+  const int D = cloud.dimension;
+  const std::size_t n = cloud.size();
+  const int R = micropolar ? rotation_components_of(D) : 0;
+  p.dimension = D;
+  p.rotation_components = R;
+  p.owned = n;
+  p.ghost = 0;
+  p.global_id.resize(n);
+  p.position.resize(n * D);
+  p.normal.assign(n * D, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    p.global_id[i] = static_cast<std::int64_t>(i);
+    const double xyz[3] = {cloud.x[i], cloud.y[i], cloud.z.empty() ? 0.0 : cloud.z[i]};
+    const double nrm[3] = {cloud.normal_x.empty() ? 0.0 : cloud.normal_x[i],
+                           cloud.normal_y.empty() ? 0.0 : cloud.normal_y[i],
+                           cloud.normal_z.empty() ? 0.0 : cloud.normal_z[i]};
+    for (int c = 0; c < D; ++c) {
+      p.position[i * D + c] = xyz[c];
+      p.normal[i * D + c] = nrm[c];
+    }
+  }
+  p.volume = cloud.volume;
+  p.region = cloud.region.empty() ? std::vector<std::int32_t>(n, 0) : cloud.region;
+  p.boundary_id = cloud.boundary_id.empty() ? std::vector<std::int32_t>(n, 0) : cloud.boundary_id;
+
+  const std::size_t DD = static_cast<std::size_t>(D) * D;
+  p.displacement.assign(n * D, 0.0);
+  p.velocity.assign(n * D, 0.0);
+  p.force.assign(n * D, 0.0);
+  p.shape_inverse.assign(n * DD, 0.0);
+  p.stabilization_ck.assign(n * DD, 0.0);
+  p.detached.assign(n, 0);
+  p.bond_count_at_start.assign(n, 0);
+  p.strain.assign(n * DD, 0.0);
+  p.force_tensor.assign(n * DD, 0.0);
+  p.force_stress_energy.assign(n, 0.0);
+  p.stabilization_energy.assign(n, 0.0);
+  if (R > 0) {
+    p.rotation.assign(n * R, 0.0);
+    p.spin.assign(n * R, 0.0);
+    p.moment.assign(n * R, 0.0);
+    p.stabilization_rot.assign(n, 0.0);
+    p.wryness.assign(n * R * D, 0.0);
+    p.moment_tensor.assign(n * R * D, 0.0);
+    p.couple_stress_energy.assign(n, 0.0);
+  }
+  if (viscoplasticity) {
+    p.plastic_strain.assign(n * DD, 0.0);
+    if (R > 0) p.plastic_wryness.assign(n * R * D, 0.0);
+  }
+  return p;
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,64 @@
+// Per-point storage of the solver: one array per field (structure of arrays), owned points
+// first and ghost points (copies of other ranks' points, none yet) after them, each with a
+// global id, so that a distributed decomposition can be added without touching the kernels:
+// kernels loop over owned points and read neighbours by local index, owned or ghost; with
+// ghosts, their kinematic state and pass-1 tensors come from a halo exchange between passes.
+// Small tensors of one point are contiguous (row-major) inside their field's array: the force
+// pass gathers them per neighbour, and one cache line then holds a neighbour's whole tensor.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/point_cloud.hpp"
+
+namespace mppm::solver {
+
+struct PointData {
+  int dimension = 2;
+  int rotation_components = 0;  // 1 (2-D) or 3 (3-D) with micropolar, 0 without
+  std::size_t owned = 0;        // points this process integrates
+  std::size_t ghost = 0;        // read-only copies after the owned ones
+  std::size_t total() const { return owned + ghost; }
+
+  std::vector<std::int64_t> global_id;
+  std::vector<double> position;  // reference, D per point
+  std::vector<double> volume;
+  std::vector<std::int32_t> region;
+  std::vector<std::int32_t> boundary_id;
+  std::vector<double> normal;    // D per point (loaded body points)
+
+  // Kinematic state. Rotation arrays stay empty when micropolar is off.
+  std::vector<double> displacement, velocity;  // D per point
+  std::vector<double> rotation, spin;          // R per point
+  // Internal force and moment per unit volume (owned points).
+  std::vector<double> force;   // D per point
+  std::vector<double> moment;  // R per point
+
+  // Shape tensors (constant while bonds do not change).
+  std::vector<double> shape_inverse;       // K^-1, D*D
+  std::vector<double> stabilization_ck;    // G_s (C : K^-1), D*D (zero for detached points)
+  std::vector<double> stabilization_rot;   // G_s B_w tr(K^-1) / d (micropolar)
+  std::vector<std::uint8_t> detached;
+  std::vector<std::int32_t> bond_count_at_start;
+
+  // Products of the strain pass, read by the force pass for i and its neighbours.
+  std::vector<double> strain;         // eps, D*D
+  std::vector<double> force_tensor;   // A = sigma K^-1 - G_s (C:K^-1) eps, D*D
+  std::vector<double> wryness;        // kap, R*D
+  std::vector<double> moment_tensor;  // Q = m K^-1 - g kap, R*D
+
+  // Slot for viscoplasticity: plastic strain and wryness (allocated only when the effect is on).
+  std::vector<double> plastic_strain, plastic_wryness;
+
+  // Energy per point [J], filled when a force evaluation is asked for energies.
+  std::vector<double> force_stress_energy;   // V 1/2 eps:sigma
+  std::vector<double> couple_stress_energy;  // V 1/2 kap:m
+  std::vector<double> stabilization_energy;  // V 1/2 sum_j V_j (z_u.T^s + z_w.M^s)
+};
+
+// Copies positions, volumes, regions of the cloud; allocates the state for the dimension and
+// the micropolar flag. Every point is owned (single process).
+PointData make_point_data(const PointCloud& cloud, bool micropolar, bool viscoplasticity);
+
+}  // namespace mppm::solver

@@ -1,0 +1,151 @@
+// Writing the run directory.
+#include "solver/run_writer.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <system_error>
+
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+#include "common/run_directory.hpp"
+
+namespace mppm::solver {
+
+namespace fs = std::filesystem;
+
+std::string format_number(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+namespace {
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string csv_row(const std::vector<double>& values) {
+  std::string row;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (k) row += ',';
+    row += format_number(values[k]);
+  }
+  return row + '\n';
+}
+
+}  // namespace
+
+RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(directory)) {
+  std::error_code ec;
+  const fs::path dir(directory_);
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec))
+      throw InputError(directory_ + ": exists and is not a directory (expected a run directory to create)");
+    if (!fs::is_empty(dir, ec)) {
+      if (!force)
+        throw InputError(directory_ + ": the run directory is not empty (use --force to overwrite an earlier run)");
+      // Remove the files of an earlier run, nothing else.
+      for (const char* name : {run_layout::resolved_scene, run_layout::log, run_layout::load, run_layout::energy,
+                               run_layout::run_info, run_layout::reference})
+        fs::remove(dir / name, ec);
+      const fs::path snaps = dir / run_layout::snapshot_dir;
+      if (fs::is_directory(snaps, ec)) {
+        for (const auto& entry : fs::directory_iterator(snaps, ec))
+          if (entry.path().extension() == ".snap") fs::remove(entry.path(), ec);
+      }
+    }
+  }
+  fs::create_directories(dir / run_layout::snapshot_dir, ec);
+  if (ec) throw InputError(directory_ + ": cannot create the run directory (" + ec.message() + ")");
+}
+
+void RunWriter::write_resolved_scene(const Scene& scene) {
+  const std::string text = resolved_scene_yaml(scene);
+  write_file_atomically(path(run_layout::resolved_scene), [&](std::ostream& out) { out << text; });
+}
+
+void RunWriter::write_reference(const PointData& p) {
+  Snapshot s;
+  s.dimension = p.dimension;
+  s.point_count = p.owned;
+  const int D = p.dimension;
+  SnapshotField position{"position", 3, std::vector<double>(p.owned * 3, 0.0)};
+  SnapshotField volume{"volume", 1, {}}, region{"region", 1, {}}, boundary{"boundary_id", 1, {}};
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    for (int c = 0; c < D; ++c) position.data[i * 3 + c] = p.position[i * D + c];
+    volume.data.push_back(p.volume[i]);
+    region.data.push_back(p.region[i]);
+    boundary.data.push_back(p.boundary_id[i]);
+  }
+  s.fields = {std::move(position), std::move(volume), std::move(region), std::move(boundary)};
+  mppm::write_snapshot(s, path(run_layout::reference));
+}
+
+void RunWriter::write_snapshot(const Snapshot& snapshot) {
+  const std::string file = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(snapshot.step);
+  mppm::write_snapshot(snapshot, path(file));
+  snapshots_.push_back({file, snapshot.step, snapshot.time});
+}
+
+void RunWriter::set_load_header(const std::vector<std::string>& columns) {
+  load_csv_.clear();
+  for (std::size_t k = 0; k < columns.size(); ++k) load_csv_ += (k ? "," : "") + columns[k];
+  load_csv_ += '\n';
+  energy_csv_.clear();
+  const auto& e = run_files::energy_columns();
+  for (std::size_t k = 0; k < e.size(); ++k) energy_csv_ += (k ? "," : "") + e[k];
+  energy_csv_ += '\n';
+}
+
+void RunWriter::add_load_row(const std::vector<double>& values) { load_csv_ += csv_row(values); }
+void RunWriter::add_energy_row(const std::vector<double>& values) { energy_csv_ += csv_row(values); }
+void RunWriter::log(const std::string& line) { log_ += line + '\n'; }
+
+void RunWriter::flush(const RunInfo& info) {
+  write_file_atomically(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
+  write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
+  write_file_atomically(path(run_layout::log), [&](std::ostream& out) { out << log_; });
+  std::string j = "{\n";
+  j += "  \"status\": " + json_string(info.status) + ",\n";
+  j += "  \"message\": " + json_string(info.message) + ",\n";
+  j += "  \"points\": " + std::to_string(info.points) + ",\n";
+  j += "  \"bonds\": " + std::to_string(info.bonds) + ",\n";
+  j += "  \"steps\": " + std::to_string(info.steps) + ",\n";
+  j += "  \"time_s\": " + format_number(info.time) + ",\n";
+  j += "  \"wall_seconds\": " + format_number(info.wall_seconds) + ",\n";
+  j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
+  j += "  \"effects\": [";
+  for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_string(info.effects[k]);
+  j += "],\n";
+  j += "  \"dimension\": " + std::to_string(info.dimension) + ",\n";
+  j += "  \"time_step_s\": " + format_number(info.time_step) + ",\n";
+  j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
+  j += "  \"limiting_mode\": " + json_string(info.limiting_mode) + ",\n";
+  j += "  \"snapshots\": [";
+  for (std::size_t k = 0; k < snapshots_.size(); ++k)
+    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_string(snapshots_[k].file) +
+         ", \"step\": " + std::to_string(snapshots_[k].step) + ", \"time_s\": " + format_number(snapshots_[k].time) + "}";
+  j += snapshots_.empty() ? "],\n" : "\n  ],\n";
+  j += "  \"detached_points\": " + std::to_string(info.detached_points) + "\n}\n";
+  write_file_atomically(path(run_layout::run_info), [&](std::ostream& out) { out << j; });
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,66 @@
+// The run directory of mppm-solve (SCENE.md, common/run_directory.hpp, common/snapshot_file.hpp):
+// resolved scene, reference points, snapshots, load.csv, energy.csv, log.txt, run_info.json.
+// Tables and the log are kept in memory and rewritten atomically at every snapshot and at the
+// end, so no file is ever half-written under its final name.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/scene.hpp"
+#include "common/snapshot_file.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+struct RunInfo {
+  std::string status = "running";  // running | completed | numerical_failure | interrupted
+  std::string message;
+  std::uint64_t points = 0, bonds = 0;
+  std::int64_t steps = 0;
+  double time = 0.0;
+  double wall_seconds = 0.0;
+  int threads = 1;
+  std::vector<std::string> effects;
+  int dimension = 2;
+  double time_step = 0.0, critical_time_step = 0.0;
+  std::string limiting_mode;
+  std::uint64_t detached_points = 0;
+};
+
+class RunWriter {
+ public:
+  // Creates RUN_DIR (and RUN_DIR/snapshots). An existing non-empty directory is refused with an
+  // InputError unless `force`, which removes the files of an earlier run (and only those).
+  RunWriter(std::string directory, bool force);
+
+  const std::string& directory() const { return directory_; }
+  std::string path(const std::string& name) const { return directory_ + "/" + name; }
+
+  void write_resolved_scene(const Scene& scene);
+  void write_reference(const PointData& points);
+  void write_snapshot(const Snapshot& snapshot);  // named by its step; recorded in run_info
+
+  void set_load_header(const std::vector<std::string>& columns);
+  void add_load_row(const std::vector<double>& values);
+  void add_energy_row(const std::vector<double>& values);
+  void log(const std::string& line);  // also kept for log.txt
+
+  // Rewrites load.csv, energy.csv, log.txt and run_info.json.
+  void flush(const RunInfo& info);
+
+ private:
+  std::string directory_;
+  std::string load_csv_, energy_csv_, log_;
+  struct SnapshotEntry {
+    std::string file;
+    std::int64_t step;
+    double time;
+  };
+  std::vector<SnapshotEntry> snapshots_;
+};
+
+// Formats a number for the tables (shortest text that reads back to the same double).
+std::string format_number(double v);
+
+}  // namespace mppm::solver

@@ -1,0 +1,20 @@
+// Shape tensors K_i = sum_j b w (xi (x) xi) V_j, their inverses, the stabilization tensors built
+// from them, and the detection of detached points (SPEC sections 2-3).
+#pragma once
+#include <cstddef>
+
+#include "solver/bond_families.hpp"
+#include "solver/cosserat_material.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+// A point is detached when fewer than d+1 bonds act on it or when the reciprocal condition
+// number of K (smallest over largest eigenvalue) is below this.
+inline constexpr double kDetachReciprocalCondition = 1e-6;
+
+// Fills shape_inverse, stabilization_ck, stabilization_rot and detached for every owned point
+// (K is never inverted when it is singular); returns the number of detached points.
+std::size_t update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
+
+}  // namespace mppm::solver

@@ -1,0 +1,143 @@
+// Snapshot fields: kinematic state, strain/stress measures, porosity, damage.
+#include "solver/snapshot_fields.hpp"
+
+#include <algorithm>
+
+#include <Eigen/Dense>
+
+namespace mppm::solver {
+
+namespace {
+
+// sigma as a full 3 x 3 tensor (row-major, 9 components) in 2-D and 3-D: in plane strain the
+// out-of-plane normal stress sigma_zz = lambda tr(eps) is not zero, and the postprocessor's
+// invariants (von Mises, mean stress) need it.
+template <int D>
+void stress_field(const Model& m, std::vector<double>& out) {
+  using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
+  const PointData& p = m.points;
+  out.assign(p.owned * 9, 0.0);
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    Mat eps = Eigen::Map<const Mat>(&p.strain[i * D * D]);
+    if (!p.plastic_strain.empty()) eps -= Eigen::Map<const Mat>(&p.plastic_strain[i * D * D]);
+    const Mat sigma = cosserat_stress<D>(eps, m.constants);
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) out[i * 9 + r * 3 + c] = sigma(r, c);
+    if constexpr (D == 2) out[i * 9 + 8] = m.constants.lambda * eps.trace();  // eps_zz = 0
+  }
+}
+
+template <int D>
+void couple_stress_field(const Model& m, std::vector<double>& out) {
+  constexpr int R = D == 2 ? 1 : 3;
+  using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
+  const PointData& p = m.points;
+  out.resize(p.owned * R * D);
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    RMat kap = Eigen::Map<const RMat>(&p.wryness[i * R * D]);
+    if (!p.plastic_wryness.empty()) kap -= Eigen::Map<const RMat>(&p.plastic_wryness[i * R * D]);
+    Eigen::Map<RMat> target(&out[i * R * D]);
+    target = couple_stress<D, R>(kap, m.constants);
+  }
+}
+
+// n = 1 - phi0 / J with J = det(1 + grad u), grad u from the same nonlocal operator.
+template <int D>
+void porosity_field(const Model& m, std::vector<double>& out) {
+  using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
+  using Vec = Eigen::Matrix<double, D, 1>;
+  const PointData& p = m.points;
+  const BondFamilies& f = m.bonds;
+  out.resize(p.owned);
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (p.detached[i]) {
+      out[i] = 1.0 - m.constants.solid_fraction;
+      continue;
+    }
+    Mat S = Mat::Zero();
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+      if (!f.intact.empty() && !f.intact[b]) continue;
+      const auto j = static_cast<std::size_t>(f.neighbor[b]);
+      const Vec du = Eigen::Map<const Vec>(&p.displacement[j * D]) - Eigen::Map<const Vec>(&p.displacement[i * D]);
+      S += p.volume[j] * du * Eigen::Map<const Vec>(&f.xi[b * D]).transpose();
+    }
+    const Mat F = Mat::Identity() + S * Eigen::Map<const Mat>(&p.shape_inverse[i * D * D]);
+    out[i] = 1.0 - m.constants.solid_fraction / F.determinant();
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> available_fields(const Model& m) {
+  std::vector<std::string> f{"displacement", "velocity", "stress", "strain", "porosity", "detached"};
+  if (m.micropolar()) {
+    for (const char* name : {"rotation", "rotation_rate", "couple_stress", "wryness"}) f.push_back(name);
+  }
+  if (m.effects.damage) f.push_back("damage");
+  return f;
+}
+
+Snapshot make_snapshot(const Model& m, const std::vector<std::string>& fields, std::int64_t step, double time) {
+  const PointData& p = m.points;
+  const int D = p.dimension;
+  const int R = p.rotation_components;
+  Snapshot s;
+  s.dimension = D;
+  s.step = step;
+  s.time = time;
+  s.point_count = p.owned;
+  const auto available = available_fields(m);
+  auto head = [&](const std::vector<double>& v, int components) {
+    return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(p.owned * components));
+  };
+  for (const std::string& name : fields) {
+    if (std::find(available.begin(), available.end(), name) == available.end()) continue;
+    SnapshotField field;
+    field.name = name;
+    if (name == "displacement") {
+      field.components = D;
+      field.data = head(p.displacement, D);
+    } else if (name == "velocity") {
+      field.components = D;
+      field.data = head(p.velocity, D);
+    } else if (name == "rotation") {
+      field.components = R;
+      field.data = head(p.rotation, R);
+    } else if (name == "rotation_rate") {
+      field.components = R;
+      field.data = head(p.spin, R);
+    } else if (name == "strain") {
+      field.components = D * D;
+      field.data = head(p.strain, D * D);
+    } else if (name == "wryness") {
+      field.components = R * D;
+      field.data = head(p.wryness, R * D);
+    } else if (name == "stress") {
+      field.components = 9;
+      D == 2 ? stress_field<2>(m, field.data) : stress_field<3>(m, field.data);
+    } else if (name == "couple_stress") {
+      field.components = R * D;
+      D == 2 ? couple_stress_field<2>(m, field.data) : couple_stress_field<3>(m, field.data);
+    } else if (name == "porosity") {
+      D == 2 ? porosity_field<2>(m, field.data) : porosity_field<3>(m, field.data);
+    } else if (name == "detached") {
+      field.data.assign(p.detached.begin(), p.detached.begin() + static_cast<std::ptrdiff_t>(p.owned));
+    } else if (name == "damage") {
+      // D_i = 1 - sum_j b V_j / sum_j V_j over the family at the start.
+      field.data.resize(p.owned);
+      for (std::size_t i = 0; i < p.owned; ++i) {
+        double all = 0.0, acting = 0.0;
+        for (std::int64_t b = m.bonds.offset[i]; b < m.bonds.offset[i + 1]; ++b) {
+          const double v = p.volume[m.bonds.neighbor[b]];
+          all += v;
+          if (m.bonds.intact.empty() || m.bonds.intact[b]) acting += v;
+        }
+        field.data[i] = all > 0.0 ? 1.0 - acting / all : 0.0;
+      }
+    }
+    s.fields.push_back(std::move(field));
+  }
+  return s;
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,254 @@
+// The run loop of mppm-solve: model, boundary conditions, time step, integration, output,
+// numerical guards.
+#include "solver/solve_run.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "common/input_error.hpp"
+#include "common/progress.hpp"
+#include "common/run_directory.hpp"
+#include "solver/boundary_conditions.hpp"
+#include "solver/critical_time_step.hpp"
+#include "solver/energy_guard.hpp"
+#include "solver/explicit_dynamics.hpp"
+#include "solver/interruption.hpp"
+#include "solver/model.hpp"
+#include "solver/run_writer.hpp"
+#include "solver/snapshot_fields.hpp"
+
+namespace mppm::solver {
+
+namespace {
+
+std::string text(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// The scene and the points file must describe the same discretization.
+void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const std::string& file) {
+  if (cloud.dimension != scene.dimension)
+    throw InputError(file + ": the points are " + std::to_string(cloud.dimension) + "-D but the scene has dimension " +
+                     std::to_string(scene.dimension) + " (rerun mppm-preprocess with this scene)");
+  if (cloud.size() == 0) throw InputError(file + ": holds no points");
+  const double dx = scene.geometry.spacing;
+  auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); };
+  if (cloud.spacing > 0.0 && !close(cloud.spacing, dx))
+    throw InputError(file + ": made with spacing " + text(cloud.spacing) + " m but the scene's geometry.spacing is " +
+                     text(dx) + " m (rerun mppm-preprocess with this scene)");
+  if (cloud.horizon > 0.0 && !close(cloud.horizon, scene.geometry.horizon()))
+    throw InputError(file + ": made with horizon " + text(cloud.horizon) + " m but the scene asks for " +
+                     text(scene.geometry.horizon()) +
+                     " m (geometry.horizon_factor; the boundary layers depend on it: rerun mppm-preprocess)");
+}
+
+void refuse_unavailable_effects(const Scene& scene) {
+  // Compile-time slots exist for these (kernels honour plastic strains and bond flags), but
+  // the return map and the breakage law are not wired into the run yet.
+  if (scene.effects.viscoplasticity)
+    throw InputError(scene.path + ": effects: 'viscoplasticity' is not available in this mppm-solve yet "
+                                  "(expected effects among: micropolar, gravity)");
+  if (scene.effects.damage)
+    throw InputError(scene.path + ": effects: 'damage' is not available in this mppm-solve yet "
+                                  "(expected effects among: micropolar, gravity)");
+}
+
+// Steps at which something periodic happens: the first step at or after each multiple of the
+// interval (every step for interval 0 when `every_step_if_zero`).
+class Schedule {
+ public:
+  Schedule(double interval, double dt, bool every_step_if_zero)
+      : interval_(interval), dt_(dt), every_(interval <= 0.0 && every_step_if_zero) {}
+  bool due(std::int64_t step) {
+    if (every_) return true;
+    if (interval_ <= 0.0) return false;
+    const double t = static_cast<double>(step) * dt_;
+    if (t + 1e-9 * dt_ >= next_ * interval_) {
+      next_ = std::floor((t + 1e-9 * dt_) / interval_) + 1.0;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  double interval_, dt_;
+  bool every_;
+  double next_ = 1.0;
+};
+
+}  // namespace
+
+SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  Scene scene = scene_in;
+  check_points_match_scene(scene, cloud, options.points_file);
+  refuse_unavailable_effects(scene);
+  if (!(scene.time.end > 0.0)) throw InputError(scene.path + ": time.end: must be positive");
+
+  ModelOptions mo;
+  mo.constants = cosserat_constants(scene);
+  mo.effects = scene.effects;
+  mo.horizon = scene.geometry.horizon();
+  mo.spacing = scene.geometry.spacing;
+  Model model = build_model(cloud, mo);
+  const BoundaryConditions conditions(scene, cloud, model.points, options.points_file);
+
+  if (model.detached_points == model.points.owned)
+    throw InputError(options.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
+                     text(scene.geometry.horizon()) +
+                     " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
+  const CriticalTimeStep critical = critical_time_step(model);
+  if (!(critical.step > 0.0 && std::isfinite(critical.step)))
+    throw NumericalFailure(options.run_directory + ": the critical time step could not be estimated (" +
+                           text(critical.step) + " s): the discrete operator is not positive");
+  double dt = choose_time_step(scene, critical);
+  // A whole number of steps ends exactly at time.end (the step only shrinks; a given step that
+  // divides time.end is kept as written). An automatic step is also fitted to output.interval
+  // when that divides time.end, so that snapshots fall on the interval's multiples.
+  const double end = scene.time.end;
+  auto divides = [](double whole, double part) {
+    const double ratio = whole / part;
+    return std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
+  };
+  if (!scene_in.time.step && scene.output.interval > 0.0 && scene.output.interval < end &&
+      divides(end, scene.output.interval))
+    dt = scene.output.interval / std::ceil(scene.output.interval / dt - 1e-9);
+  const auto steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end / dt - 1e-9)));
+  if (std::abs(static_cast<double>(steps) * dt - end) > 1e-9 * end) dt = end / static_cast<double>(steps);
+  scene.time.step = dt;
+
+  RunWriter writer(options.run_directory, options.force);
+  writer.write_resolved_scene(scene);
+  writer.write_reference(model.points);
+
+  RunInfo info;
+  info.points = model.points.owned;
+  info.bonds = model.bonds.bond_count();
+  info.threads = omp_get_max_threads();
+  info.effects = scene.effects.names();
+  info.dimension = scene.dimension;
+  info.time_step = dt;
+  info.critical_time_step = critical.step;
+  info.limiting_mode = critical.limiting_mode;
+  info.detached_points = model.detached_points;
+
+  writer.log("mppm-solve " MPPM_VERSION ": scene " + scene.path + ", points " + options.points_file);
+  writer.log("points " + std::to_string(info.points) + ", bonds " + std::to_string(info.bonds) +
+             " (stored from both ends), pre-crack cuts " + std::to_string(model.precrack_cut_bonds) +
+             " bonds, detached points " + std::to_string(model.detached_points));
+  writer.log("critical time step " + text(critical.step) + " s (translational " + text(critical.translational) +
+             " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
+             "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " + critical.limiting_mode +
+             ", driven by " + critical.driver);
+  writer.log("time step " + text(dt) + " s (" + (scene_in.time.step ? "given" : "auto, safety " + text(scene.time.safety)) +
+             "), " + std::to_string(steps) + " steps, threads " + std::to_string(info.threads));
+  for (const auto& w : scene.warnings) writer.log("warning: " + w);
+  const auto available = available_fields(model);
+  for (const auto& f : scene.output.fields)
+    if (std::find(available.begin(), available.end(), f) == available.end())
+      writer.log("note: output field '" + f + "' is not produced by this run (effects: " +
+                 [&] {
+                   std::string e;
+                   for (const auto& n : info.effects) e += (e.empty() ? "" : ", ") + n;
+                   return e.empty() ? std::string("none") : e;
+                 }() + ")");
+
+  std::vector<std::string> load_header{"time_s"};
+  for (const auto& bc : scene.boundary_conditions)
+    for (const auto& c : run_files::load_columns(bc.name, scene.dimension)) load_header.push_back(c);
+  writer.set_load_header(load_header);
+
+  ExplicitDynamics dynamics(model, conditions, dt, scene.gravity);
+  dynamics.set_damping(scene.numerics.damping);
+  dynamics.set_clock(end, steps);
+  dynamics.initialize();
+
+  auto record_rows = [&] {
+    std::vector<double> row{dynamics.time()};
+    for (const auto& v : conditions.load_values(model.points, dynamics.time())) {
+      row.insert(row.end(), v.displacement.begin(), v.displacement.end());
+      row.insert(row.end(), v.force.begin(), v.force.end());
+    }
+    writer.add_load_row(row);
+    const EnergyState& e = dynamics.energy();
+    writer.add_energy_row({dynamics.time(), e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization, 0.0, 0.0,
+                           e.external_work, dynamics.balance_error()});
+  };
+  auto update_info = [&](const std::string& status, const std::string& message) {
+    info.status = status;
+    info.message = message;
+    info.steps = dynamics.steps();
+    info.time = dynamics.time();
+    info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  auto snapshot = [&] {
+    writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+    update_info("running", "");
+    writer.flush(info);
+  };
+  auto fail = [&](const std::string& reason) {
+    const std::string message = "numerical failure at step " + std::to_string(dynamics.steps()) + ", t = " +
+                                text(dynamics.time()) + " s: " + reason +
+                                "; the last good snapshot is kept (try a smaller time.step or check the material)";
+    writer.log(message);
+    update_info("numerical_failure", message);
+    writer.flush(info);
+    throw NumericalFailure(options.run_directory + ": " + message);
+  };
+
+  record_rows();
+  snapshot();
+  Schedule rows(scene.output.load_interval, dt, true);
+  Schedule snapshots(scene.output.interval, dt, false);
+  Progress progress("mppm-solve", steps, options.quiet);
+  EnergyGuard guard(scene.numerics.energy_check_tolerance);
+  const InterruptionHandlers handlers;
+  SolveResult r;
+  for (std::int64_t s = 1; s <= steps; ++s) {
+    const bool row = rows.due(s) || s == steps;
+    const bool snap = snapshots.due(s) || s == steps;
+    dynamics.step(row);
+    if (!dynamics.finite()) fail("non-finite displacement, rotation or velocity");
+    if (row) {
+      record_rows();
+      if (const auto reason = guard.check(s, dynamics.energy(), dynamics.initial_total_energy())) fail(*reason);
+    }
+    if (interruption_requested()) {
+      clear_interruption();
+      writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+      const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(steps) +
+                                  ", t = " + text(dynamics.time()) + " s; the state there is the last snapshot";
+      writer.log(message);
+      update_info("interrupted", message);
+      writer.flush(info);
+      r.interrupted = true;
+      r.message = message;
+      break;
+    }
+    if (snap) snapshot();
+    progress.update(s, "t = " + text(dynamics.time()) + " s");
+  }
+  if (!r.interrupted) {
+    update_info("completed", "");
+    writer.log("completed " + std::to_string(steps) + " steps in " + text(info.wall_seconds) +
+               " s, final balance error " + text(dynamics.balance_error()));
+    writer.flush(info);
+  }
+  progress.finish("t = " + text(dynamics.time()) + " s");
+
+  r.steps = dynamics.steps();
+  r.time_step = dt;
+  r.critical_time_step = critical.step;
+  r.limiting_mode = critical.limiting_mode;
+  r.final_balance_error = dynamics.balance_error();
+  return r;
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,129 @@
+// Test helpers of the solver tests: regular lattices built in memory (no points file, no
+// preprocessor), a scene with a chosen material built in code, and the model from both.
+#pragma once
+#include <array>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "common/point_cloud.hpp"
+#include "common/scene.hpp"
+#include "solver/cosserat_material.hpp"
+#include "solver/model.hpp"
+
+namespace mppm::solver::testing {
+
+// Points at ((i + 1/2) dx, (j + 1/2) dx[, (k + 1/2) dx]); volume dx^d (2-D: dx^2 t). Every
+// point is in the body (region 0) unless a layer function says otherwise.
+inline PointCloud make_lattice(int dimension, std::array<int, 3> n, double dx, double thickness = 1.0) {
+  PointCloud c;
+  c.dimension = dimension;
+  c.spacing = dx;
+  c.thickness = dimension == 2 ? thickness : 1.0;
+  const int nz = dimension == 2 ? 1 : n[2];
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        c.x.push_back((i + 0.5) * dx);
+        c.y.push_back((j + 0.5) * dx);
+        c.z.push_back(dimension == 3 ? (k + 0.5) * dx : 0.0);
+        c.volume.push_back(dimension == 2 ? dx * dx * thickness : dx * dx * dx);
+        c.region.push_back(0);
+        c.boundary_id.push_back(0);
+        c.normal_x.push_back(0.0);
+        c.normal_y.push_back(0.0);
+        c.normal_z.push_back(0.0);
+      }
+  return c;
+}
+
+// A scene with a generic Cosserat material (values of the order of a stiff soil/rock; the tests
+// only need them to be distinct and positive definite).
+inline Scene make_scene(int dimension, bool micropolar, double dx, double horizon_factor) {
+  Scene s;
+  s.path = "solver-test.yaml";
+  s.name = "solver-test";
+  s.dimension = dimension;
+  s.thickness = dimension == 2 ? 1e-3 : 1.0;
+  s.geometry.spacing = dx;
+  s.geometry.horizon_factor = horizon_factor;
+  s.material.density = 2000.0;
+  s.material.solid_fraction = 0.8;
+  s.material.lambda = 1.2e9;
+  s.material.mu = 0.9e9;
+  s.material.mu_c = 0.4e9;
+  s.material.length_scale = 2.0 * dx;
+  const double bending = s.material.mu * s.material.length_scale * s.material.length_scale;
+  // 2-D: B_w = a3; 3-D: a2 > a3 keeps the couple-stress energy positive definite.
+  s.material.couple_moduli = dimension == 2 ? std::array<double, 3>{0.0, 0.0, bending}
+                                            : std::array<double, 3>{0.2 * bending, bending, 0.3 * bending};
+  s.effects.micropolar = micropolar;
+  s.numerics.stabilization = 0.1;
+  s.time.end = 1e-3;
+  return s;
+}
+
+inline Model make_model(const PointCloud& cloud, const Scene& scene, std::array<double, 3> period = {0, 0, 0}) {
+  ModelOptions o;
+  o.constants = cosserat_constants(scene);
+  o.effects = scene.effects;
+  o.horizon = scene.geometry.horizon();
+  o.spacing = scene.geometry.spacing;
+  o.period = period;
+  Model m = build_model(cloud, o);
+  return m;
+}
+
+// True when the full horizon of point i lies inside the lattice (its family is symmetric).
+inline bool is_interior(const Model& m, std::size_t i, std::array<int, 3> n, double dx, double horizon) {
+  const int D = m.dimension();
+  for (int a = 0; a < D; ++a) {
+    const double x = m.points.position[i * D + a];
+    if (x - 0.5 * dx < horizon - 1e-9 * dx || (n[a] - 0.5) * dx - x < horizon - 1e-9 * dx) return false;
+  }
+  return true;
+}
+
+// Turns the first and last `depth` columns (x) of a lattice into the fictitious layers of two
+// kinematic boundary conditions 1 ("left") and 2 ("right"), as the preprocessor would.
+inline void add_end_layers(PointCloud& c, int columns, int depth, const std::string& left_type,
+                           const std::string& right_type) {
+  const double dx = c.spacing;
+  std::int64_t left = 0, right = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const int column = static_cast<int>(std::floor(c.x[i] / dx));
+    if (column < depth) {
+      c.region[i] = c.boundary_id[i] = 1;
+      ++left;
+    } else if (column >= columns - depth) {
+      c.region[i] = c.boundary_id[i] = 2;
+      ++right;
+    }
+  }
+  double height = 0.0;
+  for (double y : c.y) height = std::max(height, y + 0.5 * dx);
+  const double area = height * (c.dimension == 2 ? c.thickness : height);
+  c.boundaries = {BoundaryInfo{"left", left_type, area, left}, BoundaryInfo{"right", right_type, area, right}};
+}
+
+// A kinematic condition: constant (one row) or piecewise-linear rows of a vector value.
+inline BoundaryCondition kinematic_condition(const std::string& name, BoundaryType type,
+                                             std::vector<double> times, std::vector<std::vector<double>> values) {
+  BoundaryCondition bc;
+  bc.name = name;
+  bc.type = type;
+  bc.value.times = std::move(times);
+  bc.value.values = std::move(values);
+  bc.constrained.assign(bc.value.values.front().size(), true);
+  return bc;
+}
+
+// Maximum absolute value of a vector.
+inline double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+}  // namespace mppm::solver::testing
