@@ -173,7 +173,8 @@ class SceneReader {
       const bool last = k + 1 == parts.size();
       const auto& part = parts[k];
       if (node.IsSequence()) {
-        if (!is_index(part) || std::stoul(part) >= node.size()) {
+        // More than 9 digits cannot index a scene list, and std::stoul would throw out_of_range.
+        if (!is_index(part) || part.size() > 9 || std::stoul(part) >= node.size()) {
           throw InputError("--set " + text + ": '" + part + "' is not an index of the list " +
                            (canonical.empty() ? "" : canonical) + " (it has " + std::to_string(node.size()) + " entries, counted from 0)");
         }
@@ -206,6 +207,8 @@ class SceneReader {
   void check_keys(const YAML::Node& map, const std::string& path, const std::vector<std::string>& allowed) {
     if (!map.IsMap()) fail(map, path, "expected a map of keys (" + join(allowed) + ")");
     for (const auto& kv : map) {
+      // A list or map used as a key ("[a]: 1") has no string value: as<std::string>() would throw.
+      if (!kv.first.IsScalar()) fail(kv.first, path, "a key must be a plain name, not a list or map (expected one of: " + join(allowed) + ")");
       const auto key = kv.first.as<std::string>();
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
         fail(kv.first, child_path(path, key), "unknown key (expected one of: " + join(allowed) + ")" + suggestion(key, allowed));
@@ -285,7 +288,9 @@ class SceneReader {
     if (!node.IsDefined() || node.IsNull()) return;  // purely elastic non-polar model
     YAML::Node list = node;
     if (node.IsScalar()) {  // "--set effects=micropolar" or "effects: micropolar"
-      list = YAML::Node(YAML::NodeType::Sequence);
+      // reset, not '=': assigning to a YAML::Node overwrites the node it refers to (here
+      // `node` itself), which made the one-element list contain itself.
+      list.reset(YAML::Node(YAML::NodeType::Sequence));
       list.push_back(node);
     }
     if (!list.IsSequence()) fail(node, "effects", "expected a list of effects (" + join(kEffectNames) + ")");
@@ -433,9 +438,9 @@ class SceneReader {
       }
       if (d == 3) {
         // Curvature energy 1/2 [(3a1+a2+a3)|sph|^2 + (a2+a3)|dev|^2 + (a2-a3)|skew|^2] must be positive.
-        if (!(3 * a[0] + a[1] + a[2] > 0.0 && a[1] + a[2] > 0.0 && a[1] - a[2] > 0.0)) {
+        if (!(3 * a[0] + a[1] + a[2] > 0.0 && a[1] + a[2] > 0.0 && a[1] - a[2] >= 0.0)) {
           fail(m["couple_moduli"], "material.couple_moduli",
-               "a1, a2, a3 make the curvature energy indefinite in 3-D (need 3 a1 + a2 + a3 > 0, a2 + a3 > 0 and a2 > a3)");
+               "a1, a2, a3 make the curvature energy indefinite in 3-D (need 3 a1 + a2 + a3 > 0, a2 + a3 > 0 and a2 >= a3)");
         }
       }
       mat.length_scale = quantity(require(m, p, "length_scale", "micro-polar length l (mean grain size), e.g. 2 mm"), "material.length_scale", dim::length);
@@ -812,7 +817,9 @@ double Material::micro_inertia() const {
 }
 
 double Material::bending_modulus(int dimension) const {
-  return dimension == 2 ? couple_moduli[2] : couple_moduli[1] + couple_moduli[2];
+  // 2-D: a3 (SPEC section 5). 3-D: a2, the modulus of m_zx = a2 w_z,x, i.e. of a rotation that
+  // varies across its own axis (the transverse twist the stabilization controls).
+  return dimension == 2 ? couple_moduli[2] : couple_moduli[1];
 }
 
 std::string Scene::where(const std::string& key_path) const {

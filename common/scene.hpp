@@ -95,7 +95,7 @@ struct Material {
   double partial_density() const { return solid_fraction * density; }       // rho [kg/m^3]
   // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (SPEC section 4).
   double micro_inertia() const;
-  // Effective bending modulus B_w [N]: a3 in 2-D (SPEC section 5); a2 + a3 in 3-D.
+  // Effective bending modulus B_w [N]: a3 in 2-D (SPEC section 5); a2 in 3-D.
   double bending_modulus(int dimension) const;
 };
 

@@ -53,6 +53,7 @@ class Reader {
     if (pos_ + n > data_.size()) {
       throw InputError(path_ + ": truncated snapshot (ends inside " + std::string(what) + "; was the run killed while writing?)");
     }
+    if (n == 0) return;  // an empty field's data() may be null: memcpy(nullptr, ..., 0) is UB
     std::memcpy(out, data_.data() + pos_, n);
     hash_.add(data_.data() + pos_, n);
     pos_ += n;

@@ -128,7 +128,10 @@ Scaled parse_unit_expression(std::string_view text, std::string_view whole) {
       if (text[pos] == '^') ++pos;
       int value = 0;
       const auto [ptr, ec] = std::from_chars(text.data() + pos, text.data() + text.size(), value);
-      if (ec != std::errc()) throw std::invalid_argument("bad power in \"" + std::string(whole) + "\"");
+      // Bounded so that summing exponents cannot overflow an int (undefined behaviour).
+      if (ec != std::errc() || value < -99 || value > 99) {
+        throw std::invalid_argument("bad power in \"" + std::string(whole) + "\" (expected a small integer, e.g. m^3 or s^-2)");
+      }
       pos = static_cast<std::size_t>(ptr - text.data());
       power = value;
     }
@@ -196,6 +199,10 @@ Quantity parse_quantity(std::string_view text_in) {
   if (!std::isfinite(value)) throw std::invalid_argument("\"" + std::string(text) + "\" is not a finite number");
   const auto unit_text = text.substr(static_cast<std::size_t>(ptr - text.data()));
   const Scaled unit = parse_unit_expression(trim(unit_text), text);
+  // A finite number times a unit power can still overflow ("1e300 GPa") or be 0 * inf.
+  if (!std::isfinite(value * unit.factor)) {
+    throw std::invalid_argument("\"" + std::string(text) + "\" is out of range (not a finite number in SI units)");
+  }
   return {value * unit.factor, unit.dimension};
 }
 

@@ -31,7 +31,7 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.a1 = m.couple_moduli[0];
   c.a2 = m.couple_moduli[1];
   c.a3 = m.couple_moduli[2];
-  c.bending_modulus = scene.dimension == 2 ? c.a3 : c.a2;
+  c.bending_modulus = m.bending_modulus(scene.dimension);
   c.density = m.solid_fraction * m.density;
   c.solid_fraction = m.solid_fraction;
   c.length_scale = m.length_scale;
