@@ -8,8 +8,8 @@
 namespace mppm::solver {
 
 std::optional<std::string> EnergyGuard::check(std::int64_t step, const EnergyState& e, double initial_total) {
-  const double unexplained = e.total() - initial_total - e.external_work;
-  scale_ = std::max({scale_, std::abs(e.external_work), e.total(), initial_total});
+  const double unexplained = e.accounted() - initial_total - e.external_work;
+  scale_ = std::max({scale_, std::abs(e.external_work), e.accounted(), initial_total});
   if (step < start_step_ || !(unexplained > tolerance_ * scale_)) return std::nullopt;
   std::ostringstream s;
   s.precision(6);

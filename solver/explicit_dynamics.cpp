@@ -21,10 +21,14 @@ ExplicitDynamics::ExplicitDynamics(Model& model, const BoundaryConditions& condi
   work_increment_.assign(p.owned, 0.0);
 }
 
-void ExplicitDynamics::compute_loads_and_forces(bool with_energy) {
+void ExplicitDynamics::compute_loads_and_forces(bool with_energy, bool advance) {
   PointData& p = model_.points;
   const int D = p.dimension;
-  model_.compute_internal_forces(with_energy);
+  if (advance) {
+    model_.advance_internal_forces(dt_, with_energy);
+  } else {
+    model_.compute_internal_forces(with_energy);
+  }
   std::fill(body_force_.begin(), body_force_.end(), 0.0);
   if (use_gravity_) {
     const double rho = model_.constants.density;
@@ -79,8 +83,9 @@ void ExplicitDynamics::initialize() {
   time_ = 0.0;
   steps_ = 0;
   conditions_.prescribe(model_.points, time_);
-  compute_loads_and_forces(true);
+  compute_loads_and_forces(true, false);
   energy_.external_work = 0.0;
+  energy_.plastic_dissipation = 0.0;
   evaluate_energy();
   initial_total_ = energy_.total();
 }
@@ -136,7 +141,7 @@ void ExplicitDynamics::step(bool with_energy) {
   time_ = clock_steps_ > 0 ? static_cast<double>(steps_ + 1) / static_cast<double>(clock_steps_) * clock_end_
                            : static_cast<double>(steps_ + 1) * dt_;
   conditions_.prescribe(p, time_);
-  compute_loads_and_forces(with_energy);
+  compute_loads_and_forces(with_energy, true);
 
   // Second half kick, work increments (trapezoid: mean of the start and end forces times the
   // increment), non-finite guard.
@@ -176,13 +181,18 @@ void ExplicitDynamics::step(bool with_energy) {
   double work = 0.0;
   for (std::size_t i = 0; i < p.owned; ++i) work += work_increment_[i];
   energy_.external_work += work;
+  if (!p.plastic_dissipation.empty()) {
+    double dissipated = 0.0;
+    for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.plastic_dissipation[i];
+    energy_.plastic_dissipation += dissipated;
+  }
   ++steps_;
   if (with_energy) evaluate_energy();
 }
 
 double ExplicitDynamics::balance_error() const {
-  const double unexplained = energy_.total() - initial_total_ - energy_.external_work;
-  const double scale = std::max({std::abs(energy_.external_work), energy_.total(), initial_total_, 1e-300});
+  const double unexplained = energy_.accounted() - initial_total_ - energy_.external_work;
+  const double scale = std::max({std::abs(energy_.external_work), energy_.accounted(), initial_total_, 1e-300});
   return unexplained / scale;
 }
 

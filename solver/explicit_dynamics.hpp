@@ -1,7 +1,8 @@
 // Explicit central-difference integration of u and w (SPEC section 9, velocity-Verlet form:
 // half kick, drift, prescribe, forces, half kick) with the energy bookkeeping of the run:
 // kinetic (translational, rotational), stored elastic, stabilization, and the external work of
-// surface loads, gravity and the prescribed layers (trapezoid rule on force . increment).
+// surface loads, gravity and the prescribed layers (trapezoid rule on force . increment), and
+// the viscoplastic dissipation (the return map runs in the one force evaluation of each step).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -19,7 +20,11 @@ struct EnergyState {
   double elastic = 0.0;             // 1/2 eps:sigma + 1/2 kap:m
   double stabilization = 0.0;
   double external_work = 0.0;       // loads, prescribed layers, and damping (negative)
+  double plastic_dissipation = 0.0; // accumulated every step (trapezoid rule, like the work)
+  // Kinetic + stored energy.
   double total() const { return kinetic + rotational_kinetic + elastic + stabilization; }
+  // What the balance accounts for: total plus the energy already dissipated.
+  double accounted() const { return total() + plastic_dissipation; }
 };
 
 class ExplicitDynamics {
@@ -50,7 +55,8 @@ class ExplicitDynamics {
   // Energies at the last evaluation with energy; external work is accumulated every step.
   const EnergyState& energy() const { return energy_; }
   double initial_total_energy() const { return initial_total_; }
-  // (total - initial - external work) / max(|external work|, total, initial, tiny)
+  // (total + dissipated - initial - external work) / max(|external work|, total + dissipated,
+  // initial, tiny)
   double balance_error() const;
   // False once a non-finite displacement, velocity or rotation has appeared.
   bool finite() const { return finite_; }
@@ -59,7 +65,8 @@ class ExplicitDynamics {
   const Model& model() const { return model_; }
 
  private:
-  void compute_loads_and_forces(bool with_energy);
+  // advance: the force evaluation of a step (advances the plastic state by dt).
+  void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
 
   Model& model_;

@@ -8,6 +8,8 @@
 //     sum_j (T_ij - T_ji) V_j and the moment sum_j [(M_ij - M_ji) + 1/2 xi x (T_ij - T_ji)] V_j.
 // Each point writes only its own entries, so the result does not depend on the thread count.
 // Templated on dimension and on the compile-time effect set: an effect that is off costs nothing.
+// Viscoplasticity: sigma = C : (eps - eps_vp), m = m(kap - kap_vp); with a PlasticStep, pass 1
+// first advances each point's plastic state by the return map (once per time step).
 #pragma once
 #include <Eigen/Dense>
 
@@ -15,7 +17,9 @@
 #include "solver/bond_families.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
+#include "solver/plastic_step.hpp"
 #include "solver/point_data.hpp"
+#include "solver/viscoplastic_point.hpp"
 
 namespace mppm::solver::kernel {
 
@@ -64,7 +68,8 @@ MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, dou
 }
 
 template <int D, class Effects, bool WithEnergy>
-void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                     [[maybe_unused]] const PlasticStep* plastic_step) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
@@ -106,6 +111,8 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
         p.force_stress_energy[i] = 0.0;
         if constexpr (polar) p.couple_stress_energy[i] = 0.0;
       }
+      if constexpr (Effects::viscoplasticity)
+        if (plastic_step) p.plastic_dissipation[i] = 0.0;
       continue;
     }
     const double* ui = u + i * D;
@@ -131,15 +138,33 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
     }
     const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
     const Mat<D> eps = Eigen::Map<const Mat<D>>(S) * kinv;
-    Mat<D> eps_elastic = eps;
-    if constexpr (Effects::viscoplasticity) eps_elastic -= Eigen::Map<const Mat<D>>(&p.plastic_strain[i * DD]);
-    const Mat<D> sigma = cosserat_stress<D>(eps_elastic, c);
+    [[maybe_unused]] RMat<R, D> kap;
+    if constexpr (polar) kap = Eigen::Map<const RMat<R, D>>(Sk) * kinv;
+    Mat<D> sigma;
+    if constexpr (Effects::viscoplasticity) {
+      double* plastic_strain = &p.plastic_strain[i * 9];
+      if (plastic_step) {
+        // eps_out and the stored wryness still hold the previous evaluation: the step's start.
+        p.plastic_dissipation[i] =
+            vol[i] * viscoplastic::advance_point<D, R, polar>(
+                         eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
+                         polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
+                         polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i],
+                         p.plastic_cohesion[i], c, *plastic_step);
+      }
+      const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, plastic_strain);
+      const auto stress = viscoplastic::elastic_stress<D>(eps_elastic, c);
+      sigma = stress.in_plane;
+      if constexpr (WithEnergy)
+        p.force_stress_energy[i] = vol[i] * viscoplastic::elastic_energy_density<D>(eps_elastic, stress);
+    } else {
+      sigma = cosserat_stress<D>(eps, c);
+      if constexpr (WithEnergy) p.force_stress_energy[i] = 0.5 * vol[i] * (eps.cwiseProduct(sigma)).sum();
+    }
     const Mat<D> ck = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * DD]);
     eps_out = eps;
     a_out = sigma * kinv - ck * eps;
-    if constexpr (WithEnergy) p.force_stress_energy[i] = 0.5 * vol[i] * (eps_elastic.cwiseProduct(sigma)).sum();
     if constexpr (polar) {
-      const RMat<R, D> kap = Eigen::Map<const RMat<R, D>>(Sk) * kinv;
       RMat<R, D> kap_elastic = kap;
       if constexpr (Effects::viscoplasticity)
         kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);

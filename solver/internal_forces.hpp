@@ -4,11 +4,15 @@
 #include "common/scene.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
+#include "solver/plastic_step.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
 
-using InternalForceFunction = void (*)(PointData&, const BondFamilies&, const CosseratConstants&);
+// The last argument advances the viscoplastic state by one step (nullptr: frozen; ignored
+// without the viscoplasticity effect).
+using InternalForceFunction = void (*)(PointData&, const BondFamilies&, const CosseratConstants&,
+                                       const PlasticStep*);
 
 struct InternalForceFunctions {
   InternalForceFunction forces = nullptr;              // force and moment only

@@ -2,6 +2,9 @@
 #include "solver/parallel_policy.hpp"
 #include "solver/model.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "common/precrack_crossing.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -54,6 +57,14 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   for (std::size_t i = 0; i < m.points.owned; ++i)
     m.points.bond_count_at_start[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.offset[i]);
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
+  if (o.effects.viscoplasticity) {
+    if (!o.viscoplastic_model)
+      throw std::logic_error("build_model: the viscoplasticity effect needs ModelOptions::viscoplastic_model");
+    m.viscoplastic_model = o.viscoplastic_model;
+    const double c0 = m.points.dimension == 2 ? o.viscoplastic_model->initial_state_2d().cohesion
+                                              : o.viscoplastic_model->initial_state_3d().cohesion;
+    std::fill(m.points.plastic_cohesion.begin(), m.points.plastic_cohesion.end(), c0);
+  }
   m.kernel = internal_force_functions(m.points.dimension, o.effects);
   return m;
 }

@@ -2,12 +2,15 @@
 // shape tensors, and the chosen kernel instantiation. Tests build it from an in-memory cloud.
 #pragma once
 #include <cstddef>
+#include <memory>
 
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/internal_forces.hpp"
+#include "solver/plastic_step.hpp"
+#include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
@@ -18,6 +21,8 @@ struct ModelOptions {
   double horizon = 0.0;
   double spacing = 0.0;
   std::array<double, 3> period{0.0, 0.0, 0.0};  // verification lattices only
+  // Required with the viscoplasticity effect (make_viscoplastic_model of the scene's material).
+  std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;
 };
 
 struct Model {
@@ -26,15 +31,26 @@ struct Model {
   PointData points;
   BondFamilies bonds;
   InternalForceFunctions kernel;
+  std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;  // with the effect
   std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
   std::size_t detached_points = 0;
 
   int dimension() const { return points.dimension; }
   bool micropolar() const { return effects.micropolar; }
 
-  // Force and moment per unit volume of every owned point; energies too if asked.
+  // Force and moment per unit volume of every owned point; energies too if asked. The plastic
+  // state (if any) is frozen: stress = elastic law of (strain - plastic strain).
   void compute_internal_forces(bool with_energy = false) {
-    (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants);
+    (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, nullptr);
+  }
+  // The same at the end of a time step of length dt, with the viscoplastic state advanced from
+  // the start of the step by the return map (and points.plastic_dissipation set). Call it once
+  // per step, after the previous evaluation (whose strains are the step's start); without the
+  // viscoplasticity effect it is compute_internal_forces.
+  void advance_internal_forces(double dt, bool with_energy) {
+    const PlasticStep step{viscoplastic_model.get(), dt};
+    (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants,
+                                                              effects.viscoplasticity ? &step : nullptr);
   }
 };
 
@@ -45,7 +61,7 @@ Model build_model(const PointCloud& cloud, const ModelOptions& options);
 // index order (the same result for any thread count).
 struct InternalEnergy {
   double force_stress = 0.0;   // 1/2 eps:sigma
-  double couple_stress = 0.0;  // 1/2 kap:m
+  double couple_stress = 0.0;  // 1/2 kap:m (elastic parts; plane strain: sigma_zz term included)
   double stabilization = 0.0;
   double elastic() const { return force_stress + couple_stress; }
   double total() const { return force_stress + couple_stress + stabilization; }

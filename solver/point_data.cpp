@@ -54,8 +54,11 @@ PointData make_point_data(const PointCloud& cloud, bool micropolar, bool viscopl
     p.couple_stress_energy.assign(n, 0.0);
   }
   if (viscoplasticity) {
-    p.plastic_strain.assign(n * DD, 0.0);
+    p.plastic_strain.assign(n * 9, 0.0);
     if (R > 0) p.plastic_wryness.assign(n * R * D, 0.0);
+    p.equivalent_plastic_strain.assign(n, 0.0);
+    p.plastic_cohesion.assign(n, 0.0);  // set from the model's initial state by build_model
+    p.plastic_dissipation.assign(n, 0.0);
   }
   return p;
 }

@@ -48,8 +48,14 @@ struct PointData {
   std::vector<double> wryness;        // kap, R*D
   std::vector<double> moment_tensor;  // Q = m K^-1 - g kap, R*D
 
-  // Slot for viscoplasticity: plastic strain and wryness (allocated only when the effect is on).
-  std::vector<double> plastic_strain, plastic_wryness;
+  // Viscoplastic state (allocated only when the effect is on): the state after the last step.
+  // The plastic strain is the full 3 x 3 tensor (row-major) in 2-D too: plane-strain flow has
+  // an out-of-plane part eps_vp,zz (dilatancy, deviatoric flow), hence sigma_zz and its energy.
+  std::vector<double> plastic_strain;             // eps_vp, 9 per point
+  std::vector<double> plastic_wryness;            // kap_vp, R*D (micropolar)
+  std::vector<double> equivalent_plastic_strain;  // ebar
+  std::vector<double> plastic_cohesion;           // c(ebar) [Pa]
+  std::vector<double> plastic_dissipation;        // [J] of the last step (trapezoid rule)
 
   // Energy per point [J], filled when a force evaluation is asked for energies.
   std::vector<double> force_stress_energy;   // V 1/2 eps:sigma

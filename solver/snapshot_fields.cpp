@@ -5,25 +5,57 @@
 
 #include <Eigen/Dense>
 
+#include "solver/plasticity/plastic_strain_measures.hpp"
+#include "solver/viscoplastic_point.hpp"
+
 namespace mppm::solver {
 
 namespace {
 
 // sigma as a full 3 x 3 tensor (row-major, 9 components) in 2-D and 3-D: in plane strain the
-// out-of-plane normal stress sigma_zz = lambda tr(eps) is not zero, and the postprocessor's
-// invariants (von Mises, mean stress) need it.
+// out-of-plane normal stress sigma_zz = lambda tr(eps_e) + 2 mu eps_e,zz is not zero (eps_e,zz =
+// -eps_vp,zz with viscoplasticity), and the postprocessor's invariants (von Mises, mean stress)
+// need it. The same expressions as the kernel's, so the snapshot shows the stress it used.
 template <int D>
 void stress_field(const Model& m, std::vector<double>& out) {
   using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
   const PointData& p = m.points;
   out.assign(p.owned * 9, 0.0);
   for (std::size_t i = 0; i < p.owned; ++i) {
-    Mat eps = Eigen::Map<const Mat>(&p.strain[i * D * D]);
-    if (!p.plastic_strain.empty()) eps -= Eigen::Map<const Mat>(&p.plastic_strain[i * D * D]);
+    const Mat eps = Eigen::Map<const Mat>(&p.strain[i * D * D]);
+    if (!p.plastic_strain.empty()) {
+      const auto stress =
+          viscoplastic::elastic_stress<D>(viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]), m.constants);
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c) out[i * 9 + r * 3 + c] = stress.in_plane(r, c);
+      if constexpr (D == 2) out[i * 9 + 8] = stress.zz;
+      continue;
+    }
     const Mat sigma = cosserat_stress<D>(eps, m.constants);
     for (int r = 0; r < D; ++r)
       for (int c = 0; c < D; ++c) out[i * 9 + r * 3 + c] = sigma(r, c);
     if constexpr (D == 2) out[i * 9 + 8] = m.constants.lambda * eps.trace();  // eps_zz = 0
+  }
+}
+
+// The weights of ebar of the run's model (the default ones for a model that has none).
+plasticity::EquivalentStrainWeights equivalent_strain_weights(const Model& m) {
+  if (const auto* dp = dynamic_cast<const plasticity::DruckerPragerPerzynaModel*>(m.viscoplastic_model.get()))
+    return dp->constants().parameters.equivalent_strain;
+  return {};
+}
+
+// sqrt(b1 e:e + b2 e:e^T + b3 l^2 kap_vp:kap_vp) of the accumulated plastic tensors.
+void plastic_shear_strain_field(const Model& m, std::vector<double>& out) {
+  const PointData& p = m.points;
+  const auto weights = equivalent_strain_weights(m);
+  const int RD = p.rotation_components * p.dimension;
+  out.resize(p.owned);
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const Eigen::Matrix3d eps_vp = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
+    Eigen::VectorXd kap_vp = Eigen::VectorXd::Zero(std::max(RD, 1));
+    for (int k = 0; k < RD; ++k) kap_vp[k] = p.plastic_wryness[i * RD + k];
+    out[i] = plasticity::equivalent_plastic_shear_strain(eps_vp, kap_vp, weights, m.constants.length_scale);
   }
 }
 
@@ -74,6 +106,8 @@ std::vector<std::string> available_fields(const Model& m) {
     for (const char* name : {"rotation", "rotation_rate", "couple_stress", "wryness"}) f.push_back(name);
   }
   if (m.effects.damage) f.push_back("damage");
+  if (m.effects.viscoplasticity)
+    for (const char* name : {"plastic_strain", "plastic_shear_strain", "equivalent_plastic_strain"}) f.push_back(name);
   return f;
 }
 
@@ -120,6 +154,13 @@ Snapshot make_snapshot(const Model& m, const std::vector<std::string>& fields, s
       D == 2 ? couple_stress_field<2>(m, field.data) : couple_stress_field<3>(m, field.data);
     } else if (name == "porosity") {
       D == 2 ? porosity_field<2>(m, field.data) : porosity_field<3>(m, field.data);
+    } else if (name == "plastic_strain") {
+      field.components = 9;  // eps_vp, 3 x 3 row-major (plane strain has an eps_vp,zz)
+      field.data = head(p.plastic_strain, 9);
+    } else if (name == "plastic_shear_strain") {
+      plastic_shear_strain_field(m, field.data);
+    } else if (name == "equivalent_plastic_strain") {
+      field.data = head(p.equivalent_plastic_strain, 1);
     } else if (name == "detached") {
       field.data.assign(p.detached.begin(), p.detached.begin() + static_cast<std::ptrdiff_t>(p.owned));
     } else if (name == "damage") {

@@ -18,6 +18,7 @@
 #include "solver/explicit_dynamics.hpp"
 #include "solver/interruption.hpp"
 #include "solver/model.hpp"
+#include "solver/plasticity/material_registry.hpp"
 #include "solver/run_writer.hpp"
 #include "solver/snapshot_fields.hpp"
 
@@ -50,14 +51,11 @@ void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const
 }
 
 void refuse_unavailable_effects(const Scene& scene) {
-  // Compile-time slots exist for these (kernels honour plastic strains and bond flags), but
-  // the return map and the breakage law are not wired into the run yet.
-  if (scene.effects.viscoplasticity)
-    throw InputError(scene.path + ": effects: 'viscoplasticity' is not available in this mppm-solve yet "
-                                  "(expected effects among: micropolar, gravity)");
+  // A compile-time slot exists (kernels honour bond flags), but the breakage law is not wired
+  // into the run yet.
   if (scene.effects.damage)
     throw InputError(scene.path + ": effects: 'damage' is not available in this mppm-solve yet "
-                                  "(expected effects among: micropolar, gravity)");
+                                  "(expected effects among: micropolar, viscoplasticity, gravity)");
 }
 
 // Steps at which something periodic happens: the first step at or after each multiple of the
@@ -97,6 +95,9 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   mo.effects = scene.effects;
   mo.horizon = scene.geometry.horizon();
   mo.spacing = scene.geometry.spacing;
+  // The viscoplastic model by name from the registry (material.viscoplasticity.model); bad
+  // parameters are an InputError naming the key.
+  if (scene.effects.viscoplasticity) mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
   Model model = build_model(cloud, mo);
   const BoundaryConditions conditions(scene, cloud, model.points, options.points_file);
 
@@ -149,6 +150,10 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
              ", driven by " + critical.driver);
   writer.log("time step " + text(dt) + " s (" + (scene_in.time.step ? "given" : "auto, safety " + text(scene.time.safety)) +
              "), " + std::to_string(steps) + " steps, threads " + std::to_string(info.threads));
+  if (model.viscoplastic_model)
+    writer.log("viscoplastic model " + model.viscoplastic_model->name() +
+               " (return map once per step; the critical step above is the elastic bound, which "
+               "plastic flow does not lower)");
   for (const auto& w : scene.warnings) writer.log("warning: " + w);
   const auto available = available_fields(model);
   for (const auto& f : scene.output.fields)
@@ -178,8 +183,8 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     }
     writer.add_load_row(row);
     const EnergyState& e = dynamics.energy();
-    writer.add_energy_row({dynamics.time(), e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization, 0.0, 0.0,
-                           e.external_work, dynamics.balance_error()});
+    writer.add_energy_row({dynamics.time(), e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization,
+                           e.plastic_dissipation, 0.0, e.external_work, dynamics.balance_error()});
   };
   auto update_info = [&](const std::string& status, const std::string& message) {
     info.status = status;
