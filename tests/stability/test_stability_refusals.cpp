@@ -1,0 +1,256 @@
+// Stability cases refused up front, through the real executables (the exit code is the point):
+// - the couple modulus entered 1000 x too large (a3 in kN instead of N, the seed examples'
+//   units slip; or mu_c in GPa instead of MPa) with a fixed time step;
+// - a bad time step (negative, zero, not a number, above the translational limit);
+// - a broken points file (missing, not VTK, truncated, a negative or zero volume, a NaN
+//   coordinate);
+// - a geometry that yields no points (thinner than dx; a ring whose material falls between
+//   the lattice points).
+// Hazard: each of these either blows up after hours or produces a silent wrong answer.
+// Expected: exit code 2 before the first step, a message naming the file (and the key, the
+// mode and the parameter where it applies) and what was expected, and no output file: the run
+// directory is not created (the time-step check happens before anything is written) and no
+// points file appears.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "common/point_cloud.hpp"
+#include "tests/stability/stability_support.hpp"
+
+namespace mppm::stability {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// True when the stage left nothing under `path` (not created, or an empty directory).
+bool nothing_written(const std::string& path) { return !fs::exists(path) || fs::is_empty(path); }
+
+// "... above the critical step 1.234e-08 s ..." -> 1.234e-08
+double critical_step_in(const std::string& message) {
+  const std::string key = "critical step ";
+  const auto at = message.find(key);
+  return at == std::string::npos ? std::nan("") : std::strtod(message.c_str() + at + key.size(), nullptr);
+}
+
+class StabilityRefusals : public ::testing::Test {
+ protected:
+  // Points of the block scenes, made once by the preprocessor executable.
+  static void SetUpTestSuite() {
+    // Named per process: ctest runs the tests of this fixture as parallel processes.
+    points_ = fresh_directory("refusals-points-" + std::to_string(::getpid())) + ".vtp";
+    const CommandResult r =
+        run_program(program("mppm-preprocess"), {scene_path("couple_modulus_slip.yaml"), "-o", points_, "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  static void TearDownTestSuite() { fs::remove(points_); }
+  static CommandResult solve(const std::string& scene, const std::string& run, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args{scene_path(scene), "--points", points_, "-o", run, "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_program(program("mppm-solve"), args);
+  }
+  // mu_c = 4667 GPa instead of 4.667 GPa (a3 as intended). mu_c stiffens both blocks: the
+  // shear waves ((mu + mu_c) / rho) and the rotation (4 mu_c / I); on this lattice the
+  // translational block ends up the limiting one.
+  static CommandResult solve_with_mu_c_slip(const std::string& run) {
+    return solve("couple_modulus_slip.yaml", run,
+                 {"--set", "material.couple_moduli=[0, 0, 56 kN]", "--set", "material.mu_c=4667 GPa"});
+  }
+  static std::string points_;
+};
+std::string StabilityRefusals::points_;
+
+TEST_F(StabilityRefusals, CoupleModulusInKilonewtonIsRefusedNamingTheRotationalModeAndA3) {
+  const std::string run = fresh_directory("slip-a3");
+  const CommandResult r = solve("couple_modulus_slip.yaml", run);
+  std::printf("a3 = 56e3 kN: exit %d\n%s", r.exit_code, r.output.c_str());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.output, "couple_modulus_slip.yaml")) << r.output;
+  EXPECT_TRUE(contains(r.output, "time.step")) << r.output;
+  EXPECT_TRUE(contains(r.output, "rotational")) << r.output;
+  EXPECT_TRUE(contains(r.output, "material.couple_moduli")) << r.output;
+  EXPECT_TRUE(contains(r.output, "a3")) << r.output;
+  EXPECT_TRUE(nothing_written(run)) << run;
+
+  // The same scene with the intended 56 kN runs: the refusal is the slip's doing.
+  const std::string good = fresh_directory("slip-a3-corrected");
+  const CommandResult ok = solve("couple_modulus_slip.yaml", good, {"--set", "material.couple_moduli=[0, 0, 56 kN]"});
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_EQ(read_run(good).status, "completed");
+  const RunReport corrected = read_run(good);
+
+  const double given = 0.1e-6;  // couple_modulus_slip.yaml
+  const double slip_critical = critical_step_in(r.output);
+  record_margin({"02-couple-modulus-a3-1000x", "couple modulus a3 entered in kN (1000 x), fixed step 0.1 us",
+                 "refused before the first step: exit 2 naming the rotational mode and material.couple_moduli (a3)",
+                 "exit " + std::to_string(r.exit_code) + "; critical step with the slip " + sci(slip_critical) +
+                     " s, with the intended a3 " + sci(corrected.critical_time_step) + " s (that run exits " +
+                     std::to_string(ok.exit_code) + ")",
+                 "given step / slipped critical step " + sci(given / slip_critical) +
+                     " (refused); intended critical / given " + sci(corrected.critical_time_step / given) + " (accepted)",
+                 r.exit_code == 2 && ok.exit_code == 0 && nothing_written(run)});
+}
+
+TEST_F(StabilityRefusals, CoupleModulusMuCInGigapascalIsRefusedBeforeTheFirstStep) {
+  const std::string run = fresh_directory("slip-mu-c");
+  const CommandResult r = solve_with_mu_c_slip(run);
+  std::printf("mu_c = 4667 GPa: exit %d\n%s", r.exit_code, r.output.c_str());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.output, "couple_modulus_slip.yaml")) << r.output;
+  EXPECT_TRUE(contains(r.output, "time.step")) << r.output;
+  EXPECT_TRUE(nothing_written(run)) << run;
+  const double slip_critical = critical_step_in(r.output);
+  const bool names_mu_c = contains(r.output, "material.mu_c");
+  record_margin({"02-couple-modulus-mu-c-1000x", "couple modulus mu_c entered in GPa for MPa-scale (1000 x), fixed step 0.1 us",
+                 "refused before the first step: exit 2 naming material.mu_c",
+                 "exit " + std::to_string(r.exit_code) + "; critical step with the slip " + sci(slip_critical) +
+                     " s; message " + (names_mu_c ? "names material.mu_c" : "credits lambda and mu, not mu_c (solver TODO)"),
+                 "given step / slipped critical step " + sci(0.1e-6 / slip_critical) + " (refused)",
+                 r.exit_code == 2 && nothing_written(run)});
+}
+
+// The refusal must also tell the user which parameter to fix. Today the solver names the
+// translational mode "driven by material.lambda and material.mu (P-wave modulus ...)", which
+// did not change; the stiff parameter is mu_c (shear modulus mu + mu_c). Disabled until the
+// solver's attribution includes mu_c (README.md, pending cases).
+TEST_F(StabilityRefusals, DISABLED_CoupleModulusMuCRefusalNamesMuC) {
+  const CommandResult r = solve_with_mu_c_slip(fresh_directory("slip-mu-c-message"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.output, "material.mu_c")) << r.output;
+}
+
+TEST_F(StabilityRefusals, BadTimeStepIsRefusedWithTheKeyAndNothingWritten) {
+  struct Bad {
+    std::vector<std::string> set;
+    std::vector<std::string> expected_in_message;
+  };
+  // elastic_block.yaml shares the points of couple_modulus_slip.yaml (same geometry, spacing,
+  // horizon and boundary conditions).
+  const std::vector<Bad> cases{
+      {{"time.step=-1 us"}, {"time.step"}},
+      {{"time.step=0"}, {"time.step"}},
+      {{"time.step=fast"}, {"time.step"}},
+      {{"time.step=1 m"}, {"time.step"}},  // wrong dimension: a length
+      // Above the translational limit (l = 2 mm: translational limits this block).
+      {{"time.step=1 us"}, {"time.step", "translational", "material.lambda"}},
+  };
+  int k = 0;
+  std::string codes;
+  bool all_refused = true;
+  for (const Bad& b : cases) {
+    const std::string run = fresh_directory("bad-step-" + std::to_string(k++));
+    std::vector<std::string> extra;
+    for (const auto& s : b.set) {
+      extra.push_back("--set");
+      extra.push_back(s);
+    }
+    const CommandResult r = solve("elastic_block.yaml", run, extra);
+    std::printf("--set %s: exit %d\n%s", b.set.front().c_str(), r.exit_code, r.output.c_str());
+    EXPECT_EQ(r.exit_code, 2) << b.set.front();
+    for (const auto& part : b.expected_in_message) EXPECT_TRUE(contains(r.output, part)) << r.output;
+    // The message names where the bad value came from: the scene file or the --set option.
+    EXPECT_TRUE(contains(r.output, "elastic_block.yaml") || contains(r.output, "--set")) << r.output;
+    EXPECT_TRUE(nothing_written(run)) << run;
+    codes += (codes.empty() ? "" : ", ") + b.set.front().substr(10) + " -> " + std::to_string(r.exit_code);
+    all_refused = all_refused && r.exit_code == 2 && nothing_written(run);
+  }
+  record_margin({"08-bad-time-step", "bad time.step: negative, zero, not a number, a length, above the critical step",
+                 "exit 2 naming time.step (and the limiting mode and parameter when too large), nothing written",
+                 "exit codes: " + codes, "contract check (no numeric margin)", all_refused});
+}
+
+TEST_F(StabilityRefusals, BrokenPointsFileIsRefusedNamingTheFile) {
+  const std::string dir = fresh_directory("broken-points");
+  fs::create_directories(dir);
+  // A valid cloud to break: the preprocessor's own points.
+  const PointCloud good = read_point_cloud(points_);
+  struct Broken {
+    std::string name;
+    std::string expected;  // part of the message besides the file name
+  };
+  std::vector<Broken> cases;
+  {  // missing
+    cases.push_back({dir + "/missing.vtp", ""});
+  }
+  {  // not VTK at all
+    std::ofstream(dir + "/garbage.vtp") << "this is not a VTK file\n";
+    cases.push_back({dir + "/garbage.vtp", ""});
+  }
+  {  // truncated: the first half of a valid file
+    const std::string text = read_text(points_);
+    std::ofstream(dir + "/truncated.vtp", std::ios::binary) << text.substr(0, text.size() / 2);
+    cases.push_back({dir + "/truncated.vtp", ""});
+  }
+  {  // a negative volume (a broken geometry or a hand-edited file)
+    PointCloud c = good;
+    c.volume[c.size() / 2] = -c.volume[c.size() / 2];
+    write_point_cloud(c, dir + "/negative_volume.vtp");
+    cases.push_back({dir + "/negative_volume.vtp", "volume"});
+  }
+  {  // a zero volume
+    PointCloud c = good;
+    c.volume[3] = 0.0;
+    write_point_cloud(c, dir + "/zero_volume.vtp");
+    cases.push_back({dir + "/zero_volume.vtp", "volume"});
+  }
+  {  // a NaN coordinate
+    PointCloud c = good;
+    c.y[7] = std::numeric_limits<double>::quiet_NaN();
+    write_point_cloud(c, dir + "/nan_coordinate.vtp");
+    cases.push_back({dir + "/nan_coordinate.vtp", "non-finite"});
+  }
+  int k = 0;
+  std::string codes;
+  bool all_refused = true;
+  for (const Broken& b : cases) {
+    const std::string run = fresh_directory("broken-points-run-" + std::to_string(k++));
+    const CommandResult r = run_program(
+        program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points", b.name, "-o", run, "--quiet"});
+    std::printf("%s: exit %d\n%s", fs::path(b.name).filename().c_str(), r.exit_code, r.output.c_str());
+    EXPECT_EQ(r.exit_code, 2) << b.name;
+    EXPECT_TRUE(contains(r.output, b.name)) << r.output;
+    if (!b.expected.empty()) {
+      EXPECT_TRUE(contains(r.output, b.expected)) << r.output;
+    }
+    EXPECT_TRUE(nothing_written(run)) << run;
+    codes += (codes.empty() ? "" : ", ") + fs::path(b.name).stem().string() + " -> " + std::to_string(r.exit_code);
+    all_refused = all_refused && r.exit_code == 2 && contains(r.output, b.name) && nothing_written(run);
+  }
+  record_margin({"09-broken-points-file", "broken points file: missing, not VTK, truncated, negative / zero volume, NaN coordinate",
+                 "exit 2 naming the file and the problem, nothing written", "exit codes: " + codes,
+                 "contract check (no numeric margin)", all_refused});
+}
+
+TEST_F(StabilityRefusals, GeometryWithoutPointsIsRefusedNamingTheGeometry) {
+  const std::pair<const char*, const char*> cases[] = {{"no_points.yaml", "sliver.geo"},
+                                                       {"no_points_ring.yaml", "thin_ring.geo"}};
+  std::string codes;
+  bool all_refused = true;
+  for (const auto& [scene, geometry] : cases) {
+    const std::string out = fresh_directory(std::string("no-points-") + geometry) + ".vtp";
+    fs::remove(out);  // (fresh_directory empties the directory of that name, not this file)
+    const CommandResult r = run_program(program("mppm-preprocess"), {scene_path(scene), "-o", out, "--quiet"});
+    std::printf("%s: exit %d\n%s", scene, r.exit_code, r.output.c_str());
+    EXPECT_EQ(r.exit_code, 2) << scene;
+    EXPECT_TRUE(contains(r.output, scene)) << r.output;
+    EXPECT_TRUE(contains(r.output, geometry)) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << out;
+    codes += (codes.empty() ? "" : ", ") + std::string(geometry) + " -> " + std::to_string(r.exit_code);
+    all_refused = all_refused && r.exit_code == 2 && contains(r.output, geometry) && !fs::exists(out);
+  }
+  record_margin({"10-geometry-without-points", "geometry yielding no points: 0.2 mm strip, ring between lattice points",
+                 "mppm-preprocess exit 2 naming the scene and the geometry, no points file", "exit codes: " + codes,
+                 "contract check (no numeric margin)", all_refused});
+}
+
+}  // namespace
+}  // namespace mppm::stability
