@@ -22,15 +22,7 @@ lammps: $(OUT)/lammps.csv
 
 # Idempotent, like `make -C workflows deps`: installs only what dpkg says is missing.
 lammps-deps:
-	@missing=""; for p in $(LAMMPS_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "installing:$$missing"; \
-	  SUDO=""; [ "$$(id -u)" -eq 0 ] || SUDO="sudo"; \
-	  $$SUDO apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
-	fi
+	$(call install_missing,$(LAMMPS_PACKAGES))
 
 lammps-inputs: $(LAMMPS_INPUTS)/plate.json
 
