@@ -26,7 +26,7 @@ struct CosseratConstants {
   double length_scale = 0.0;         // l [m]
 };
 
-// Derives and validates the constants; throws InputError naming the scene key at fault.
+// Derives the constants from a scene that load_scene/parse_scene has already validated.
 CosseratConstants cosserat_constants(const Scene& scene);
 
 // sigma = lambda tr(eps) 1 + (mu + mu_c) eps + (mu - mu_c) eps^T
