@@ -1,10 +1,10 @@
 // POINTS.vtp: the VTK XML PolyData file that carries material points from the preprocessor to
 // the solver (SCENE.md "Files between stages"). Binary appended, zlib-compressed, written
-// atomically; the reader trusts nothing and names the file and the problem in every error.
+// atomically by VTK's writer; read by our strict reader (vtk_xml_reader.hpp), which trusts
+// nothing and names the file and the problem in every error.
 #include "common/point_cloud.hpp"
 
 #include <vtkCellArray.h>
-#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -16,7 +16,6 @@
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
 #include <vtkTypeInt64Array.h>
-#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cmath>
@@ -25,6 +24,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/vtk_xml_reader.hpp"
 
 namespace mppm {
 
@@ -147,164 +147,147 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
 
 namespace {
 
-// Collects VTK's error messages instead of letting them go to the terminal.
-class ErrorCollector : public vtkCommand {
- public:
-  static ErrorCollector* New() { return new ErrorCollector; }
-  void Execute(vtkObject*, unsigned long, void* data) override {
-    if (message.empty() && data) message = static_cast<const char*>(data);
-  }
-  std::string message;
-};
-
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": " + problem);
 }
 
-vtkDataArray* required_array(vtkFieldData* data, const char* name, vtkIdType tuples,
-                             int components, const std::string& path, const char* where) {
-  vtkDataArray* array = data ? vtkDataArray::SafeDownCast(data->GetAbstractArray(name)) : nullptr;
+const VtkArray& required_array(const VtkArray* array, const char* name, std::int64_t tuples, int components,
+                               const std::string& path, const char* where) {
   if (!array) fail(path, std::string("missing ") + where + " array '" + name + "'");
-  if (array->GetNumberOfComponents() != components || array->GetNumberOfTuples() != tuples) {
+  if (array->is_string()) fail(path, std::string(where) + " array '" + name + "' must be numeric");
+  if (array->components != components || array->tuples != tuples) {
     std::ostringstream s;
-    s << where << " array '" << name << "' has " << array->GetNumberOfTuples() << " x "
-      << array->GetNumberOfComponents() << " values (expected " << tuples << " x " << components
-      << ")";
+    s << where << " array '" << name << "' has " << array->tuples << " x " << array->components
+      << " values (expected " << tuples << " x " << components << ")";
     fail(path, s.str());
   }
-  return array;
+  return *array;
 }
 
-double finite_value(vtkDataArray* array, vtkIdType i, int c, const std::string& path) {
-  const double value = array->GetComponent(i, c);
+double finite_value(const VtkArray& array, std::int64_t i, int c, const std::string& path) {
+  const double value = array.numbers[static_cast<std::size_t>(i * array.components + c)];
   if (!std::isfinite(value))
-    fail(path, std::string("array '") + array->GetName() + "' has a non-finite value at index " +
-                   std::to_string(i));
+    fail(path, "array '" + array.name + "' has a non-finite value at index " + std::to_string(i));
   return value;
 }
 
-std::int32_t integer_value(vtkDataArray* array, vtkIdType i, const std::string& path) {
+std::int32_t integer_value(const VtkArray& array, std::int64_t i, const std::string& path) {
   const double value = finite_value(array, i, 0, path);
   if (value != std::floor(value) || std::abs(value) > 2e9)
-    fail(path, std::string("array '") + array->GetName() + "' has a non-integer value at index " +
-                   std::to_string(i));
+    fail(path, "array '" + array.name + "' has a non-integer value at index " + std::to_string(i));
   return static_cast<std::int32_t>(value);
 }
 
-double field_scalar(vtkFieldData* field, const char* name, const std::string& path) {
-  return finite_value(required_array(field, name, 1, 1, path, "field data"), 0, 0, path);
+double field_scalar(const VtkPolyDataArrays& file, const char* name, const std::string& path) {
+  return finite_value(required_array(file.field(name), name, 1, 1, path, "field data"), 0, 0, path);
+}
+
+const std::vector<std::string>& string_array(const VtkPolyDataArrays& file, const char* name, std::int64_t count,
+                                             const char* what, const std::string& path) {
+  const VtkArray* array = file.field(name);
+  if (!array || !array->is_string() || static_cast<std::int64_t>(array->strings.size()) != count)
+    fail(path, std::string("field '") + name + "' missing or not one " + what + " per boundary");
+  return array->strings;
 }
 
 }  // namespace
 
+// The file is parsed by our own strict reader (vtk_xml_reader.hpp), not by VTK's XML reader,
+// which crashes on some corrupted files (tests/fuzz/README.md).
 PointCloud read_point_cloud(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     fail(path, "points file not found (run mppm-preprocess first)");
-  vtkNew<vtkXMLPolyDataReader> reader;
-  vtkNew<ErrorCollector> errors;
-  reader->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->AddObserver(vtkCommand::WarningEvent, errors);
-  if (!reader->CanReadFile(path.c_str()))
-    fail(path, "not a VTK XML PolyData file (expected POINTS.vtp written by mppm-preprocess)");
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  if (reader->GetErrorCode() != 0 || !errors->message.empty())
-    fail(path, "unreadable VTK XML PolyData (" +
-                   (errors->message.empty() ? std::string("read error") : errors->message) + ")");
-  vtkPolyData* poly = reader->GetOutput();
-  if (!poly || !poly->GetPoints()) fail(path, "no points");
+  const VtkPolyDataArrays file = read_vtk_polydata_arrays(path);
 
   PointCloud cloud;
-  vtkFieldData* field = poly->GetFieldData();
-  const double dimension = field_scalar(field, "dimension", path);
+  const double dimension = field_scalar(file, "dimension", path);
   if (dimension != 2 && dimension != 3) fail(path, "field 'dimension' must be 2 or 3");
   cloud.dimension = static_cast<int>(dimension);
-  cloud.spacing = field_scalar(field, "spacing", path);
-  cloud.horizon = field_scalar(field, "horizon", path);
-  cloud.thickness = field_scalar(field, "thickness", path);
+  cloud.spacing = field_scalar(file, "spacing", path);
+  cloud.horizon = field_scalar(file, "horizon", path);
+  cloud.thickness = field_scalar(file, "thickness", path);
   if (!(cloud.spacing > 0)) fail(path, "field 'spacing' must be positive");
   if (!(cloud.horizon >= cloud.spacing))
     fail(path, "field 'horizon' must be at least the spacing");
   if (!(cloud.thickness > 0)) fail(path, "field 'thickness' must be positive");
 
-  const vtkIdType n = poly->GetNumberOfPoints();
+  const std::int64_t n = file.point_count;
   if (n <= 0) fail(path, "no points");
   cloud.resize(static_cast<std::size_t>(n));
-  vtkPointData* pd = poly->GetPointData();
-  vtkDataArray* volume = required_array(pd, "volume", n, 1, path, "point");
-  vtkDataArray* region = required_array(pd, "region", n, 1, path, "point");
-  vtkDataArray* boundary_id = required_array(pd, "boundary_id", n, 1, path, "point");
-  vtkDataArray* normal = required_array(pd, "normal", n, 3, path, "point");
+  const VtkArray& volume = required_array(file.point("volume"), "volume", n, 1, path, "point");
+  const VtkArray& region = required_array(file.point("region"), "region", n, 1, path, "point");
+  const VtkArray& boundary_id = required_array(file.point("boundary_id"), "boundary_id", n, 1, path, "point");
+  const VtkArray& normal = required_array(file.point("normal"), "normal", n, 3, path, "point");
 
-  const auto boundary_count =
-      static_cast<std::int32_t>(field_scalar(field, "boundary_count", path));
-  if (boundary_count < 0) fail(path, "field 'boundary_count' must not be negative");
+  const double boundary_count_value = field_scalar(file, "boundary_count", path);
+  if (boundary_count_value < 0 || boundary_count_value > 1e6 || boundary_count_value != std::floor(boundary_count_value))
+    fail(path, "field 'boundary_count' must be a whole number from 0 to 1000000");
+  const auto boundary_count = static_cast<std::int32_t>(boundary_count_value);
   if (boundary_count > 0) {
-    auto* names = vtkStringArray::SafeDownCast(field->GetAbstractArray("boundary_names"));
-    auto* types = vtkStringArray::SafeDownCast(field->GetAbstractArray("boundary_types"));
-    if (!names || names->GetNumberOfValues() != boundary_count)
-      fail(path, "field 'boundary_names' missing or not one name per boundary");
-    if (!types || types->GetNumberOfValues() != boundary_count)
-      fail(path, "field 'boundary_types' missing or not one type per boundary");
-    vtkDataArray* areas = required_array(field, "boundary_areas", boundary_count, 1, path, "field data");
-    vtkDataArray* counts =
-        required_array(field, "boundary_point_counts", boundary_count, 1, path, "field data");
-    for (vtkIdType k = 0; k < boundary_count; ++k) {
+    const auto& names = string_array(file, "boundary_names", boundary_count, "name", path);
+    const auto& types = string_array(file, "boundary_types", boundary_count, "type", path);
+    const VtkArray& areas =
+        required_array(file.field("boundary_areas"), "boundary_areas", boundary_count, 1, path, "field data");
+    const VtkArray& counts = required_array(file.field("boundary_point_counts"), "boundary_point_counts",
+                                            boundary_count, 1, path, "field data");
+    for (std::int32_t k = 0; k < boundary_count; ++k) {
       BoundaryInfo info;
-      info.name = names->GetValue(k);
-      info.type = types->GetValue(k);
+      info.name = names[static_cast<std::size_t>(k)];
+      info.type = types[static_cast<std::size_t>(k)];
       if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" &&
           info.type != "pressure")
         fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
       info.area = finite_value(areas, k, 0, path);
-      info.point_count = static_cast<std::int64_t>(finite_value(counts, k, 0, path));
+      const double point_count = finite_value(counts, k, 0, path);
+      if (point_count < 0 || point_count > 9e15 || point_count != std::floor(point_count))
+        fail(path, "boundary '" + info.name + "' has a bad point count");
+      info.point_count = static_cast<std::int64_t>(point_count);
       cloud.boundaries.push_back(info);
     }
   }
 
-  vtkPoints* points = poly->GetPoints();
-  for (vtkIdType i = 0; i < n; ++i) {
-    double p[3];
-    points->GetPoint(i, p);
+  const VtkArray& points = file.points;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const double p[3] = {points.numbers[3 * u], points.numbers[3 * u + 1], points.numbers[3 * u + 2]};
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       fail(path, "point " + std::to_string(i) + " has a non-finite coordinate");
     if (cloud.dimension == 2 && p[2] != 0.0)
       fail(path, "point " + std::to_string(i) + " has z != 0 in a 2-D cloud");
-    cloud.x[i] = p[0];
-    cloud.y[i] = p[1];
-    cloud.z[i] = p[2];
-    cloud.volume[i] = finite_value(volume, i, 0, path);
-    if (!(cloud.volume[i] > 0)) fail(path, "point " + std::to_string(i) + " has volume <= 0");
-    cloud.region[i] = integer_value(region, i, path);
-    cloud.boundary_id[i] = integer_value(boundary_id, i, path);
-    if (cloud.region[i] < 0 || cloud.region[i] > boundary_count)
-      fail(path, "point " + std::to_string(i) + " has region " + std::to_string(cloud.region[i]) +
+    cloud.x[u] = p[0];
+    cloud.y[u] = p[1];
+    cloud.z[u] = p[2];
+    cloud.volume[u] = finite_value(volume, i, 0, path);
+    if (!(cloud.volume[u] > 0)) fail(path, "point " + std::to_string(i) + " has volume <= 0");
+    cloud.region[u] = integer_value(region, i, path);
+    cloud.boundary_id[u] = integer_value(boundary_id, i, path);
+    if (cloud.region[u] < 0 || cloud.region[u] > boundary_count)
+      fail(path, "point " + std::to_string(i) + " has region " + std::to_string(cloud.region[u]) +
                      " (expected 0.." + std::to_string(boundary_count) + ")");
-    if (cloud.boundary_id[i] < 0 || cloud.boundary_id[i] > boundary_count)
+    if (cloud.boundary_id[u] < 0 || cloud.boundary_id[u] > boundary_count)
       fail(path, "point " + std::to_string(i) + " has boundary_id " +
-                     std::to_string(cloud.boundary_id[i]) + " (expected 0.." +
+                     std::to_string(cloud.boundary_id[u]) + " (expected 0.." +
                      std::to_string(boundary_count) + ")");
-    if (cloud.region[i] > 0 && cloud.boundary_id[i] != cloud.region[i])
+    if (cloud.region[u] > 0 && cloud.boundary_id[u] != cloud.region[u])
       fail(path, "layer point " + std::to_string(i) + " has boundary_id != region");
-    cloud.normal_x[i] = finite_value(normal, i, 0, path);
-    cloud.normal_y[i] = finite_value(normal, i, 1, path);
-    cloud.normal_z[i] = finite_value(normal, i, 2, path);
+    cloud.normal_x[u] = finite_value(normal, i, 0, path);
+    cloud.normal_y[u] = finite_value(normal, i, 1, path);
+    cloud.normal_z[u] = finite_value(normal, i, 2, path);
   }
 
-  auto* precrack = vtkDataArray::SafeDownCast(field->GetAbstractArray("precrack_vertices"));
-  if (precrack) {
-    if (precrack->GetNumberOfComponents() != 3)
+  if (const VtkArray* precrack = file.field("precrack_vertices")) {
+    if (precrack->is_string() || precrack->components != 3)
       fail(path, "field 'precrack_vertices' must have 3 components");
-    const vtkIdType vertices = precrack->GetNumberOfTuples();
+    const std::int64_t vertices = precrack->tuples;
     if (vertices % cloud.precrack_vertices_per_element() != 0)
       fail(path, "field 'precrack_vertices' is not a whole number of " +
                      std::string(cloud.dimension == 2 ? "segments" : "triangles"));
     cloud.precrack_vertices.resize(static_cast<std::size_t>(vertices) * 3);
-    for (vtkIdType v = 0; v < vertices; ++v)
+    for (std::int64_t v = 0; v < vertices; ++v)
       for (int c = 0; c < 3; ++c)
-        cloud.precrack_vertices[static_cast<std::size_t>(v) * 3 + c] =
-            finite_value(precrack, v, c, path);
+        cloud.precrack_vertices[static_cast<std::size_t>(v) * 3 + static_cast<std::size_t>(c)] =
+            finite_value(*precrack, v, c, path);
   }
   return cloud;
 }
