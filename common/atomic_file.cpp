@@ -29,14 +29,25 @@ void commit_temporary(const std::string& temporary, const std::string& path) {
   if (fd < 0 || ::fsync(fd) != 0) {
     const std::string why = std::strerror(errno);
     if (fd >= 0) ::close(fd);
-    std::filesystem::remove(temporary);
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
     throw InputError(path + ": cannot write the file (" + why + ")");
   }
   ::close(fd);
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     const std::string why = std::strerror(errno);
-    std::filesystem::remove(temporary);
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
     throw InputError(path + ": cannot write the file (" + why + ")");
+  }
+  // The rename is durable only once the directory entry is on disk. Best effort: some file
+  // systems cannot fsync a directory, and the file itself is already complete either way.
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  const std::string directory = parent.empty() ? std::string(1, '.') : parent.string();  // (-Wrestrict, see above)
+  const int dir_fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dir_fd >= 0) {
+    (void)::fsync(dir_fd);
+    ::close(dir_fd);
   }
 }
 
@@ -47,19 +58,27 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     if (!out) {
       throw InputError(path + ": cannot create the file (" + std::string(std::strerror(errno)) + ")");
     }
+    std::error_code ignored;
     try {
       write(out);
     } catch (...) {
       out.close();
-      std::filesystem::remove(temporary);
+      std::filesystem::remove(temporary, ignored);
       throw;
     }
-    out.flush();
-    if (!out) {
-      const std::string why = std::strerror(errno);
+    // A failed write sets the stream state; errno still tells why. close() flushes the last
+    // buffer, and its failure (disk full, file size limit) must count too.
+    int error = out ? 0 : errno;
+    if (out) {
+      errno = 0;
       out.close();
-      std::filesystem::remove(temporary);
-      throw InputError(path + ": writing failed (" + why + "; is the disk full?)");
+      if (!out) error = errno;
+    }
+    if (!out) {
+      const std::string why = error ? std::strerror(error) : "write error";
+      out.close();
+      std::filesystem::remove(temporary, ignored);
+      throw InputError(path + ": writing failed (" + why + "; is the disk full?); the previous file, if any, is unchanged");
     }
   }
   commit_temporary(temporary, path);

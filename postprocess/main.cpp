@@ -32,7 +32,8 @@ const char* kUsage =
     "                                         shear-band and crack metrics (see postprocess/README.md)\n"
     "\n"
     "Options:\n"
-    "  -o POST_DIR          output directory (created if needed)\n"
+    "  -o POST_DIR          output directory (created; an existing non-empty one is refused)\n"
+    "  --force              replace an earlier POST_DIR as a whole (no stale frames remain)\n"
     "  --figures            also render PNG contour images (ParaView pvbatch, headless) into\n"
     "                       POST_DIR/figures/FIELD_STEP.png\n"
     "  --fields a,b         fields of the figures (default: damage, plastic_shear_strain,\n"
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
   const mppm::CommandLineSpec spec{
       "mppm-postprocess", kUsage,
       {"-o", "--fields", "--times", "--warp-scale", "--compression"},
-      {"--figures", "--partial", "--no-plot"}};
+      {"--figures", "--partial", "--no-plot", "--force"}};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) -> int {
     using mppm::InputError;
     if (cl.positional.size() != 1)
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
     options.run_directory = cl.positional[0];
     options.output_directory = *output;
     options.quiet = cl.quiet;
+    options.force = cl.has_flag("--force");
     options.allow_unfinished = cl.has_flag("--partial");
     options.plot_load_curve = !cl.has_flag("--no-plot");
     options.figures = cl.has_flag("--figures");

@@ -17,6 +17,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/output_directory.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
 #include "common/snapshot_file.hpp"
@@ -231,6 +232,18 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
 
   const fs::path post(options.output_directory);
   std::error_code ec;
+  // --force replaces the whole directory: it must not hold the run being read.
+  const auto directory_path = [&ec](const fs::path& p) {  // "run/" and "run" alike
+    fs::path canonical = fs::weakly_canonical(p, ec);
+    return canonical.has_filename() || !canonical.has_parent_path() ? canonical : canonical.parent_path();
+  };
+  const fs::path run_path = directory_path(options.run_directory);
+  const fs::path post_path = directory_path(post);
+  if (!ec && std::mismatch(post_path.begin(), post_path.end(), run_path.begin(), run_path.end()).first == post_path.end())
+    throw InputError(options.output_directory + ": the post directory must not be (or contain) the run directory " +
+                     options.run_directory);
+  prepare_output_directory(options.output_directory, options.force,
+                           {"post directory", "-o POST_DIR", {"results.pvd", "summary.json", "load_curve.csv", kVtuDirectory}});
   fs::create_directories(post / kVtuDirectory, ec);
   if (ec) throw InputError(options.output_directory + ": cannot create the output directory (" + ec.message() + ")");
 

@@ -13,6 +13,7 @@ namespace mppm::post {
 struct PostprocessOptions {
   std::string run_directory;
   std::string output_directory;
+  bool force = false;                    // --force: replace an earlier post directory
   bool quiet = false;
   bool allow_unfinished = false;         // --partial: a run whose status is still "running"
   bool plot_load_curve = true;           // load_curve.png through matplotlib

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/memory_estimate.hpp"
 #include "common/progress.hpp"  // format_bytes
 #include "preprocess/boundary_layers.hpp"
 #include "preprocess/boundary_selection.hpp"
@@ -234,9 +235,16 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
 
   report.lattice_neighbours = lattice_neighbour_count(d, scene.geometry.horizon_factor);
   report.estimated_bonds = static_cast<double>(total) * static_cast<double>(report.lattice_neighbours);
-  // Solver estimate: ~64 doubles of state per point (kinematics, stresses, K^-1, histories) and
-  // ~16 bytes per bond (neighbour index, state, bond work) in the CSR family arrays.
-  report.estimated_memory_bytes = static_cast<double>(total) * 64 * 8 + report.estimated_bonds * 16;
+  // What mppm-solve will need (common/memory_estimate.hpp: the solver's arrays per point and
+  // per bond, one snapshot, the program), next to what this machine has available.
+  MemoryEstimateInput memory;
+  memory.points = static_cast<std::uint64_t>(total);
+  memory.bonds = static_cast<std::uint64_t>(report.estimated_bonds);
+  memory.dimension = d;
+  memory.effects = scene.effects.names();
+  memory.snapshot_fields = scene.output.fields;
+  report.estimated_memory_bytes = static_cast<double>(estimate_run_memory(memory).total_bytes);
+  report.available_memory_bytes = available_memory_bytes();
   return result;
 }
 
@@ -276,7 +284,12 @@ std::string format_report(const Scene& scene, const PreprocessResult& result,
       << " from " << scene.geometry.precracks.size() << " selector(s)\n";
   s << "  bonds        ~" << std::setprecision(4) << r.estimated_bonds << " (" << total << " points x "
     << r.lattice_neighbours << " lattice neighbours within the horizon)\n";
-  s << "  memory       ~" << format_bytes(r.estimated_memory_bytes) << " for the solver (estimate)\n";
+  s << "  memory       ~" << format_bytes(r.estimated_memory_bytes) << " for mppm-solve (estimate)";
+  if (r.available_memory_bytes) s << ", " << format_bytes(static_cast<double>(*r.available_memory_bytes)) << " available here";
+  s << "\n";
+  if (r.available_memory_bytes && r.estimated_memory_bytes > static_cast<double>(*r.available_memory_bytes))
+    s << "  warning      the run needs more memory than this machine has available: mppm-solve will refuse it "
+         "here; use a coarser geometry.spacing or fewer output.fields, or solve on a larger machine\n";
   s << "  time         geometry " << std::setprecision(3) << r.seconds_geometry << " s, inside test "
     << r.seconds_inside << " s, layers " << r.seconds_layers << " s\n";
   for (const std::string& warning : r.warnings) s << "  warning      " << warning << "\n";

@@ -2,6 +2,8 @@
 // boundary layers, loaded-boundary tags and pre-crack geometry (SCENE.md, SPEC section 8).
 // mppm-preprocess is a thin main around it; tests call it directly.
 #pragma once
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +29,8 @@ struct PreprocessReport {
   std::vector<std::int64_t> points_per_region;    // [0] = body, [k] = layer of boundary k
   std::int64_t lattice_neighbours = 0;            // lattice points within the horizon of a point
   double estimated_bonds = 0.0;
-  double estimated_memory_bytes = 0.0;
+  double estimated_memory_bytes = 0.0;                  // of mppm-solve (common/memory_estimate.hpp)
+  std::optional<std::uint64_t> available_memory_bytes;  // MemAvailable of this machine
   double seconds_geometry = 0.0, seconds_inside = 0.0, seconds_layers = 0.0;
   std::vector<std::string> warnings;              // printed with the report
 };

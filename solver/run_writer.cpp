@@ -7,6 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/output_directory.hpp"
 #include "common/run_directory.hpp"
 
 namespace mppm::solver {
@@ -54,26 +55,12 @@ std::string csv_row(const std::vector<double>& values) {
 }  // namespace
 
 RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(directory)) {
+  const OutputDirectoryKind kind{"run directory", "-o RUN_DIR",
+                                 {run_layout::run_info, run_layout::resolved_scene, run_layout::reference,
+                                  run_layout::log, run_layout::snapshot_dir}};
+  prepare_output_directory(directory_, force, kind);
   std::error_code ec;
-  const fs::path dir(directory_);
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec))
-      throw InputError(directory_ + ": exists and is not a directory (expected a run directory to create)");
-    if (!fs::is_empty(dir, ec)) {
-      if (!force)
-        throw InputError(directory_ + ": the run directory is not empty (use --force to overwrite an earlier run)");
-      // Remove the files of an earlier run, nothing else.
-      for (const char* name : {run_layout::resolved_scene, run_layout::log, run_layout::load, run_layout::energy,
-                               run_layout::run_info, run_layout::reference})
-        fs::remove(dir / name, ec);
-      const fs::path snaps = dir / run_layout::snapshot_dir;
-      if (fs::is_directory(snaps, ec)) {
-        for (const auto& entry : fs::directory_iterator(snaps, ec))
-          if (entry.path().extension() == ".snap") fs::remove(entry.path(), ec);
-      }
-    }
-  }
-  fs::create_directories(dir / run_layout::snapshot_dir, ec);
+  fs::create_directories(fs::path(directory_) / run_layout::snapshot_dir, ec);
   if (ec) throw InputError(directory_ + ": cannot create the run directory (" + ec.message() + ")");
 }
 

@@ -31,7 +31,8 @@ struct RunInfo {
 class RunWriter {
  public:
   // Creates RUN_DIR (and RUN_DIR/snapshots). An existing non-empty directory is refused with an
-  // InputError unless `force`, which removes the files of an earlier run (and only those).
+  // InputError naming it and --force unless `force`, which replaces an earlier run directory as
+  // a whole (common/output_directory.hpp): no snapshot of the older run survives.
   RunWriter(std::string directory, bool force);
 
   const std::string& directory() const { return directory_; }

@@ -25,4 +25,28 @@ if(TARGET mppm-solve)
             -DWORK=${CMAKE_CURRENT_BINARY_DIR}/reliability_solve
             -P ${PROJECT_SOURCE_DIR}/tests/fuzz/expect_bad_input_exit.cmake)
   set_tests_properties(reliability.solve_rejects_malformed_points PROPERTIES LABELS unit TIMEOUT 300)
+  # The points files that crashed VTK 9.1's XML reader (segfault, abort, huge allocation) before
+  # the points file got its own strict reader: now exit code 2 with a message, like the rest.
+  add_test(NAME reliability.solve_rejects_fuzz_crash_points
+    COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:mppm-solve> -DMODE=points
+            -DINPUTS=${PROJECT_SOURCE_DIR}/tests/fuzz/crashes/point_cloud
+            -DSCENE=${PROJECT_SOURCE_DIR}/tests/fuzz/corpus/scene/valid_crack_branching.yaml
+            -DWORK=${CMAKE_CURRENT_BINARY_DIR}/reliability_solve_crashes
+            -P ${PROJECT_SOURCE_DIR}/tests/fuzz/expect_bad_input_exit.cmake)
+  set_tests_properties(reliability.solve_rejects_fuzz_crash_points PROPERTIES LABELS unit TIMEOUT 300)
 endif()
+
+# Write-failure safety of atomic_file: a failed write (RLIMIT_FSIZE, EFBIG as on a full disk)
+# throws, names the file and keeps the previous file; no temporary is left.
+mppm_add_gtest(test_atomic_file unit unit/test_atomic_file.cpp)
+# The memory estimate: bond count, refusal with the advice, MemAvailable, and against the peak
+# resident memory of a real mppm-solve run (runs mppm-preprocess and mppm-solve from bin/).
+mppm_add_gtest(test_memory_estimate unit unit/test_memory_estimate.cpp)
+# Refusal and --force replacement of an output directory, and the same through the real stages
+# (mppm-solve, mppm-postprocess) with write failures of mppm-preprocess and mppm-solve.
+mppm_add_gtest(test_output_directory unit unit/test_output_directory.cpp)
+mppm_add_gtest(test_output_safety unit unit/test_output_safety.cpp)
+# The points file's own reader on every encoding VTK writes (VTK's writer makes the variants).
+set(MPPM_TEST_LIBS mppm_common VTK::IOXML VTK::CommonDataModel VTK::CommonCore)
+mppm_add_gtest(test_vtk_xml_reader unit unit/test_vtk_xml_reader.cpp)
+set(MPPM_TEST_LIBS mppm_common)

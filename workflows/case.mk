@@ -16,13 +16,13 @@ $(OUT)/run/run_info.json: $(OUT)/points.vtp $(SCENE) $(MPPM_BIN)/mppm-solve
 	$(MPPM_BIN)/mppm-solve $(SCENE) --points $< -o $(OUT)/run --force --threads $(THREADS) $(RUN_ARGS)
 
 $(OUT)/post/summary.json: $(OUT)/run/run_info.json $(MPPM_BIN)/mppm-postprocess
-	$(MPPM_BIN)/mppm-postprocess $(OUT)/run -o $(OUT)/post $(POST_ARGS)
+	$(MPPM_BIN)/mppm-postprocess $(OUT)/run -o $(OUT)/post --force $(POST_ARGS)
 
 .PHONY: points run post figures clean
 points: $(OUT)/points.vtp
 run: $(OUT)/run/run_info.json
 post: $(OUT)/post/summary.json
 figures: $(OUT)/run/run_info.json
-	$(MPPM_BIN)/mppm-postprocess $(OUT)/run -o $(OUT)/post --figures $(POST_ARGS)
+	$(MPPM_BIN)/mppm-postprocess $(OUT)/run -o $(OUT)/post --figures --force $(POST_ARGS)
 clean:
 	rm -rf $(OUT)
