@@ -17,7 +17,9 @@ struct BondFamilies {
   std::vector<std::int64_t> offset;    // owned + 1 entries
   std::vector<std::int32_t> neighbor;  // local index (owned or ghost)
   std::vector<double> xi;              // D per bond
-  std::vector<std::uint8_t> intact;    // damage effect only (empty otherwise): 1 = bond acts
+  // Damage effect only (empty otherwise):
+  std::vector<std::uint8_t> intact;    // 1 = the bond acts; 0 = broken (for good)
+  std::vector<double> work;            // W_ij [J/m^6], the same bits at both ends of a bond
 
   std::size_t bond_count() const { return neighbor.size(); }
 };
@@ -54,6 +56,7 @@ void remove_bonds(BondFamilies& families, Predicate&& cut) {
   families.neighbor.resize(kept);
   families.xi.resize(kept * D);
   if (!families.intact.empty()) families.intact.assign(kept, 1);
+  if (!families.work.empty()) families.work.assign(kept, 0.0);
 }
 
 }  // namespace mppm::solver

@@ -1,6 +1,8 @@
 // Derivation of the Cosserat constants from the scene (SPEC sections 4-5).
 #include "solver/cosserat_material.hpp"
 
+#include "solver/bond_breakage.hpp"
+
 namespace mppm::solver {
 
 CosseratConstants cosserat_constants(const Scene& scene) {
@@ -20,6 +22,9 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.length_scale = m.length_scale;
   c.micro_inertia = m.micro_inertia();
   c.stabilization = scene.numerics.stabilization;
+  if (scene.effects.damage && m.damage)
+    c.critical_bond_work = critical_bond_work(scene.dimension, m.damage->critical_energy_release_rate,
+                                              scene.geometry.horizon(), scene.thickness);
 
   // Every value was validated where the scene was read (common/scene.cpp), the one place
   // that owns the rules and knows the file lines; nothing is re-checked here.

@@ -24,6 +24,7 @@ struct CosseratConstants {
   double stabilization = 0.0;        // G_s
   double solid_fraction = 1.0;       // phi0 (porosity output n = 1 - phi0 / J)
   double length_scale = 0.0;         // l [m]
+  double critical_bond_work = 0.0;   // w_cr [J/m^6] from G_cr (damage effect; 0 otherwise)
 };
 
 // Derives the constants from a scene that load_scene/parse_scene has already validated.

@@ -86,6 +86,7 @@ void ExplicitDynamics::initialize() {
   compute_loads_and_forces(true, false);
   energy_.external_work = 0.0;
   energy_.plastic_dissipation = 0.0;
+  energy_.fracture_dissipation = 0.0;
   evaluate_energy();
   initial_total_ = energy_.total();
 }
@@ -185,6 +186,11 @@ void ExplicitDynamics::step(bool with_energy) {
     double dissipated = 0.0;
     for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.plastic_dissipation[i];
     energy_.plastic_dissipation += dissipated;
+  }
+  if (!p.fracture_dissipation.empty()) {
+    double dissipated = 0.0;
+    for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.fracture_dissipation[i];
+    energy_.fracture_dissipation += dissipated;
   }
   ++steps_;
   if (with_energy) evaluate_energy();

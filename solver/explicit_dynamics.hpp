@@ -2,7 +2,8 @@
 // half kick, drift, prescribe, forces, half kick) with the energy bookkeeping of the run:
 // kinetic (translational, rotational), stored elastic, stabilization, and the external work of
 // surface loads, gravity and the prescribed layers (trapezoid rule on force . increment), and
-// the viscoplastic dissipation (the return map runs in the one force evaluation of each step).
+// the viscoplastic dissipation (the return map runs in the one force evaluation of each step),
+// and the fracture dissipation (bonds break in that evaluation too).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -21,10 +22,11 @@ struct EnergyState {
   double stabilization = 0.0;
   double external_work = 0.0;       // loads, prescribed layers, and damping (negative)
   double plastic_dissipation = 0.0; // accumulated every step (trapezoid rule, like the work)
+  double fracture_dissipation = 0.0; // work of the bonds broken so far, V_i V_j W_ij per pair
   // Kinetic + stored energy.
   double total() const { return kinetic + rotational_kinetic + elastic + stabilization; }
   // What the balance accounts for: total plus the energy already dissipated.
-  double accounted() const { return total() + plastic_dissipation; }
+  double accounted() const { return total() + plastic_dissipation + fracture_dissipation; }
 };
 
 class ExplicitDynamics {

@@ -8,8 +8,16 @@
 //     sum_j (T_ij - T_ji) V_j and the moment sum_j [(M_ij - M_ji) + 1/2 xi x (T_ij - T_ji)] V_j.
 // Each point writes only its own entries, so the result does not depend on the thread count.
 // Templated on dimension and on the compile-time effect set: an effect that is off costs nothing.
-// Viscoplasticity: sigma = C : (eps - eps_vp), m = m(kap - kap_vp); with a PlasticStep, pass 1
+// Viscoplasticity: sigma = C : (eps - eps_vp), m = m(kap - kap_vp); with a StepAdvance, pass 1
 // first advances each point's plastic state by the return map (once per time step).
+// Damage (SPEC section 7): broken bonds are skipped; with a StepAdvance, pass 2 also adds to each
+// bond's work W_ij the trapezoid-rule increment 1/2 (t_old + t) . (U - U_old) + 1/2 (m_old + m) .
+// (Om - Om_old) of its pair force t = T_ij - T_ji and pair moment m = M_ij - M_ji, and breaks it
+// when W_ij >= w_cr. The old pair force is rebuilt from the previous evaluation's per-point arrays
+// (previous_*: a few numbers per point instead of D + R per bond). Seen from j, every term of the
+// increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
+// IEEE addition commutes), so both ends hold the same bits of W_ij and break it in the same step,
+// for any thread count, without talking to each other.
 #pragma once
 #include <Eigen/Dense>
 
@@ -17,7 +25,7 @@
 #include "solver/bond_families.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
-#include "solver/plastic_step.hpp"
+#include "solver/step_advance.hpp"
 #include "solver/point_data.hpp"
 #include "solver/viscoplastic_point.hpp"
 
@@ -68,9 +76,14 @@ MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, dou
 }
 
 template <int D, class Effects, bool WithEnergy>
-void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstants& c,
-                     [[maybe_unused]] const PlasticStep* plastic_step) {
+void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                     [[maybe_unused]] const StepAdvance* advance) {
   constexpr int R = rotation_components<D>;
+  // Damage: this evaluation's tensors replace the previous ones, which the bond work still needs.
+  if constexpr (Effects::damage) {
+    p.force_tensor.swap(p.previous_force_tensor);
+    if constexpr (Effects::micropolar) p.moment_tensor.swap(p.previous_moment_tensor);
+  }
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
   constexpr int RD = R * D;
@@ -81,7 +94,16 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
   const double* __restrict xis = f.xi.data();
   const std::int32_t* __restrict nb = f.neighbor.data();
   const std::int64_t* __restrict off = f.offset.data();
-  [[maybe_unused]] const std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
+  [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
+  [[maybe_unused]] double* bond_work = Effects::damage ? f.work.data() : nullptr;
+  [[maybe_unused]] const bool accumulate_work = Effects::damage && advance != nullptr;
+  [[maybe_unused]] const double critical_work = c.critical_bond_work;
+  [[maybe_unused]] const double* u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
+  [[maybe_unused]] const double* w_old = Effects::damage && polar ? p.previous_rotation.data() : nullptr;
+  [[maybe_unused]] const double* a_old = Effects::damage ? p.previous_force_tensor.data() : nullptr;
+  [[maybe_unused]] const double* ck_old = Effects::damage ? p.previous_stabilization_ck.data() : nullptr;
+  [[maybe_unused]] const double* q_old = Effects::damage && polar ? p.previous_moment_tensor.data() : nullptr;
+  [[maybe_unused]] const double* g_old = Effects::damage && polar ? p.previous_stabilization_rot.data() : nullptr;
   const bool threaded = thread_bond_loop(f.bond_count());
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
 
@@ -112,7 +134,7 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
         if constexpr (polar) p.couple_stress_energy[i] = 0.0;
       }
       if constexpr (Effects::viscoplasticity)
-        if (plastic_step) p.plastic_dissipation[i] = 0.0;
+        if (advance) p.plastic_dissipation[i] = 0.0;
       continue;
     }
     const double* ui = u + i * D;
@@ -143,14 +165,14 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
     Mat<D> sigma;
     if constexpr (Effects::viscoplasticity) {
       double* plastic_strain = &p.plastic_strain[i * 9];
-      if (plastic_step) {
+      if (advance) {
         // eps_out and the stored wryness still hold the previous evaluation: the step's start.
         p.plastic_dissipation[i] =
             vol[i] * viscoplastic::advance_point<D, R, polar>(
                          eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
                          polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
                          polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i],
-                         p.plastic_cohesion[i], c, *plastic_step);
+                         p.plastic_cohesion[i], c, *advance);
       }
       const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, plastic_strain);
       const auto stress = viscoplastic::elastic_stress<D>(eps_elastic, c);
@@ -190,6 +212,8 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
     double force[D] = {};
     double moment[R] = {};
     double stab_energy = 0.0;
+    [[maybe_unused]] std::int32_t broken = 0;
+    [[maybe_unused]] double released = 0.0;
     for (std::int64_t b = off[i]; b < off[i + 1]; ++b) {
       if constexpr (Effects::damage)
         if (!intact[b]) continue;
@@ -209,15 +233,52 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
         t[r] = sum;
         force[r] += vj * sum;
       }
+      [[maybe_unused]] double pair_moment[R];  // M_ij - M_ji
       if constexpr (polar) {
         const double* qj = q_all + j * RD;
         const double g = gi + g_all[j];
         for (int r = 0; r < R; ++r) {
-          double sum = g * (wj[r] - wi[r]);  // M_ij - M_ji
+          double sum = g * (wj[r] - wi[r]);
           for (int col = 0; col < D; ++col) sum += (qi[r * D + col] + qj[r * D + col]) * xi[col];
+          pair_moment[r] = sum;
           moment[r] += vj * sum;
         }
         add_cross<D>(xi, t, 0.5 * vj, moment);
+      }
+      if constexpr (Effects::damage) {
+        if (accumulate_work) {
+          const double* wi0 = polar ? w_old + i * R : zero_rotation;
+          const double* wj0 = polar ? w_old + j * R : zero_rotation;
+          double U0[D];
+          composite_state<D, R, polar>(u_old + i * D, u_old + j * D, wi0, wj0, xi, U0);
+          const double* ai0 = a_old + i * DD;
+          const double* aj0 = a_old + j * DD;
+          const double* cki0 = ck_old + i * DD;
+          const double* ckj0 = ck_old + j * DD;
+          double dw = 0.0;
+          for (int r = 0; r < D; ++r) {
+            double t0 = 0.0;
+            for (int col = 0; col < D; ++col)
+              t0 += (ai0[r * D + col] + aj0[r * D + col]) * xi[col] + (cki0[r * D + col] + ckj0[r * D + col]) * U0[col];
+            dw += (t0 + t[r]) * (U[r] - U0[r]);
+          }
+          if constexpr (polar) {
+            const double* qi0 = q_old + i * RD;
+            const double* qj0 = q_old + j * RD;
+            const double g0 = g_old[i] + g_old[j];
+            for (int r = 0; r < R; ++r) {
+              double m0 = g0 * (wj0[r] - wi0[r]);
+              for (int col = 0; col < D; ++col) m0 += (qi0[r * D + col] + qj0[r * D + col]) * xi[col];
+              dw += (m0 + pair_moment[r]) * ((wj[r] - wi[r]) - (wj0[r] - wi0[r]));
+            }
+          }
+          bond_work[b] += 0.5 * dw;
+          if (bond_work[b] >= critical_work && !p.no_fail[i] && !p.no_fail[j]) {
+            intact[b] = 0;  // from the next evaluation on; this step's force still had the bond
+            ++broken;
+            released += 0.5 * vol[i] * vj * bond_work[b];  // the other half at j
+          }
+        }
       }
       if constexpr (WithEnergy) {
         double z[D];
@@ -242,6 +303,27 @@ void internal_forces(PointData& p, const BondFamilies& f, const CosseratConstant
     if constexpr (polar)
       for (int r = 0; r < R; ++r) p.moment[i * R + r] = moment[r];
     if constexpr (WithEnergy) p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy;
+    if constexpr (Effects::damage) {
+      if (accumulate_work) {
+        p.bonds_broken[i] = broken;
+        p.fracture_dissipation[i] = released;
+      }
+    }
+  }
+
+  // Damage: remember this evaluation's state for the next bond-work increment (after the barrier
+  // of pass 2, which read the previous one). The pass-1 tensors were swapped in at the start.
+  if constexpr (Effects::damage) {
+#pragma omp for schedule(static)
+    for (std::int64_t s = 0; s < n; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      for (int r = 0; r < D; ++r) p.previous_displacement[i * D + r] = u[i * D + r];
+      for (int k = 0; k < DD; ++k) p.previous_stabilization_ck[i * DD + k] = ck_all[i * DD + k];
+      if constexpr (polar) {
+        for (int r = 0; r < R; ++r) p.previous_rotation[i * R + r] = w[i * R + r];
+        p.previous_stabilization_rot[i] = g_all[i];
+      }
+    }
   }
   }  // omp parallel
 }

@@ -4,15 +4,15 @@
 #include "common/scene.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
-#include "solver/plastic_step.hpp"
+#include "solver/step_advance.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
 
-// The last argument advances the viscoplastic state by one step (nullptr: frozen; ignored
-// without the viscoplasticity effect).
-using InternalForceFunction = void (*)(PointData&, const BondFamilies&, const CosseratConstants&,
-                                       const PlasticStep*);
+// The last argument advances the history-dependent state by one step: the viscoplastic state,
+// and with damage the bond work and breakage (nullptr: frozen, bonds as they are). The bonds are
+// written only with damage (the `intact` flags and the work).
+using InternalForceFunction = void (*)(PointData&, BondFamilies&, const CosseratConstants&, const StepAdvance*);
 
 struct InternalForceFunctions {
   InternalForceFunction forces = nullptr;              // force and moment only

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/precrack_crossing.hpp"
+#include "solver/bond_breakage.hpp"
 #include "solver/shape_tensor.hpp"
 
 namespace mppm::solver {
@@ -46,14 +47,19 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   Model m;
   m.constants = o.constants;
   m.effects = o.effects;
-  m.points = make_point_data(cloud, o.effects.micropolar, o.effects.viscoplasticity);
+  m.points = make_point_data(cloud, o.effects);
   FamilyOptions fo;
   fo.horizon = o.horizon;
   fo.spacing = o.spacing;
   fo.period = o.period;
   m.bonds = build_families(m.points, fo);
+  if (o.effects.damage) record_family_volume(m.points, m.bonds);
   m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
-  if (o.effects.damage) m.bonds.intact.assign(m.bonds.bond_count(), 1);
+  if (o.effects.damage) {
+    m.bonds.intact.assign(m.bonds.bond_count(), 1);
+    m.bonds.work.assign(m.bonds.bond_count(), 0.0);
+    mark_no_fail_zone(m.points, o.no_fail_depth);
+  }
   for (std::size_t i = 0; i < m.points.owned; ++i)
     m.points.bond_count_at_start[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.offset[i]);
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
@@ -67,6 +73,16 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   }
   m.kernel = internal_force_functions(m.points.dimension, o.effects);
   return m;
+}
+
+void Model::advance_internal_forces(double dt, bool with_energy) {
+  const StepAdvance step{viscoplastic_model.get(), dt};
+  (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, &step);
+  if (effects.damage) {
+    const BreakageUpdate u = update_after_breakage(points, bonds, constants);
+    broken_bonds += u.broken_pairs;
+    detached_points += u.newly_detached;
+  }
 }
 
 InternalEnergy internal_energy(const Model& model) {

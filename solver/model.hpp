@@ -9,7 +9,7 @@
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/internal_forces.hpp"
-#include "solver/plastic_step.hpp"
+#include "solver/step_advance.hpp"
 #include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
 
@@ -21,6 +21,7 @@ struct ModelOptions {
   double horizon = 0.0;
   double spacing = 0.0;
   std::array<double, 3> period{0.0, 0.0, 0.0};  // verification lattices only
+  double no_fail_depth = 0.0;  // damage: bonds of points this close to a boundary condition never break
   // Required with the viscoplasticity effect (make_viscoplastic_model of the scene's material).
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;
 };
@@ -34,6 +35,7 @@ struct Model {
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;  // with the effect
   std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
   std::size_t detached_points = 0;
+  std::size_t broken_bonds = 0;  // pairs broken by damage so far (pre-crack cuts not included)
 
   int dimension() const { return points.dimension; }
   bool micropolar() const { return effects.micropolar; }
@@ -43,15 +45,13 @@ struct Model {
   void compute_internal_forces(bool with_energy = false) {
     (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, nullptr);
   }
-  // The same at the end of a time step of length dt, with the viscoplastic state advanced from
-  // the start of the step by the return map (and points.plastic_dissipation set). Call it once
-  // per step, after the previous evaluation (whose strains are the step's start); without the
-  // viscoplasticity effect it is compute_internal_forces.
-  void advance_internal_forces(double dt, bool with_energy) {
-    const PlasticStep step{viscoplastic_model.get(), dt};
-    (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants,
-                                                              effects.viscoplasticity ? &step : nullptr);
-  }
+  // The same at the end of a time step of length dt, with the history advanced from the start of
+  // the step: the viscoplastic state by the return map (points.plastic_dissipation set), and with
+  // damage the bond work, the bonds that reach the critical work broken (points.bonds_broken and
+  // fracture_dissipation set) and the shape tensors of their points refreshed for the next step.
+  // Call it once per step, after the previous evaluation (the step's start); without these
+  // effects it is compute_internal_forces.
+  void advance_internal_forces(double dt, bool with_energy);
 };
 
 // Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.

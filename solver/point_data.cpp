@@ -5,7 +5,8 @@
 
 namespace mppm::solver {
 
-PointData make_point_data(const PointCloud& cloud, bool micropolar, bool viscoplasticity) {
+PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
+  const bool micropolar = effects.micropolar;
   PointData p;
   const int D = cloud.dimension;
   const std::size_t n = cloud.size();
@@ -53,12 +54,26 @@ PointData make_point_data(const PointCloud& cloud, bool micropolar, bool viscopl
     p.moment_tensor.assign(n * R * D, 0.0);
     p.couple_stress_energy.assign(n, 0.0);
   }
-  if (viscoplasticity) {
+  if (effects.viscoplasticity) {
     p.plastic_strain.assign(n * 9, 0.0);
     if (R > 0) p.plastic_wryness.assign(n * R * D, 0.0);
     p.equivalent_plastic_strain.assign(n, 0.0);
     p.plastic_cohesion.assign(n, 0.0);  // set from the model's initial state by build_model
     p.plastic_dissipation.assign(n, 0.0);
+  }
+  if (effects.damage) {
+    p.family_volume.assign(n, 0.0);  // filled by build_model before the pre-crack cuts
+    p.no_fail.assign(n, 0);
+    p.bonds_broken.assign(n, 0);
+    p.fracture_dissipation.assign(n, 0.0);
+    p.previous_displacement.assign(n * D, 0.0);
+    p.previous_force_tensor.assign(n * DD, 0.0);
+    p.previous_stabilization_ck.assign(n * DD, 0.0);
+    if (R > 0) {
+      p.previous_rotation.assign(n * R, 0.0);
+      p.previous_moment_tensor.assign(n * R * D, 0.0);
+      p.previous_stabilization_rot.assign(n, 0.0);
+    }
   }
   return p;
 }

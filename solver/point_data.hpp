@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/point_cloud.hpp"
+#include "common/scene.hpp"
 
 namespace mppm::solver {
 
@@ -57,6 +58,17 @@ struct PointData {
   std::vector<double> plastic_cohesion;           // c(ebar) [Pa]
   std::vector<double> plastic_dissipation;        // [J] of the last step (trapezoid rule)
 
+  // Damage state (allocated only when the effect is on, SPEC section 7).
+  std::vector<double> family_volume;         // sum V_j over the family before pre-crack cuts
+  std::vector<std::uint8_t> no_fail;         // 1: the bonds of this point never break
+  std::vector<std::int32_t> bonds_broken;    // bonds of this point broken in the last step
+  std::vector<double> fracture_dissipation;  // [J] of the last step: half the work of each broken bond
+  // The state of the previous force evaluation, for the trapezoid rule on the bond work (the
+  // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond).
+  std::vector<double> previous_displacement, previous_rotation;
+  std::vector<double> previous_force_tensor, previous_moment_tensor;
+  std::vector<double> previous_stabilization_ck, previous_stabilization_rot;
+
   // Energy per point [J], filled when a force evaluation is asked for energies.
   std::vector<double> force_stress_energy;   // V 1/2 eps:sigma
   std::vector<double> couple_stress_energy;  // V 1/2 kap:m
@@ -64,7 +76,7 @@ struct PointData {
 };
 
 // Copies positions, volumes, regions of the cloud; allocates the state for the dimension and
-// the micropolar flag. Every point is owned (single process).
-PointData make_point_data(const PointCloud& cloud, bool micropolar, bool viscoplasticity);
+// the effects (an effect that is off allocates nothing). Every point is owned (single process).
+PointData make_point_data(const PointCloud& cloud, const EffectSet& effects);
 
 }  // namespace mppm::solver

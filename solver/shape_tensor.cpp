@@ -8,53 +8,69 @@ namespace mppm::solver {
 
 namespace {
 
+// Recomputes K_i^-1 and the stabilization tensors of point i; returns true if it is detached.
 template <int D>
-std::size_t update(PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
   using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
   using Vec = Eigen::Matrix<double, D, 1>;
-  const auto n = static_cast<std::int64_t>(p.owned);
   const bool has_rot = !p.stabilization_rot.empty();
+  Mat K = Mat::Zero();
+  int count = 0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if (!f.intact.empty() && !f.intact[b]) continue;
+    const Vec xi = Eigen::Map<const Vec>(&f.xi[b * D]);
+    K += p.volume[f.neighbor[b]] * xi * xi.transpose();
+    ++count;
+  }
+  bool detach = count < D + 1;
+  if (!detach) {
+    const Eigen::SelfAdjointEigenSolver<Mat> eig(K, Eigen::EigenvaluesOnly);
+    const double lo = eig.eigenvalues()(0), hi = eig.eigenvalues()(D - 1);
+    detach = !(hi > 0.0) || !(lo >= kDetachReciprocalCondition * hi);
+  }
+  Eigen::Map<Mat> kinv(&p.shape_inverse[i * D * D]);
+  Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
+  p.detached[i] = detach ? 1 : 0;
+  if (detach) {
+    kinv.setZero();
+    ck.setZero();
+    if (has_rot) p.stabilization_rot[i] = 0.0;
+    return true;
+  }
+  kinv = K.inverse();
+  kinv = 0.5 * (kinv + kinv.transpose()).eval();  // exact symmetry of the stored inverse
+  // (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu) K^-1_ik + mu tr(K^-1) delta_ik (isotropic C)
+  ck = c.stabilization * ((c.lambda + c.mu) * kinv + c.mu * kinv.trace() * Mat::Identity());
+  if (has_rot) p.stabilization_rot[i] = c.stabilization * c.bending_modulus * kinv.trace() / D;
+  return false;
+}
+
+template <int D>
+std::size_t update_all(PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+  const auto n = static_cast<std::int64_t>(p.owned);
   std::size_t detached = 0;
 #pragma omp parallel for schedule(static) reduction(+ : detached) if (thread_bond_loop(f.bond_count()))
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    Mat K = Mat::Zero();
-    int count = 0;
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      if (!f.intact.empty() && !f.intact[b]) continue;
-      const Vec xi = Eigen::Map<const Vec>(&f.xi[b * D]);
-      K += p.volume[f.neighbor[b]] * xi * xi.transpose();
-      ++count;
-    }
-    bool detach = count < D + 1;
-    if (!detach) {
-      const Eigen::SelfAdjointEigenSolver<Mat> eig(K, Eigen::EigenvaluesOnly);
-      const double lo = eig.eigenvalues()(0), hi = eig.eigenvalues()(D - 1);
-      detach = !(hi > 0.0) || !(lo >= kDetachReciprocalCondition * hi);
-    }
-    Eigen::Map<Mat> kinv(&p.shape_inverse[i * D * D]);
-    Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
-    p.detached[i] = detach ? 1 : 0;
-    if (detach) {
-      kinv.setZero();
-      ck.setZero();
-      if (has_rot) p.stabilization_rot[i] = 0.0;
-      ++detached;
-      continue;
-    }
-    kinv = K.inverse();
-    kinv = 0.5 * (kinv + kinv.transpose()).eval();  // exact symmetry of the stored inverse
-    // (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu) K^-1_ik + mu tr(K^-1) delta_ik (isotropic C)
-    ck = c.stabilization * ((c.lambda + c.mu) * kinv + c.mu * kinv.trace() * Mat::Identity());
-    if (has_rot) p.stabilization_rot[i] = c.stabilization * c.bending_modulus * kinv.trace() / D;
-  }
+  for (std::int64_t s = 0; s < n; ++s) detached += update_point<D>(p, f, c, static_cast<std::size_t>(s)) ? 1 : 0;
   return detached;
+}
+
+template <int D>
+void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c, const std::vector<std::size_t>& points) {
+  const auto n = static_cast<std::int64_t>(points.size());
+  // Each listed point writes only its own tensors; a few hundred points are not worth threads.
+#pragma omp parallel for schedule(static) if (n > 2048)
+  for (std::int64_t s = 0; s < n; ++s) update_point<D>(p, f, c, points[static_cast<std::size_t>(s)]);
 }
 
 }  // namespace
 
 std::size_t update_shape_tensors(PointData& p, const BondFamilies& f, const CosseratConstants& c) {
-  return p.dimension == 2 ? update<2>(p, f, c) : update<3>(p, f, c);
+  return p.dimension == 2 ? update_all<2>(p, f, c) : update_all<3>(p, f, c);
+}
+
+void update_shape_tensors(PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                          const std::vector<std::size_t>& points) {
+  p.dimension == 2 ? update_some<2>(p, f, c, points) : update_some<3>(p, f, c, points);
 }
 
 }  // namespace mppm::solver

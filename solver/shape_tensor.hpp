@@ -2,6 +2,7 @@
 // from them, and the detection of detached points (SPEC sections 2-3).
 #pragma once
 #include <cstddef>
+#include <vector>
 
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
@@ -16,5 +17,9 @@ inline constexpr double kDetachReciprocalCondition = 1e-6;
 // Fills shape_inverse, stabilization_ck, stabilization_rot and detached for every owned point
 // (K is never inverted when it is singular); returns the number of detached points.
 std::size_t update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
+
+// The same for the listed points only (those whose bonds changed); detached flags are updated.
+void update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
+                          const std::vector<std::size_t>& changed_points);
 
 }  // namespace mppm::solver

@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include "solver/bond_breakage.hpp"
 #include "solver/plasticity/plastic_strain_measures.hpp"
 #include "solver/viscoplastic_point.hpp"
 
@@ -164,17 +165,8 @@ Snapshot make_snapshot(const Model& m, const std::vector<std::string>& fields, s
     } else if (name == "detached") {
       field.data.assign(p.detached.begin(), p.detached.begin() + static_cast<std::ptrdiff_t>(p.owned));
     } else if (name == "damage") {
-      // D_i = 1 - sum_j b V_j / sum_j V_j over the family at the start.
-      field.data.resize(p.owned);
-      for (std::size_t i = 0; i < p.owned; ++i) {
-        double all = 0.0, acting = 0.0;
-        for (std::int64_t b = m.bonds.offset[i]; b < m.bonds.offset[i + 1]; ++b) {
-          const double v = p.volume[m.bonds.neighbor[b]];
-          all += v;
-          if (m.bonds.intact.empty() || m.bonds.intact[b]) acting += v;
-        }
-        field.data[i] = all > 0.0 ? 1.0 - acting / all : 0.0;
-      }
+      // D_i = 1 - sum_j b V_j / sum_j V_j over the family before the pre-crack cuts.
+      field.data = damage_field(p, m.bonds);
     }
     s.fields.push_back(std::move(field));
   }

@@ -50,14 +50,6 @@ void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const
                      " m (geometry.horizon_factor; the boundary layers depend on it: rerun mppm-preprocess)");
 }
 
-void refuse_unavailable_effects(const Scene& scene) {
-  // A compile-time slot exists (kernels honour bond flags), but the breakage law is not wired
-  // into the run yet.
-  if (scene.effects.damage)
-    throw InputError(scene.path + ": effects: 'damage' is not available in this mppm-solve yet "
-                                  "(expected effects among: micropolar, viscoplasticity, gravity)");
-}
-
 // Steps at which something periodic happens: the first step at or after each multiple of the
 // interval (every step for interval 0 when `every_step_if_zero`).
 class Schedule {
@@ -87,7 +79,6 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   const auto wall_start = std::chrono::steady_clock::now();
   Scene scene = scene_in;
   check_points_match_scene(scene, cloud, options.points_file);
-  refuse_unavailable_effects(scene);
   if (!(scene.time.end > 0.0)) throw InputError(scene.path + ": time.end: must be positive");
 
   ModelOptions mo;
@@ -95,6 +86,7 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   mo.effects = scene.effects;
   mo.horizon = scene.geometry.horizon();
   mo.spacing = scene.geometry.spacing;
+  if (scene.effects.damage && scene.material.damage) mo.no_fail_depth = scene.material.damage->no_fail_depth;
   // The viscoplastic model by name from the registry (material.viscoplasticity.model); bad
   // parameters are an InputError naming the key.
   if (scene.effects.viscoplasticity) mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
@@ -184,7 +176,8 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     writer.add_load_row(row);
     const EnergyState& e = dynamics.energy();
     writer.add_energy_row({dynamics.time(), e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization,
-                           e.plastic_dissipation, 0.0, e.external_work, dynamics.balance_error()});
+                           e.plastic_dissipation, e.fracture_dissipation, e.external_work,
+                           dynamics.balance_error()});
   };
   auto update_info = [&](const std::string& status, const std::string& message) {
     info.status = status;
@@ -192,6 +185,7 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     info.steps = dynamics.steps();
     info.time = dynamics.time();
     info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    info.detached_points = model.detached_points;
   };
   auto snapshot = [&] {
     writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
@@ -243,7 +237,11 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   if (!r.interrupted) {
     update_info("completed", "");
     writer.log("completed " + std::to_string(steps) + " steps in " + text(info.wall_seconds) +
-               " s, final balance error " + text(dynamics.balance_error()));
+               " s, final balance error " + text(dynamics.balance_error()) +
+               (scene.effects.damage ? ", broken bonds " + std::to_string(model.broken_bonds) + " (pairs), fracture dissipation " +
+                                           text(dynamics.energy().fracture_dissipation) + " J, detached points " +
+                                           std::to_string(model.detached_points)
+                                     : std::string()));
     writer.flush(info);
   }
   progress.finish("t = " + text(dynamics.time()) + " s");

@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 
 #include "solver/cosserat_material.hpp"
-#include "solver/plastic_step.hpp"
+#include "solver/step_advance.hpp"
 #include "solver/plasticity/cosserat_elasticity.hpp"
 
 namespace mppm::solver::viscoplastic {
@@ -79,7 +79,7 @@ inline double elastic_energy_density(const ElasticStrain<D>& e, const ElasticStr
 template <int D, int R, bool Polar>
 inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& eps_start,
                             const double* kap_start, double* plastic_strain9, double* plastic_wryness,
-                            double& ebar, double& cohesion, const CosseratConstants& c, const PlasticStep& step) {
+                            double& ebar, double& cohesion, const CosseratConstants& c, const StepAdvance& step) {
   using Curvature = plasticity::Curvature<D>;
   constexpr int RD = R * D;
   Eigen::Matrix3d eps3 = Eigen::Matrix3d::Zero(), eps3_start = Eigen::Matrix3d::Zero();
@@ -110,7 +110,7 @@ inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& 
   } else {
     el = elasticity_3d(c);
   }
-  r = step.model->update(eps3, kap_c, state, el, step.dt);
+  r = step.plastic_model->update(eps3, kap_c, state, el, step.dt);
   ebar = r.state.equivalent_plastic_strain;
   cohesion = r.state.cohesion;
   if (!r.plastic) return 0.0;  // elastic step: the plastic strains are untouched
