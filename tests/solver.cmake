@@ -11,6 +11,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_command.cpp
   unit/test_solver_boundary_conditions.cpp
 )
+set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
   verification/test_solver_waves.cpp
   verification/test_solver_layer_shear.cpp

@@ -11,32 +11,13 @@
 #include "common/scene.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/model.hpp"
+#include "tests/verification/problems/periodic_lattice.hpp"
 
 namespace mppm::solver::testing {
 
-// Points at ((i + 1/2) dx, (j + 1/2) dx[, (k + 1/2) dx]); volume dx^d (2-D: dx^2 t). Every
-// point is in the body (region 0) unless a layer function says otherwise.
-inline PointCloud make_lattice(int dimension, std::array<int, 3> n, double dx, double thickness = 1.0) {
-  PointCloud c;
-  c.dimension = dimension;
-  c.spacing = dx;
-  c.thickness = dimension == 2 ? thickness : 1.0;
-  const int nz = dimension == 2 ? 1 : n[2];
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i) {
-        c.x.push_back((i + 0.5) * dx);
-        c.y.push_back((j + 0.5) * dx);
-        c.z.push_back(dimension == 3 ? (k + 0.5) * dx : 0.0);
-        c.volume.push_back(dimension == 2 ? dx * dx * thickness : dx * dx * dx);
-        c.region.push_back(0);
-        c.boundary_id.push_back(0);
-        c.normal_x.push_back(0.0);
-        c.normal_y.push_back(0.0);
-        c.normal_z.push_back(0.0);
-      }
-  return c;
-}
+// The lattice and model builders are shared with the accuracy-cost study.
+using verification::make_lattice;
+using verification::make_model;
 
 // A scene with a generic Cosserat material (values of the order of a stiff soil/rock; the tests
 // only need them to be distinct and positive definite).
@@ -62,17 +43,6 @@ inline Scene make_scene(int dimension, bool micropolar, double dx, double horizo
   s.numerics.stabilization = 0.1;
   s.time.end = 1e-3;
   return s;
-}
-
-inline Model make_model(const PointCloud& cloud, const Scene& scene, std::array<double, 3> period = {0, 0, 0}) {
-  ModelOptions o;
-  o.constants = cosserat_constants(scene);
-  o.effects = scene.effects;
-  o.horizon = scene.geometry.horizon();
-  o.spacing = scene.geometry.spacing;
-  o.period = period;
-  Model m = build_model(cloud, o);
-  return m;
 }
 
 // True when the full horizon of point i lies inside the lattice (its family is symmetric).

@@ -1,0 +1,65 @@
+#!/usr/bin/python3
+"""Checks the trends of the accuracy-cost study in a CSV written by sweeps.py.
+
+usage: check.py accuracy_cost.csv
+
+For every spacing sweep (problem, dimension, threads) at its fixed horizon factor:
+- the error falls strictly as the lattice is refined;
+- the observed convergence rate (least squares of log error against log dx) is within 0.5 of
+  the rate expected for the scheme (README.md);
+- the cost grows: bond updates strictly, wall time from the coarsest to the finest lattice;
+- bond updates grow like dx^-(d+1) (the fitted exponent within 0.5 of d + 1): d from the
+  points, 1 from the time step, at a fixed number of bonds per point.
+Every row must have run (status ok); the crack_energy slot may say not_available.
+Exit 1 with every failed check listed.
+"""
+import sys
+
+import study
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    rows = study.load(sys.argv[1])
+    failures = []
+    for r in rows:
+        allowed = ("ok", "not_available") if r["problem"] == "crack_energy" else ("ok",)
+        if r["status"] not in allowed:
+            failures.append(f"{r['problem']} resolution {r['resolution']}: status {r['status']} (expected {' or '.join(allowed)})")
+    groups = study.spacing_groups(rows)
+    if not groups:
+        failures.append("no spacing sweep in the CSV")
+    for (problem, dimension, threads), group in sorted(groups.items()):
+        name = f"{study.label(problem, dimension)}, {threads} thread(s)"
+        if len(group) < 3:
+            failures.append(f"{name}: {len(group)} spacing levels (at least 3 needed for a trend)")
+            continue
+        errors = [r["error"] for r in group]
+        resolutions = [r["resolution"] for r in group]
+        if any(b >= a for a, b in zip(errors, errors[1:])):
+            failures.append(f"{name}: error does not fall with the spacing: {list(zip(resolutions, errors))}")
+        rate = study.log_slope(group, "spacing_m", "error")
+        expected = study.EXPECTED_RATE[problem]
+        print(f"{name}: errors {', '.join(f'{e:.3g}' for e in errors)} at resolutions {resolutions}; "
+              f"observed rate {rate:.2f}, expected {expected:.0f}")
+        if abs(rate - expected) > 0.5:
+            failures.append(f"{name}: observed rate {rate:.2f}, expected {expected:.0f} +- 0.5")
+        updates = [r["bond_updates"] for r in group]
+        if any(b <= a for a, b in zip(updates, updates[1:])):
+            failures.append(f"{name}: bond updates do not grow with refinement: {updates}")
+        if group[-1]["wall_seconds"] <= group[0]["wall_seconds"]:
+            failures.append(f"{name}: the finest lattice ran faster than the coarsest")
+        if problem != "layer_shear":  # the static layer is a strip: its cost is not a dx^-(d+1) law
+            exponent = -study.log_slope(group, "spacing_m", "bond_updates")
+            print(f"  bond updates ~ dx^-{exponent:.2f} (expected d + 1 = {dimension + 1})")
+            if abs(exponent - (dimension + 1)) > 0.5:
+                failures.append(f"{name}: bond updates ~ dx^-{exponent:.2f}, expected dx^-{dimension + 1} +- 0.5")
+    if failures:
+        print("accuracy-cost check FAILED:\n  " + "\n  ".join(failures))
+        sys.exit(1)
+    print("accuracy-cost check passed")
+
+
+if __name__ == "__main__":
+    main()

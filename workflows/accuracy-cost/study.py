@@ -1,0 +1,58 @@
+"""Reading the accuracy-cost CSV and the fits both report.py and check.py use."""
+import csv
+import math
+
+# Rates the scheme should show at a fixed horizon factor (derived in README.md):
+# waves: nonlocal dispersion O((k delta)^2) plus central-difference O((W dt)^2), dt ~ dx;
+# cut-off: exact in space, central differences only; layer: faces smeared over O(delta / h).
+EXPECTED_RATE = {"p_wave": 2.0, "shear_rotation_wave": 2.0, "cutoff_frequency": 2.0, "layer_shear": 1.0}
+NUMBERS = ("spacing_m", "horizon_factor", "safety", "stabilization", "error", "signed_error", "measured", "analytic", "load_average",
+           "time_step_s", "setup_seconds", "wall_seconds", "bond_updates", "bond_updates_per_second")
+INTEGERS = ("dimension", "resolution", "threads", "points", "bonds", "steps", "peak_memory_bytes")
+
+
+def load(path):
+    """All rows; numeric cells converted (empty cells: None)."""
+    rows = []
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            for key in NUMBERS:
+                row[key] = float(row[key]) if row.get(key) else None
+            for key in INTEGERS:
+                row[key] = int(float(row[key])) if row.get(key) else None
+            rows.append(row)
+    return rows
+
+
+def ok(rows):
+    return [r for r in rows if r["status"] == "ok"]
+
+
+def least_squares_slope(xs, ys):
+    """Slope of y = a + b x."""
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+
+
+def log_slope(rows, x_key, y_key):
+    """Least-squares slope of log y against log x."""
+    return least_squares_slope([math.log(r[x_key]) for r in rows], [math.log(r[y_key]) for r in rows])
+
+
+def spacing_groups(rows):
+    """{(problem, dimension, threads): rows of the spacing sweep, coarsest first}."""
+    groups = {}
+    for r in ok(rows):
+        if r["sweep"] == "spacing":
+            groups.setdefault((r["problem"], r["dimension"], r["threads"]), []).append(r)
+    for group in groups.values():
+        group.sort(key=lambda r: r["resolution"])
+    return groups
+
+
+def label(problem, dimension):
+    names = {"p_wave": "P wave", "shear_rotation_wave": "shear-rotation wave", "cutoff_frequency": "cut-off frequency",
+             "layer_shear": "Cosserat layer in shear", "crack_energy": "energy per crack area"}
+    return f"{names.get(problem, problem)} ({dimension}-D)"
