@@ -471,12 +471,17 @@ class SceneReader {
       return;
     }
     if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
-    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth"});
+    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth", "calibration"});
     DamageParameters dp;
     dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"), p + ".critical_energy_release_rate", dim::energy_per_area);
     positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate", dp.critical_energy_release_rate);
     dp.no_fail_depth = quantity_or(node, p, "no_fail_depth", dim::length, 0.0);
     if (dp.no_fail_depth < 0.0) fail(node["no_fail_depth"], p + ".no_fail_depth", "must be >= 0");
+    if (node["calibration"].IsDefined()) {
+      dp.calibration = scalar(node["calibration"], p + ".calibration", "lattice or continuum");
+      if (dp.calibration != "lattice" && dp.calibration != "continuum")
+        fail(node["calibration"], p + ".calibration", "unknown calibration '" + dp.calibration + "' (expected lattice or continuum)");
+    }
     scene_.material.damage = dp;
   }
 

@@ -104,6 +104,7 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{m.damage->critical_energy_release_rate};
     out << YAML::Key << "no_fail_depth" << YAML::Value << Num{m.damage->no_fail_depth};
+    out << YAML::Key << "calibration" << YAML::Value << m.damage->calibration;
     out << YAML::EndMap;
   }
   if (m.viscoplasticity) {

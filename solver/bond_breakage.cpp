@@ -6,18 +6,46 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
+#include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
 namespace mppm::solver {
 
-double critical_bond_work(int dimension, double g_cr, double horizon, double thickness) {
-  // Sum of V_i V_j w_cr over the bonds that cross a unit area of a plane, in the continuum limit:
-  // 3-D pi delta^4 / 4 w_cr per unit area; 2-D (2/3) delta^3 t^2 w_cr per unit length, i.e.
-  // (2/3) delta^3 t w_cr per unit area of the slice.
+double continuum_critical_bond_work(int dimension, double g_cr, double horizon, double thickness) {
+  // Sum of V_i V_j over the bonds that cross a unit area of a plane, in the continuum limit:
+  // 3-D pi delta^4 / 4; 2-D (2/3) delta^3 t^2 per unit length, i.e. (2/3) delta^3 t per unit area
+  // of the slice.
   if (dimension == 3) return 4.0 * g_cr / (std::numbers::pi * horizon * horizon * horizon * horizon);
   return 3.0 * g_cr / (2.0 * thickness * horizon * horizon * horizon);
+}
+
+double lattice_crossing_sum(int dimension, double horizon_factor) {
+  // A plane between two lattice rows is crossed, per lattice cell of it, by b bonds of every
+  // lattice offset (a, b[, c]) with b > 0 within the horizon (the same reach as the families:
+  // |xi| <= delta + 1e-9 dx).
+  const double reach = horizon_factor + 1e-9;
+  const int n = static_cast<int>(std::floor(reach));
+  double sum = 0.0;
+  for (int a = -n; a <= n; ++a)
+    for (int b = 1; b <= n; ++b)
+      for (int c = dimension == 3 ? -n : 0; c <= (dimension == 3 ? n : 0); ++c)
+        if (a * a + b * b + c * c <= reach * reach) sum += b;
+  return sum;
+}
+
+double critical_bond_work(const DamageParameters& damage, int dimension, double spacing, double horizon_factor,
+                          double thickness) {
+  const double g_cr = damage.critical_energy_release_rate;
+  if (damage.calibration == "continuum")
+    return continuum_critical_bond_work(dimension, g_cr, horizon_factor * spacing, thickness);
+  // Per cell of the plane (dx t in 2-D, dx^2 in 3-D) the crossing bonds carry S V^2 with V = dx^2 t
+  // or dx^3: w_cr S dx^3 t = G_cr dx t (2-D), w_cr S dx^6 = G_cr dx^2 (3-D).
+  const double s = lattice_crossing_sum(dimension, horizon_factor);
+  const double dx3 = spacing * spacing * spacing;
+  return dimension == 3 ? g_cr / (s * dx3 * spacing) : g_cr / (s * dx3 * thickness);
 }
 
 void mark_no_fail_zone(PointData& p, double depth) {
@@ -75,8 +103,22 @@ std::int64_t reverse_bond(const BondFamilies& f, std::size_t i, std::size_t j) {
 
 }  // namespace
 
-BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c) {
+BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                                     const InternalForceFunctions& kernel, double block_eigenvalue_limit,
+                                     double dt) {
+  const PointEnergyFunction point_energy = kernel.point_energy;
   BreakageUpdate u;
+  // The points whose families change in this update, in the order first met, with the energy
+  // they stored just before (bonds marked 2 by the kernel still act, shape tensor as it was).
+  std::vector<std::size_t> affected;
+  std::vector<double> energy_before;
+  std::vector<std::uint8_t> is_affected(p.owned, 0);
+  auto record = [&](std::size_t i) {
+    if (i >= p.owned || is_affected[i]) return;
+    is_affected[i] = 1;
+    affected.push_back(i);
+    energy_before.push_back(point_energy(p, f, c, i).total());
+  };
   std::vector<std::size_t> changed;
   std::size_t broken_ends = 0;
   for (std::size_t i = 0; i < p.owned; ++i)
@@ -84,28 +126,58 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
       changed.push_back(i);
       broken_ends += static_cast<std::size_t>(p.bonds_broken[i]);
     }
-  // A point that a break leaves with a singular shape tensor is detached, and SPEC section 2 has it
-  // move ballistically: its remaining bonds break too (their work is dissipated like any other
-  // bond's), which can detach a neighbour in turn. Serial and in index order: the same for any
-  // thread count. Points detached from the start (isolated by the geometry) are left as they are.
+  if (changed.empty()) return u;
+  for (const std::size_t i : changed) record(i);
+  for (const std::size_t i : changed)
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+      if (f.intact[b] == 2) f.intact[b] = 0;
+
+  // Points to detach: those a break leaves with a singular shape tensor (SPEC section 2), and the
+  // body points whose stiffness block the lopsided family has pushed beyond what the run's time
+  // step allows (point_stability.hpp). Their neighbours' blocks depend on their shape tensor too,
+  // so the check covers the changed points and their neighbours. A detached point moves
+  // ballistically: its remaining bonds break (which changes its neighbours in turn). Serial and
+  // in index order: the same for any thread count. Points detached from the start (isolated by
+  // the geometry) are left as they are.
+  std::vector<std::uint8_t> checked(p.owned, 0);
   while (!changed.empty()) {
     std::vector<std::uint8_t> was_detached(changed.size());
     for (std::size_t k = 0; k < changed.size(); ++k) was_detached[k] = p.detached[changed[k]];
     update_shape_tensors(p, f, c, changed);
+    std::vector<std::size_t> detach;
+    for (std::size_t k = 0; k < changed.size(); ++k)
+      if (!was_detached[k] && p.detached[changed[k]]) detach.push_back(changed[k]);
+    if (block_eigenvalue_limit > 0.0) {
+      std::vector<std::size_t> candidates;
+      for (const std::size_t i : changed) {
+        candidates.push_back(i);
+        for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+          if (f.intact[b]) candidates.push_back(static_cast<std::size_t>(f.neighbor[b]));
+      }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      for (const std::size_t i : candidates) {
+        if (i >= p.owned || p.detached[i] || p.region[i] != 0) continue;
+        checked[i] = 1;
+        if (point_block_eigenvalue(p, f, c, i) > block_eigenvalue_limit) {
+          record(i);
+          detach_point(p, i);
+          detach.push_back(i);
+          ++u.unstable_detached;
+        }
+      }
+    }
+    std::sort(detach.begin(), detach.end());
     std::vector<std::size_t> next;
-    for (std::size_t k = 0; k < changed.size(); ++k) {
-      const std::size_t i = changed[k];
-      if (was_detached[k] || !p.detached[i]) continue;
+    for (const std::size_t i : detach) {
       ++u.newly_detached;
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
         if (!f.intact[b]) continue;
         const auto j = static_cast<std::size_t>(f.neighbor[b]);
+        record(j);
         const std::int64_t rb = reverse_bond(f, i, j);
         f.intact[b] = 0;
         if (rb >= 0) f.intact[rb] = 0;
-        const double released = 0.5 * p.volume[i] * p.volume[j] * f.work[b];
-        p.fracture_dissipation[i] += released;
-        p.fracture_dissipation[j] += released;
         broken_ends += 2;
         next.push_back(j);
       }
@@ -113,6 +185,24 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
     std::sort(next.begin(), next.end());
     next.erase(std::unique(next.begin(), next.end()), next.end());
     changed = std::move(next);
+  }
+  // The step's forces again without the broken bonds (kernel::refresh_after_breakage), which also
+  // refreshes the per-point energies of the affected points. The energy the breaks take out of
+  // the model is what these points stored before minus what they store now, at the same
+  // displacements and rotations (only their energies changed: a point's energy depends on its own
+  // family only), plus the change of the scheme's kinetic energy that the new forces make in this
+  // step's kick (O(dt): the work the broken bonds would have done over the rest of the step). With
+  // both, kinetic + stored + dissipated - external work is conserved as without breakage. Summed
+  // in the order the points were met, which does not depend on the thread count.
+  std::vector<std::size_t> sorted = affected;
+  std::sort(sorted.begin(), sorted.end());
+  u.kick_energy = kernel.refresh_after_breakage(p, f, c, sorted, 0.5 * dt);
+  u.released_energy = u.kick_energy;
+  for (std::size_t k = 0; k < affected.size(); ++k) {
+    const std::size_t i = affected[k];
+    double after = p.force_stress_energy[i] + p.stabilization_energy[i];
+    if (!p.couple_stress_energy.empty()) after += p.couple_stress_energy[i];
+    u.released_energy += energy_before[k] - after;
   }
   u.broken_pairs = broken_ends / 2;
   return u;

@@ -23,8 +23,8 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.micro_inertia = m.micro_inertia();
   c.stabilization = scene.numerics.stabilization;
   if (scene.effects.damage && m.damage)
-    c.critical_bond_work = critical_bond_work(scene.dimension, m.damage->critical_energy_release_rate,
-                                              scene.geometry.horizon(), scene.thickness);
+    c.critical_bond_work = critical_bond_work(*m.damage, scene.dimension, scene.geometry.spacing,
+                                              scene.geometry.horizon_factor, scene.thickness);
 
   // Every value was validated where the scene was read (common/scene.cpp), the one place
   // that owns the rules and knows the file lines; nothing is re-checked here.

@@ -187,11 +187,7 @@ void ExplicitDynamics::step(bool with_energy) {
     for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.plastic_dissipation[i];
     energy_.plastic_dissipation += dissipated;
   }
-  if (!p.fracture_dissipation.empty()) {
-    double dissipated = 0.0;
-    for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.fracture_dissipation[i];
-    energy_.fracture_dissipation += dissipated;
-  }
+  if (model_.effects.damage) energy_.fracture_dissipation += model_.last_fracture_dissipation;
   ++steps_;
   if (with_energy) evaluate_energy();
 }

@@ -22,7 +22,7 @@ struct EnergyState {
   double stabilization = 0.0;
   double external_work = 0.0;       // loads, prescribed layers, and damping (negative)
   double plastic_dissipation = 0.0; // accumulated every step (trapezoid rule, like the work)
-  double fracture_dissipation = 0.0; // work of the bonds broken so far, V_i V_j W_ij per pair
+  double fracture_dissipation = 0.0; // stored energy released by the bonds broken so far
   // Kinetic + stored energy.
   double total() const { return kinetic + rotational_kinetic + elastic + stabilization; }
   // What the balance accounts for: total plus the energy already dissipated.

@@ -20,13 +20,16 @@
 // for any thread count, without talking to each other.
 #pragma once
 #include <Eigen/Dense>
+#include <algorithm>
+#include <vector>
 
-#include "solver/parallel_policy.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
-#include "solver/step_advance.hpp"
+#include "solver/internal_forces.hpp"
+#include "solver/parallel_policy.hpp"
 #include "solver/point_data.hpp"
+#include "solver/step_advance.hpp"
 #include "solver/viscoplastic_point.hpp"
 
 namespace mppm::solver::kernel {
@@ -46,8 +49,8 @@ using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
 // SPEC section 2 (with `+` a rigid rotation u = theta x x, w = theta would not be strain free).
 // Without micropolar, U = u_j - u_i.
 template <int D, int R, bool Polar>
-MPPM_INLINE void composite_state(const double* ui, const double* uj, const double* wi, const double* wj,
-                                 const double* xi, double* U) {
+MPPM_INLINE void composite_state(const double* ui, const double* uj, const double* wi,
+                                 const double* wj, const double* xi, double* U) {
   for (int a = 0; a < D; ++a) U[a] = uj[a] - ui[a];
   if constexpr (Polar) {
     if constexpr (D == 2) {
@@ -75,19 +78,205 @@ MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, dou
   }
 }
 
-template <int D, class Effects, bool WithEnergy>
-void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
-                     [[maybe_unused]] const StepAdvance* advance) {
-  constexpr int R = rotation_components<D>;
-  // Damage: this evaluation's tensors replace the previous ones, which the bond work still needs.
-  if constexpr (Effects::damage) {
-    p.force_tensor.swap(p.previous_force_tensor);
-    if constexpr (Effects::micropolar) p.moment_tensor.swap(p.previous_moment_tensor);
+// z_u . (G_s C:K_i^-1) z_u + g_i |z_w|^2 of one bond, z_u = U - eps_i xi, z_w = (w_j - w_i) - kap_i
+// xi: twice the bond's stabilization energy density (SPEC section 3).
+template <int D, int R, bool Polar>
+MPPM_INLINE double bond_stabilization_energy(const double* U, const double* xi, const double* eps_i,
+                                             const double* cki,
+                                             [[maybe_unused]] const double* kap_i,
+                                             [[maybe_unused]] double gi,
+                                             [[maybe_unused]] const double* wi,
+                                             [[maybe_unused]] const double* wj) {
+  double z[D];
+  for (int r = 0; r < D; ++r) {
+    z[r] = U[r];
+    for (int col = 0; col < D; ++col) z[r] -= eps_i[r * D + col] * xi[col];
   }
+  double e = 0.0;
+  for (int r = 0; r < D; ++r)
+    for (int col = 0; col < D; ++col) e += z[r] * cki[r * D + col] * z[col];
+  if constexpr (Polar) {
+    for (int r = 0; r < R; ++r) {
+      double zw = wj[r] - wi[r];
+      for (int col = 0; col < D; ++col) zw -= kap_i[r * D + col] * xi[col];
+      e += gi * zw * zw;
+    }
+  }
+  return e;
+}
+
+// eps_i = [sum_j b V_j U_ij (x) xi] K_i^-1 and kap_i = [sum_j b V_j (w_j - w_i) (x) xi] K_i^-1 over
+// the bonds that act (intact != 0 with damage; a bond marked 2, breaking in this step, still acts).
+template <int D, class Effects>
+MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::size_t i,
+                               const Mat<D>& kinv, Mat<D>& eps,
+                               RMat<rotation_components<D>, D>& kap) {
+  constexpr int R = rotation_components<D>;
+  constexpr bool polar = Effects::micropolar;
+  const double zero_rotation[3] = {0.0, 0.0, 0.0};
+  const double* __restrict u = p.displacement.data();
+  const double* __restrict w = polar ? p.rotation.data() : nullptr;
+  const double* __restrict vol = p.volume.data();
+  const double* __restrict xis = f.xi.data();
+  const std::int32_t* __restrict nb = f.neighbor.data();
+  [[maybe_unused]] const std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
+  const double* ui = u + i * D;
+  const double* wi = polar ? w + i * R : zero_rotation;
+  double S[D * D] = {};   // sum V U (x) xi
+  double Sk[R * D] = {};  // sum V (w_j - w_i) (x) xi
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if constexpr (Effects::damage)
+      if (!intact[b]) continue;
+    const auto j = static_cast<std::size_t>(nb[b]);
+    const double* xi = xis + b * D;
+    const double vj = vol[j];
+    const double* wj = polar ? w + j * R : zero_rotation;
+    double U[D];
+    composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
+    for (int r = 0; r < D; ++r)
+      for (int col = 0; col < D; ++col) S[r * D + col] += vj * U[r] * xi[col];
+    if constexpr (polar)
+      for (int r = 0; r < R; ++r) {
+        const double om = vj * (wj[r] - wi[r]);
+        for (int col = 0; col < D; ++col) Sk[r * D + col] += om * xi[col];
+      }
+  }
+  eps = Eigen::Map<const Mat<D>>(S) * kinv;
+  if constexpr (polar) kap = Eigen::Map<const RMat<R, D>>(Sk) * kinv;
+}
+
+// The energy stored at one point [J] (force stress, couple stress, stabilization), with its bonds,
+// shape tensor and plastic state as they are now: the same numbers as an evaluation with energies
+// writes into force_stress_energy, couple_stress_energy and stabilization_energy. Breakage uses it
+// on the few points whose bonds changed, before and after the change (bond_breakage.cpp).
+template <int D, class Effects>
+PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
+                                   const CosseratConstants& c, std::size_t i) {
+  constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
   constexpr int RD = R * D;
-  const auto n = static_cast<std::int64_t>(p.owned);
+  PointEnergy e;
+  if (p.detached[i]) return e;
+  const double vi = p.volume[i];
+  const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
+  Mat<D> eps;
+  [[maybe_unused]] RMat<R, D> kap;
+  point_strains<D, Effects>(p, f, i, kinv, eps, kap);
+  if constexpr (Effects::viscoplasticity) {
+    const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]);
+    e.force_stress = vi * viscoplastic::elastic_energy_density<D>(
+                              eps_elastic, viscoplastic::elastic_stress<D>(eps_elastic, c));
+  } else {
+    e.force_stress = 0.5 * vi * (eps.cwiseProduct(cosserat_stress<D>(eps, c))).sum();
+  }
+  if constexpr (polar) {
+    RMat<R, D> kap_elastic = kap;
+    if constexpr (Effects::viscoplasticity)
+      kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
+    e.couple_stress =
+        0.5 * vi * (kap_elastic.cwiseProduct(couple_stress<D, R>(kap_elastic, c))).sum();
+  }
+  const double zero_rotation[3] = {0.0, 0.0, 0.0};
+  const double* ui = &p.displacement[i * D];
+  const double* wi = polar ? &p.rotation[i * R] : zero_rotation;
+  const double* cki = &p.stabilization_ck[i * DD];
+  [[maybe_unused]] const double gi = polar ? p.stabilization_rot[i] : 0.0;
+  double stab = 0.0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if constexpr (Effects::damage)
+      if (!f.intact[b]) continue;
+    const auto j = static_cast<std::size_t>(f.neighbor[b]);
+    const double* xi = &f.xi[b * D];
+    const double* wj = polar ? &p.rotation[j * R] : zero_rotation;
+    double U[D];
+    composite_state<D, R, polar>(ui, &p.displacement[j * D], wi, wj, xi, U);
+    stab += p.volume[j] * bond_stabilization_energy<D, R, polar>(
+                              U, xi, eps.data(), cki, polar ? kap.data() : nullptr, gi, wi, wj);
+  }
+  e.stabilization = 0.5 * vi * stab;
+  return e;
+}
+
+// Pass 1 at point i: strain and wryness, constitutive update (the return map with `advance`),
+// the force/moment tensors A_i, Q_i, and with WithEnergy the point's elastic energies.
+template <int D, class Effects, bool WithEnergy>
+MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                             std::size_t i, [[maybe_unused]] const StepAdvance* advance) {
+  constexpr int R = rotation_components<D>;
+  constexpr bool polar = Effects::micropolar;
+  constexpr int DD = D * D;
+  constexpr int RD = R * D;
+  const double* __restrict vol = p.volume.data();
+  Eigen::Map<Mat<D>> eps_out(&p.strain[i * DD]);
+  Eigen::Map<Mat<D>> a_out(&p.force_tensor[i * DD]);
+  if (p.detached[i]) {
+    eps_out.setZero();
+    a_out.setZero();
+    if constexpr (polar) {
+      Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]).setZero();
+      Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]).setZero();
+    }
+    if constexpr (WithEnergy) {
+      p.force_stress_energy[i] = 0.0;
+      if constexpr (polar) p.couple_stress_energy[i] = 0.0;
+    }
+    if constexpr (Effects::viscoplasticity)
+      if (advance) p.plastic_dissipation[i] = 0.0;
+    return;
+  }
+  const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
+  Mat<D> eps;
+  [[maybe_unused]] RMat<R, D> kap;
+  point_strains<D, Effects>(p, f, i, kinv, eps, kap);
+  Mat<D> sigma;
+  if constexpr (Effects::viscoplasticity) {
+    double* plastic_strain = &p.plastic_strain[i * 9];
+    if (advance) {
+      // eps_out and the stored wryness still hold the previous evaluation: the step's start.
+      p.plastic_dissipation[i] =
+          vol[i] * viscoplastic::advance_point<D, R, polar>(
+                       eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
+                       polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
+                       polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i],
+                       p.plastic_cohesion[i], c, *advance);
+    }
+    const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, plastic_strain);
+    const auto stress = viscoplastic::elastic_stress<D>(eps_elastic, c);
+    sigma = stress.in_plane;
+    if constexpr (WithEnergy)
+      p.force_stress_energy[i] =
+          vol[i] * viscoplastic::elastic_energy_density<D>(eps_elastic, stress);
+  } else {
+    sigma = cosserat_stress<D>(eps, c);
+    if constexpr (WithEnergy)
+      p.force_stress_energy[i] = 0.5 * vol[i] * (eps.cwiseProduct(sigma)).sum();
+  }
+  const Mat<D> ck = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * DD]);
+  eps_out = eps;
+  a_out = sigma * kinv - ck * eps;
+  if constexpr (polar) {
+    RMat<R, D> kap_elastic = kap;
+    if constexpr (Effects::viscoplasticity)
+      kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
+    const RMat<R, D> m = couple_stress<D, R>(kap_elastic, c);
+    Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]) = kap;
+    Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]) = m * kinv - p.stabilization_rot[i] * kap;
+    if constexpr (WithEnergy)
+      p.couple_stress_energy[i] = 0.5 * vol[i] * (kap_elastic.cwiseProduct(m)).sum();
+  }
+}
+
+// Pass 2 at point i: force and moment from the tensors of both ends of every bond; with
+// accumulate_work (damage) the bond work and the breaking marks; with WithEnergy the point's
+// stabilization energy.
+template <int D, class Effects, bool WithEnergy>
+MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                             std::size_t i, [[maybe_unused]] bool accumulate_work) {
+  constexpr int R = rotation_components<D>;
+  constexpr bool polar = Effects::micropolar;
+  constexpr int DD = D * D;
+  constexpr int RD = R * D;
   const double* __restrict u = p.displacement.data();
   const double* __restrict w = polar ? p.rotation.data() : nullptr;
   const double* __restrict vol = p.volume.data();
@@ -96,236 +285,208 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
   const std::int64_t* __restrict off = f.offset.data();
   [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
   [[maybe_unused]] double* bond_work = Effects::damage ? f.work.data() : nullptr;
-  [[maybe_unused]] const bool accumulate_work = Effects::damage && advance != nullptr;
   [[maybe_unused]] const double critical_work = c.critical_bond_work;
   [[maybe_unused]] const double* u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
-  [[maybe_unused]] const double* w_old = Effects::damage && polar ? p.previous_rotation.data() : nullptr;
+  [[maybe_unused]] const double* w_old =
+      Effects::damage && polar ? p.previous_rotation.data() : nullptr;
   [[maybe_unused]] const double* a_old = Effects::damage ? p.previous_force_tensor.data() : nullptr;
-  [[maybe_unused]] const double* ck_old = Effects::damage ? p.previous_stabilization_ck.data() : nullptr;
-  [[maybe_unused]] const double* q_old = Effects::damage && polar ? p.previous_moment_tensor.data() : nullptr;
-  [[maybe_unused]] const double* g_old = Effects::damage && polar ? p.previous_stabilization_rot.data() : nullptr;
-  const bool threaded = thread_bond_loop(f.bond_count());
+  [[maybe_unused]] const double* ck_old =
+      Effects::damage ? p.previous_stabilization_ck.data() : nullptr;
+  [[maybe_unused]] const double* q_old =
+      Effects::damage && polar ? p.previous_moment_tensor.data() : nullptr;
+  [[maybe_unused]] const double* g_old =
+      Effects::damage && polar ? p.previous_stabilization_rot.data() : nullptr;
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
-
   const double* __restrict a_all = p.force_tensor.data();
   const double* __restrict ck_all = p.stabilization_ck.data();
   [[maybe_unused]] const double* __restrict q_all = polar ? p.moment_tensor.data() : nullptr;
   [[maybe_unused]] const double* __restrict g_all = polar ? p.stabilization_rot.data() : nullptr;
+  const double* ui = u + i * D;
+  const double* wi = polar ? w + i * R : zero_rotation;
+  const double* ai = a_all + i * DD;
+  const double* cki = ck_all + i * DD;
+  [[maybe_unused]] const double* qi = polar ? q_all + i * RD : nullptr;
+  [[maybe_unused]] const double gi = polar ? g_all[i] : 0.0;
+  [[maybe_unused]] const double* eps_i = WithEnergy ? &p.strain[i * DD] : nullptr;
+  [[maybe_unused]] const double* kap_i = WithEnergy && polar ? &p.wryness[i * RD] : nullptr;
+  double force[D] = {};
+  double moment[R] = {};
+  double stab_energy = 0.0;
+  [[maybe_unused]] std::int32_t broken = 0;
+  for (std::int64_t b = off[i]; b < off[i + 1]; ++b) {
+    if constexpr (Effects::damage)
+      if (!intact[b]) continue;
+    const auto j = static_cast<std::size_t>(nb[b]);
+    const double* xi = xis + b * D;
+    const double vj = vol[j];
+    const double* wj = polar ? w + j * R : zero_rotation;
+    const double* aj = a_all + j * DD;
+    const double* ckj = ck_all + j * DD;
+    double U[D];
+    composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
+    double t[D];  // T_ij - T_ji
+    for (int r = 0; r < D; ++r) {
+      double sum = 0.0;
+      for (int col = 0; col < D; ++col)
+        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] +
+               (cki[r * D + col] + ckj[r * D + col]) * U[col];
+      t[r] = sum;
+      force[r] += vj * sum;
+    }
+    [[maybe_unused]] double pair_moment[R];  // M_ij - M_ji
+    if constexpr (polar) {
+      const double* qj = q_all + j * RD;
+      const double g = gi + g_all[j];
+      for (int r = 0; r < R; ++r) {
+        double sum = g * (wj[r] - wi[r]);
+        for (int col = 0; col < D; ++col) sum += (qi[r * D + col] + qj[r * D + col]) * xi[col];
+        pair_moment[r] = sum;
+        moment[r] += vj * sum;
+      }
+      add_cross<D>(xi, t, 0.5 * vj, moment);
+    }
+    if constexpr (Effects::damage) {
+      if (accumulate_work) {
+        const double* wi0 = polar ? w_old + i * R : zero_rotation;
+        const double* wj0 = polar ? w_old + j * R : zero_rotation;
+        double U0[D];
+        composite_state<D, R, polar>(u_old + i * D, u_old + j * D, wi0, wj0, xi, U0);
+        const double* ai0 = a_old + i * DD;
+        const double* aj0 = a_old + j * DD;
+        const double* cki0 = ck_old + i * DD;
+        const double* ckj0 = ck_old + j * DD;
+        double dw = 0.0;
+        for (int r = 0; r < D; ++r) {
+          double t0 = 0.0;
+          for (int col = 0; col < D; ++col)
+            t0 += (ai0[r * D + col] + aj0[r * D + col]) * xi[col] +
+                  (cki0[r * D + col] + ckj0[r * D + col]) * U0[col];
+          dw += (t0 + t[r]) * (U[r] - U0[r]);
+        }
+        if constexpr (polar) {
+          const double* qi0 = q_old + i * RD;
+          const double* qj0 = q_old + j * RD;
+          const double g0 = g_old[i] + g_old[j];
+          for (int r = 0; r < R; ++r) {
+            double m0 = g0 * (wj0[r] - wi0[r]);
+            for (int col = 0; col < D; ++col) m0 += (qi0[r * D + col] + qj0[r * D + col]) * xi[col];
+            dw += (m0 + pair_moment[r]) * ((wj[r] - wi[r]) - (wj0[r] - wi0[r]));
+          }
+        }
+        bond_work[b] += 0.5 * dw;
+        // Marked 2 (breaking): this step's force had the bond, and update_after_breakage still
+        // needs it acting to measure the energy the break releases before it sets 0 (broken).
+        if (bond_work[b] >= critical_work && !p.no_fail[i] && !p.no_fail[j]) {
+          intact[b] = 2;
+          ++broken;
+        }
+      }
+    }
+    if constexpr (WithEnergy)
+      stab_energy +=
+          vj * bond_stabilization_energy<D, R, polar>(U, xi, eps_i, cki, kap_i, gi, wi, wj);
+  }
+  for (int r = 0; r < D; ++r) p.force[i * D + r] = force[r];
+  if constexpr (polar)
+    for (int r = 0; r < R; ++r) p.moment[i * R + r] = moment[r];
+  if constexpr (WithEnergy) p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy;
+  if constexpr (Effects::damage) {
+    if (accumulate_work) p.bonds_broken[i] = broken;
+  }
+}
+
+template <int D, class Effects, bool WithEnergy>
+void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                     [[maybe_unused]] const StepAdvance* advance) {
+  constexpr int R = rotation_components<D>;
+  constexpr int DD = D * D;
+  // Damage: this evaluation's tensors replace the previous ones, which the bond work still needs.
+  if constexpr (Effects::damage) {
+    p.force_tensor.swap(p.previous_force_tensor);
+    if constexpr (Effects::micropolar) p.moment_tensor.swap(p.previous_moment_tensor);
+  }
+  const auto n = static_cast<std::int64_t>(p.owned);
+  const bool accumulate_work = Effects::damage && advance != nullptr;
+  const bool threaded = thread_bond_loop(f.bond_count());
 
   // One parallel region for both passes (one fork/join per evaluation); the barrier at the end
   // of pass 1 makes every neighbour's tensors ready for pass 2.
 #pragma omp parallel if (threaded)
   {
-  // Pass 1: strain and wryness, constitutive update, per-point force/moment tensors.
 #pragma omp for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    Eigen::Map<Mat<D>> eps_out(&p.strain[i * DD]);
-    Eigen::Map<Mat<D>> a_out(&p.force_tensor[i * DD]);
-    if (p.detached[i]) {
-      eps_out.setZero();
-      a_out.setZero();
-      if constexpr (polar) {
-        Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]).setZero();
-        Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]).setZero();
-      }
-      if constexpr (WithEnergy) {
-        p.force_stress_energy[i] = 0.0;
-        if constexpr (polar) p.couple_stress_energy[i] = 0.0;
-      }
-      if constexpr (Effects::viscoplasticity)
-        if (advance) p.plastic_dissipation[i] = 0.0;
-      continue;
-    }
-    const double* ui = u + i * D;
-    const double* wi = polar ? w + i * R : zero_rotation;
-    double S[DD] = {};   // sum V U (x) xi
-    double Sk[RD] = {};  // sum V (w_j - w_i) (x) xi
-    for (std::int64_t b = off[i]; b < off[i + 1]; ++b) {
-      if constexpr (Effects::damage)
-        if (!intact[b]) continue;
-      const auto j = static_cast<std::size_t>(nb[b]);
-      const double* xi = xis + b * D;
-      const double vj = vol[j];
-      const double* wj = polar ? w + j * R : zero_rotation;
-      double U[D];
-      composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-      for (int r = 0; r < D; ++r)
-        for (int col = 0; col < D; ++col) S[r * D + col] += vj * U[r] * xi[col];
-      if constexpr (polar)
-        for (int r = 0; r < R; ++r) {
-          const double om = vj * (wj[r] - wi[r]);
-          for (int col = 0; col < D; ++col) Sk[r * D + col] += om * xi[col];
-        }
-    }
-    const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
-    const Mat<D> eps = Eigen::Map<const Mat<D>>(S) * kinv;
-    [[maybe_unused]] RMat<R, D> kap;
-    if constexpr (polar) kap = Eigen::Map<const RMat<R, D>>(Sk) * kinv;
-    Mat<D> sigma;
-    if constexpr (Effects::viscoplasticity) {
-      double* plastic_strain = &p.plastic_strain[i * 9];
-      if (advance) {
-        // eps_out and the stored wryness still hold the previous evaluation: the step's start.
-        p.plastic_dissipation[i] =
-            vol[i] * viscoplastic::advance_point<D, R, polar>(
-                         eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
-                         polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
-                         polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i],
-                         p.plastic_cohesion[i], c, *advance);
-      }
-      const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, plastic_strain);
-      const auto stress = viscoplastic::elastic_stress<D>(eps_elastic, c);
-      sigma = stress.in_plane;
-      if constexpr (WithEnergy)
-        p.force_stress_energy[i] = vol[i] * viscoplastic::elastic_energy_density<D>(eps_elastic, stress);
-    } else {
-      sigma = cosserat_stress<D>(eps, c);
-      if constexpr (WithEnergy) p.force_stress_energy[i] = 0.5 * vol[i] * (eps.cwiseProduct(sigma)).sum();
-    }
-    const Mat<D> ck = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * DD]);
-    eps_out = eps;
-    a_out = sigma * kinv - ck * eps;
-    if constexpr (polar) {
-      RMat<R, D> kap_elastic = kap;
-      if constexpr (Effects::viscoplasticity)
-        kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
-      const RMat<R, D> m = couple_stress<D, R>(kap_elastic, c);
-      Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]) = kap;
-      Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]) = m * kinv - p.stabilization_rot[i] * kap;
-      if constexpr (WithEnergy) p.couple_stress_energy[i] = 0.5 * vol[i] * (kap_elastic.cwiseProduct(m)).sum();
-    }
-  }
+    for (std::int64_t s = 0; s < n; ++s)
+      pass1_point<D, Effects, WithEnergy>(p, f, c, static_cast<std::size_t>(s), advance);
 
-  // Pass 2: bond sums with the states of both ends.
 #pragma omp for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    const double* ui = u + i * D;
-    const double* wi = polar ? w + i * R : zero_rotation;
-    const double* ai = a_all + i * DD;
-    const double* cki = ck_all + i * DD;
-    [[maybe_unused]] const double* qi = polar ? q_all + i * RD : nullptr;
-    [[maybe_unused]] const double gi = polar ? g_all[i] : 0.0;
-    [[maybe_unused]] const double* eps_i = WithEnergy ? &p.strain[i * DD] : nullptr;
-    [[maybe_unused]] const double* kap_i = WithEnergy && polar ? &p.wryness[i * RD] : nullptr;
-    double force[D] = {};
-    double moment[R] = {};
-    double stab_energy = 0.0;
-    [[maybe_unused]] std::int32_t broken = 0;
-    [[maybe_unused]] double released = 0.0;
-    for (std::int64_t b = off[i]; b < off[i + 1]; ++b) {
-      if constexpr (Effects::damage)
-        if (!intact[b]) continue;
-      const auto j = static_cast<std::size_t>(nb[b]);
-      const double* xi = xis + b * D;
-      const double vj = vol[j];
-      const double* wj = polar ? w + j * R : zero_rotation;
-      const double* aj = a_all + j * DD;
-      const double* ckj = ck_all + j * DD;
-      double U[D];
-      composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-      double t[D];  // T_ij - T_ji
-      for (int r = 0; r < D; ++r) {
-        double sum = 0.0;
-        for (int col = 0; col < D; ++col)
-          sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] + (cki[r * D + col] + ckj[r * D + col]) * U[col];
-        t[r] = sum;
-        force[r] += vj * sum;
-      }
-      [[maybe_unused]] double pair_moment[R];  // M_ij - M_ji
-      if constexpr (polar) {
-        const double* qj = q_all + j * RD;
-        const double g = gi + g_all[j];
-        for (int r = 0; r < R; ++r) {
-          double sum = g * (wj[r] - wi[r]);
-          for (int col = 0; col < D; ++col) sum += (qi[r * D + col] + qj[r * D + col]) * xi[col];
-          pair_moment[r] = sum;
-          moment[r] += vj * sum;
-        }
-        add_cross<D>(xi, t, 0.5 * vj, moment);
-      }
-      if constexpr (Effects::damage) {
-        if (accumulate_work) {
-          const double* wi0 = polar ? w_old + i * R : zero_rotation;
-          const double* wj0 = polar ? w_old + j * R : zero_rotation;
-          double U0[D];
-          composite_state<D, R, polar>(u_old + i * D, u_old + j * D, wi0, wj0, xi, U0);
-          const double* ai0 = a_old + i * DD;
-          const double* aj0 = a_old + j * DD;
-          const double* cki0 = ck_old + i * DD;
-          const double* ckj0 = ck_old + j * DD;
-          double dw = 0.0;
-          for (int r = 0; r < D; ++r) {
-            double t0 = 0.0;
-            for (int col = 0; col < D; ++col)
-              t0 += (ai0[r * D + col] + aj0[r * D + col]) * xi[col] + (cki0[r * D + col] + ckj0[r * D + col]) * U0[col];
-            dw += (t0 + t[r]) * (U[r] - U0[r]);
-          }
-          if constexpr (polar) {
-            const double* qi0 = q_old + i * RD;
-            const double* qj0 = q_old + j * RD;
-            const double g0 = g_old[i] + g_old[j];
-            for (int r = 0; r < R; ++r) {
-              double m0 = g0 * (wj0[r] - wi0[r]);
-              for (int col = 0; col < D; ++col) m0 += (qi0[r * D + col] + qj0[r * D + col]) * xi[col];
-              dw += (m0 + pair_moment[r]) * ((wj[r] - wi[r]) - (wj0[r] - wi0[r]));
-            }
-          }
-          bond_work[b] += 0.5 * dw;
-          if (bond_work[b] >= critical_work && !p.no_fail[i] && !p.no_fail[j]) {
-            intact[b] = 0;  // from the next evaluation on; this step's force still had the bond
-            ++broken;
-            released += 0.5 * vol[i] * vj * bond_work[b];  // the other half at j
-          }
-        }
-      }
-      if constexpr (WithEnergy) {
-        double z[D];
-        for (int r = 0; r < D; ++r) {
-          z[r] = U[r];
-          for (int col = 0; col < D; ++col) z[r] -= eps_i[r * D + col] * xi[col];
-        }
-        double e = 0.0;
-        for (int r = 0; r < D; ++r)
-          for (int col = 0; col < D; ++col) e += z[r] * cki[r * D + col] * z[col];
-        if constexpr (polar) {
-          for (int r = 0; r < R; ++r) {
-            double zw = wj[r] - wi[r];
-            for (int col = 0; col < D; ++col) zw -= kap_i[r * D + col] * xi[col];
-            e += gi * zw * zw;
-          }
-        }
-        stab_energy += vj * e;
-      }
-    }
-    for (int r = 0; r < D; ++r) p.force[i * D + r] = force[r];
-    if constexpr (polar)
-      for (int r = 0; r < R; ++r) p.moment[i * R + r] = moment[r];
-    if constexpr (WithEnergy) p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy;
+    for (std::int64_t s = 0; s < n; ++s)
+      pass2_point<D, Effects, WithEnergy>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
+
+    // Damage: remember this evaluation's state for the next bond-work increment (after the barrier
+    // of pass 2, which read the previous one). The pass-1 tensors were swapped in at the start.
     if constexpr (Effects::damage) {
-      if (accumulate_work) {
-        p.bonds_broken[i] = broken;
-        p.fracture_dissipation[i] = released;
-      }
-    }
-  }
-
-  // Damage: remember this evaluation's state for the next bond-work increment (after the barrier
-  // of pass 2, which read the previous one). The pass-1 tensors were swapped in at the start.
-  if constexpr (Effects::damage) {
 #pragma omp for schedule(static)
-    for (std::int64_t s = 0; s < n; ++s) {
-      const auto i = static_cast<std::size_t>(s);
-      for (int r = 0; r < D; ++r) p.previous_displacement[i * D + r] = u[i * D + r];
-      for (int k = 0; k < DD; ++k) p.previous_stabilization_ck[i * DD + k] = ck_all[i * DD + k];
-      if constexpr (polar) {
-        for (int r = 0; r < R; ++r) p.previous_rotation[i * R + r] = w[i * R + r];
-        p.previous_stabilization_rot[i] = g_all[i];
+      for (std::int64_t s = 0; s < n; ++s) {
+        const auto i = static_cast<std::size_t>(s);
+        for (int r = 0; r < D; ++r) p.previous_displacement[i * D + r] = p.displacement[i * D + r];
+        for (int k = 0; k < DD; ++k)
+          p.previous_stabilization_ck[i * DD + k] = p.stabilization_ck[i * DD + k];
+        if constexpr (Effects::micropolar) {
+          for (int r = 0; r < R; ++r) p.previous_rotation[i * R + r] = p.rotation[i * R + r];
+          p.previous_stabilization_rot[i] = p.stabilization_rot[i];
+        }
       }
     }
-  }
   }  // omp parallel
+}
+
+// After bonds broke (damage): the forces of this step again, now without the broken bonds, so
+// that the step's kick does not use a bond past its breaking (which would do work that nothing
+// accounts for). Only the points whose families changed (`changed`, sorted) have new tensors, and
+// only they and their neighbours have new forces: pass 1 runs on the former (the plastic state is
+// not advanced again), pass 2 on both (the bond work is not accumulated again), with energies.
+// The next step's bond-work increment starts from these tensors.
+// Returns sum V (half_step (v . (f_old - f_new) + s . (m_old - m_new))) over the points whose
+// force changed, with the velocities v, spins s of the step's middle (a prescribed layer: its
+// prescribed velocity): by how much the new forces lower the scheme's kinetic energy
+// 1/2 M v^(n-1/2) . v^(n+1/2) against a kick with the old forces, and the trapezoid-rule work of a
+// layer's reaction against the old forces at the end of the step (the breaks' share of the
+// energy balance, bond_breakage.cpp; exact for layers moving at a constant velocity).
+template <int D, class Effects>
+double refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                              const std::vector<std::size_t>& changed, double half_step) {
+  double kick = 0.0;
+  if constexpr (Effects::damage) {
+    constexpr int R = rotation_components<D>;
+    constexpr int DD = D * D;
+    constexpr bool polar = Effects::micropolar;
+    for (const std::size_t i : changed) pass1_point<D, Effects, true>(p, f, c, i, nullptr);
+    std::vector<std::size_t> around = changed;
+    for (const std::size_t i : changed)
+      for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+        if (f.intact[b]) around.push_back(static_cast<std::size_t>(f.neighbor[b]));
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    for (const std::size_t i : around) {
+      if (i >= p.owned) continue;
+      double old_force[D], old_moment[R];
+      for (int r = 0; r < D; ++r) old_force[r] = p.force[i * D + r];
+      if constexpr (polar)
+        for (int r = 0; r < R; ++r) old_moment[r] = p.moment[i * R + r];
+      pass2_point<D, Effects, true>(p, f, c, i, false);
+      double change = 0.0;
+      for (int r = 0; r < D; ++r) change += p.velocity[i * D + r] * (old_force[r] - p.force[i * D + r]);
+      if constexpr (polar)
+        for (int r = 0; r < R; ++r) change += p.spin[i * R + r] * (old_moment[r] - p.moment[i * R + r]);
+      kick += half_step * p.volume[i] * change;
+    }
+    for (const std::size_t i : changed) {
+      for (int k = 0; k < DD; ++k) p.previous_stabilization_ck[i * DD + k] = p.stabilization_ck[i * DD + k];
+      if constexpr (polar) p.previous_stabilization_rot[i] = p.stabilization_rot[i];
+    }
+  } else {
+    (void)p, (void)f, (void)c, (void)changed, (void)half_step;
+  }
+  return kick;
 }
 
 #undef MPPM_INLINE

@@ -1,6 +1,9 @@
 // Entry point of the internal-force kernel for a runtime effect set: the instantiation is chosen
 // once (compute_internal_forces_function) and then called every step.
 #pragma once
+#include <cstddef>
+#include <vector>
+
 #include "common/scene.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
@@ -14,9 +17,25 @@ namespace mppm::solver {
 // written only with damage (the `intact` flags and the work).
 using InternalForceFunction = void (*)(PointData&, BondFamilies&, const CosseratConstants&, const StepAdvance*);
 
+// The energy stored at one point with its bonds and state as they are (kernel::PointEnergy).
+struct PointEnergy {
+  double force_stress = 0.0, couple_stress = 0.0, stabilization = 0.0;
+  double total() const { return force_stress + couple_stress + stabilization; }
+};
+using PointEnergyFunction = PointEnergy (*)(const PointData&, const BondFamilies&, const CosseratConstants&,
+                                            std::size_t point);
+
+// Damage: the forces (and energies) again after bonds broke, for the listed points whose families
+// changed (sorted) and their neighbours; returns the kick's share of the energy balance
+// (kernel::refresh_after_breakage).
+using BreakageRefreshFunction = double (*)(PointData&, BondFamilies&, const CosseratConstants&,
+                                           const std::vector<std::size_t>& changed_points, double half_step);
+
 struct InternalForceFunctions {
   InternalForceFunction forces = nullptr;              // force and moment only
   InternalForceFunction forces_and_energy = nullptr;   // also the per-point energies
+  PointEnergyFunction point_energy = nullptr;          // one point's stored energy (breakage)
+  BreakageRefreshFunction refresh_after_breakage = nullptr;
 };
 
 InternalForceFunctions internal_force_functions(int dimension, const EffectSet& effects);

@@ -7,6 +7,7 @@
 
 #include "common/precrack_crossing.hpp"
 #include "solver/bond_breakage.hpp"
+#include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
 namespace mppm::solver {
@@ -79,10 +80,18 @@ void Model::advance_internal_forces(double dt, bool with_energy) {
   const StepAdvance step{viscoplastic_model.get(), dt};
   (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, &step);
   if (effects.damage) {
-    const BreakageUpdate u = update_after_breakage(points, bonds, constants);
+    const BreakageUpdate u = update_after_breakage(points, bonds, constants, kernel, block_eigenvalue_limit, dt);
     broken_bonds += u.broken_pairs;
     detached_points += u.newly_detached;
+    unstable_detached_points += u.unstable_detached;
+    last_fracture_dissipation = u.released_energy;
   }
+}
+
+void Model::set_breakage_time_step(double dt, double critical_step) {
+  if (!effects.damage) return;
+  const double start = max_point_block_eigenvalue(points, bonds, constants);
+  block_eigenvalue_limit = start * (critical_step / dt) * (critical_step / dt);
 }
 
 InternalEnergy internal_energy(const Model& model) {

@@ -36,6 +36,11 @@ struct Model {
   std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
   std::size_t detached_points = 0;
   std::size_t broken_bonds = 0;  // pairs broken by damage so far (pre-crack cuts not included)
+  double last_fracture_dissipation = 0.0;  // [J] released by the breaks of the last advance
+  std::size_t unstable_detached_points = 0;  // of detached_points: detached for the time step's sake
+  // Damage: a body point whose stiffness block exceeds this is detached (point_stability.hpp);
+  // 0 = no such check. Set by set_breakage_time_step.
+  double block_eigenvalue_limit = 0.0;
 
   int dimension() const { return points.dimension; }
   bool micropolar() const { return effects.micropolar; }
@@ -48,10 +53,13 @@ struct Model {
   // The same at the end of a time step of length dt, with the history advanced from the start of
   // the step: the viscoplastic state by the return map (points.plastic_dissipation set), and with
   // damage the bond work, the bonds that reach the critical work broken (points.bonds_broken and
-  // fracture_dissipation set) and the shape tensors of their points refreshed for the next step.
+  // last_fracture_dissipation set) and the shape tensors of their points refreshed for the next step.
   // Call it once per step, after the previous evaluation (the step's start); without these
   // effects it is compute_internal_forces.
   void advance_internal_forces(double dt, bool with_energy);
+  // Damage: points whose bonds broke stay stable at the time step dt, given the start-up
+  // critical step (point_stability.hpp). Call it once the step is chosen; no-op without damage.
+  void set_breakage_time_step(double dt, double critical_step);
 };
 
 // Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.

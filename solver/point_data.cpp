@@ -65,7 +65,6 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
     p.family_volume.assign(n, 0.0);  // filled by build_model before the pre-crack cuts
     p.no_fail.assign(n, 0);
     p.bonds_broken.assign(n, 0);
-    p.fracture_dissipation.assign(n, 0.0);
     p.previous_displacement.assign(n * D, 0.0);
     p.previous_force_tensor.assign(n * DD, 0.0);
     p.previous_stabilization_ck.assign(n * DD, 0.0);

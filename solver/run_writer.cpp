@@ -64,8 +64,8 @@ RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(d
   if (ec) throw InputError(directory_ + ": cannot create the run directory (" + ec.message() + ")");
 }
 
-void RunWriter::write_resolved_scene(const Scene& scene) {
-  const std::string text = resolved_scene_yaml(scene);
+void RunWriter::write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
+  const std::string text = resolved_scene_yaml(scene, derived);
   write_file_atomically(path(run_layout::resolved_scene), [&](std::ostream& out) { out << text; });
 }
 

@@ -38,7 +38,8 @@ class RunWriter {
   const std::string& directory() const { return directory_; }
   std::string path(const std::string& name) const { return directory_ + "/" + name; }
 
-  void write_resolved_scene(const Scene& scene);
+  // `derived`: values the solver derived (written under `derived:`), e.g. the time step.
+  void write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
   void write_reference(const PointData& points);
   void write_snapshot(const Snapshot& snapshot);  // named by its step; recorded in run_info
 

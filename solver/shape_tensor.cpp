@@ -28,15 +28,13 @@ bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& 
     const double lo = eig.eigenvalues()(0), hi = eig.eigenvalues()(D - 1);
     detach = !(hi > 0.0) || !(lo >= kDetachReciprocalCondition * hi);
   }
-  Eigen::Map<Mat> kinv(&p.shape_inverse[i * D * D]);
-  Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
-  p.detached[i] = detach ? 1 : 0;
   if (detach) {
-    kinv.setZero();
-    ck.setZero();
-    if (has_rot) p.stabilization_rot[i] = 0.0;
+    detach_point(p, i);
     return true;
   }
+  p.detached[i] = 0;
+  Eigen::Map<Mat> kinv(&p.shape_inverse[i * D * D]);
+  Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
   kinv = K.inverse();
   kinv = 0.5 * (kinv + kinv.transpose()).eval();  // exact symmetry of the stored inverse
   // (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu) K^-1_ik + mu tr(K^-1) delta_ik (isotropic C)
@@ -63,6 +61,14 @@ void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c
 }
 
 }  // namespace
+
+void detach_point(PointData& p, std::size_t i) {
+  const std::size_t dd = static_cast<std::size_t>(p.dimension * p.dimension);
+  std::fill_n(p.shape_inverse.begin() + static_cast<std::ptrdiff_t>(i * dd), dd, 0.0);
+  std::fill_n(p.stabilization_ck.begin() + static_cast<std::ptrdiff_t>(i * dd), dd, 0.0);
+  if (!p.stabilization_rot.empty()) p.stabilization_rot[i] = 0.0;
+  p.detached[i] = 1;
+}
 
 std::size_t update_shape_tensors(PointData& p, const BondFamilies& f, const CosseratConstants& c) {
   return p.dimension == 2 ? update_all<2>(p, f, c) : update_all<3>(p, f, c);

@@ -18,6 +18,10 @@ inline constexpr double kDetachReciprocalCondition = 1e-6;
 // (K is never inverted when it is singular); returns the number of detached points.
 std::size_t update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
 
+// Marks point i detached: its K^-1 and stabilization tensors are zero, so it carries no stress
+// and moves ballistically (its bonds are the caller's business).
+void detach_point(PointData& points, std::size_t i);
+
 // The same for the listed points only (those whose bonds changed); detached flags are updated.
 void update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
                           const std::vector<std::size_t>& changed_points);

@@ -116,9 +116,12 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   const auto steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end / dt - 1e-9)));
   if (std::abs(static_cast<double>(steps) * dt - end) > 1e-9 * end) dt = end / static_cast<double>(steps);
   scene.time.step = dt;
+  model.set_breakage_time_step(dt, critical.step);
 
   RunWriter writer(options.run_directory, options.force);
-  writer.write_resolved_scene(scene);
+  std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", critical.step}};
+  if (scene.effects.damage) derived.emplace_back("critical_bond_work_J_per_m6", model.constants.critical_bond_work);
+  writer.write_resolved_scene(scene, derived);
   writer.write_reference(model.points);
 
   RunInfo info;
@@ -142,6 +145,12 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
              ", driven by " + critical.driver);
   writer.log("time step " + text(dt) + " s (" + (scene_in.time.step ? "given" : "auto, safety " + text(scene.time.safety)) +
              "), " + std::to_string(steps) + " steps, threads " + std::to_string(info.threads));
+  if (scene.effects.damage)
+    writer.log("damage: critical bond work w_cr " + text(model.constants.critical_bond_work) + " J/m^6 (G_cr " +
+               text(scene.material.damage->critical_energy_release_rate) + " J/m^2, " +
+               scene.material.damage->calibration + " calibration), no-fail depth " +
+               text(scene.material.damage->no_fail_depth) + " m; a point whose lopsided family would need a step below " +
+               text(dt) + " s is detached (stiffness block limit " + text(model.block_eigenvalue_limit) + " 1/s^2)");
   if (model.viscoplastic_model)
     writer.log("viscoplastic model " + model.viscoplastic_model->name() +
                " (return map once per step; the critical step above is the elastic bound, which "

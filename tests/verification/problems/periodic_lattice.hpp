@@ -43,6 +43,7 @@ inline solver::Model make_model(const PointCloud& cloud, const Scene& scene, std
   o.horizon = scene.geometry.horizon();
   o.spacing = scene.geometry.spacing;
   o.period = period;
+  if (scene.effects.damage && scene.material.damage) o.no_fail_depth = scene.material.damage->no_fail_depth;
   return solver::build_model(cloud, o);
 }
 

@@ -1,0 +1,193 @@
+// The stiffness block of one point's degrees of freedom in closed form (point_stability.hpp).
+//
+// A field that moves only point i, u_i = a, w_i = theta (q = (a, theta)), strains two kinds of
+// points (SPEC sections 2-3; c_i = K_i^-1 s_i with s_i = sum_j b V_j xi_ij, F_i = sum_j b V_j):
+//  - point i: U_ij = -a - 1/2 theta x xi_ij for every bond, so eps_i = -a (x) c_i - 1/2 [theta]_x,
+//    kap_i = -theta (x) c_i, and the stabilization residuals z_ij = -a (1 - c_i . xi_ij),
+//    zw_ij = -theta (1 - c_i . xi_ij) give 1/2 V_i (F_i - s_i . c_i)(a . Ck_i a + g_i |theta|^2);
+//  - every k with i in its family (xi_ki = -xi_ik, d = K_k^-1 xi_ki, r = V_i xi_ki . d <= 1):
+//    only the bond k-i moves, U_ki = a + 1/2 theta x xi_ik, so eps_k = V_i U_ki (x) d,
+//    kap_k = V_i theta (x) d, and the stabilization gives 1/2 V_k V_i (1 - r)(U . Ck_k U + g_k |theta|^2).
+// The energy is 1/2 q^T H_i q, assembled from these linear maps of q.
+#include "solver/point_stability.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "solver/compiled_effects.hpp"
+
+namespace mppm::solver {
+
+namespace {
+
+template <int D>
+using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
+template <int D>
+using Vec = Eigen::Matrix<double, D, 1>;
+
+// theta x xi as a linear map of theta (D x R): 2-D (-xi_y, xi_x); 3-D -[xi]_x.
+template <int D>
+Eigen::Matrix<double, D, rotation_components<D>> cross_map(const double* xi) {
+  Eigen::Matrix<double, D, rotation_components<D>> m;
+  if constexpr (D == 2) {
+    m << -xi[1], xi[0];
+  } else {
+    m << 0.0, xi[2], -xi[1], -xi[2], 0.0, xi[0], xi[1], -xi[0], 0.0;
+  }
+  return m;
+}
+
+// Adds V x (eps : sigma(eps) + kap : m(kap)) as a bilinear form over the probe basis, for
+// eps = E[p] and kap = G[p] (p = 0..n-1), i.e. twice the elastic energy of the point.
+template <int D, int N>
+void add_elastic(const CosseratConstants& c, double volume, const std::array<Mat<D>, N>& eps,
+                 const std::array<Eigen::Matrix<double, rotation_components<D>, D, Eigen::RowMajor>, N>* kap,
+                 Eigen::Matrix<double, N, N>& H) {
+  constexpr int R = rotation_components<D>;
+  for (int p = 0; p < N; ++p) {
+    const Mat<D> sp = cosserat_stress<D>(eps[p], c);
+    Eigen::Matrix<double, R, D, Eigen::RowMajor> mp;
+    if (kap) mp = couple_stress<D, R>((*kap)[p], c);
+    for (int q = p; q < N; ++q) {
+      double v = eps[q].cwiseProduct(sp).sum();
+      if (kap) v += (*kap)[q].cwiseProduct(mp).sum();
+      H(p, q) += volume * v;
+      if (q != p) H(q, p) += volume * v;
+    }
+  }
+}
+
+template <int D, bool Polar>
+Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rotation_components<D> : 0)> block(
+    const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
+  constexpr int R = Polar ? rotation_components<D> : 0;
+  constexpr int RR = rotation_components<D>;
+  constexpr int N = D + R;
+  using Block = Eigen::Matrix<double, N, N>;
+  using RMat = Eigen::Matrix<double, RR, D, Eigen::RowMajor>;
+  Block H = Block::Zero();
+  if (p.detached[i]) return H;
+  const bool damage = !f.intact.empty();
+  const double vi = p.volume[i];
+  const Mat<D> kinv_i = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * D * D]);
+  const Mat<D> ck_i = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * D * D]);
+  Vec<D> s = Vec<D>::Zero();
+  double family = 0.0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if (damage && !f.intact[b]) continue;
+    const double vj = p.volume[static_cast<std::size_t>(f.neighbor[b])];
+    s += vj * Eigen::Map<const Vec<D>>(&f.xi[b * D]);
+    family += vj;
+  }
+  const Vec<D> ci = kinv_i * s;
+
+  // Point i. Probe p: a = e_p (p < D) or theta = e_(p-D).
+  std::array<Mat<D>, N> eps{};
+  std::array<RMat, N> kap{};
+  for (int q = 0; q < N; ++q) {
+    eps[q].setZero();
+    kap[q].setZero();
+    if (q < D) {
+      eps[q].row(q) = -ci.transpose();
+    } else {
+      // -1/2 [theta]_x with theta = e_(q-D): column k of [theta]_x is theta x e_k.
+      Vec<D> ek;
+      for (int k = 0; k < D; ++k) {
+        ek.setZero();
+        ek(k) = 1.0;
+        eps[q].col(k) = -0.5 * cross_map<D>(ek.data()).col(q - D);
+      }
+      kap[q].row(q - D) = -ci.transpose();
+    }
+  }
+  add_elastic<D, N>(c, vi, eps, Polar ? &kap : nullptr, H);
+  const double residual_i = std::max(0.0, family - s.dot(ci));  // F_i - s . K^-1 s >= 0
+  H.template topLeftCorner<D, D>() += vi * residual_i * ck_i;
+  if constexpr (Polar) H.template bottomRightCorner<R, R>().diagonal().array() += vi * residual_i * p.stabilization_rot[i];
+
+  // Every neighbour whose family holds i (the reverse bond acts exactly when this one does).
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if (damage && !f.intact[b]) continue;
+    const auto k = static_cast<std::size_t>(f.neighbor[b]);
+    if (k >= p.owned || p.detached[k]) continue;
+    const double vk = p.volume[k];
+    const double* xi_ik = &f.xi[b * D];
+    const Vec<D> xi_ki = -Eigen::Map<const Vec<D>>(xi_ik);
+    const Mat<D> kinv_k = Eigen::Map<const Mat<D>>(&p.shape_inverse[k * D * D]);
+    const Vec<D> d = kinv_k * xi_ki;
+    // U_ki = L q
+    Eigen::Matrix<double, D, N> L = Eigen::Matrix<double, D, N>::Zero();
+    L.template leftCols<D>().setIdentity();
+    if constexpr (Polar) L.template rightCols<R>() = 0.5 * cross_map<D>(xi_ik);
+    std::array<Mat<D>, N> eps_k{};
+    std::array<RMat, N> kap_k{};
+    for (int q = 0; q < N; ++q) {
+      eps_k[q] = vi * L.col(q) * d.transpose();
+      kap_k[q].setZero();
+      if (q >= D) kap_k[q].row(q - D) = vi * d.transpose();
+    }
+    add_elastic<D, N>(c, vk, eps_k, Polar ? &kap_k : nullptr, H);
+    const double r = std::min(1.0, vi * xi_ki.dot(d));
+    const Mat<D> ck_k = Eigen::Map<const Mat<D>>(&p.stabilization_ck[k * D * D]);
+    const double w = vk * vi * (1.0 - r);
+    H += w * (L.transpose() * ck_k * L);
+    if constexpr (Polar) H.template bottomRightCorner<R, R>().diagonal().array() += w * p.stabilization_rot[k];
+  }
+  return H;
+}
+
+template <int D, bool Polar>
+double eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
+  constexpr int R = Polar ? rotation_components<D> : 0;
+  constexpr int N = D + R;
+  if (p.detached[i]) return 0.0;
+  auto H = block<D, Polar>(p, f, c, i);
+  // M^-1/2 H M^-1/2 with M = rho V (translation), I V (rotation).
+  Eigen::Matrix<double, N, 1> scale;
+  for (int q = 0; q < N; ++q)
+    scale(q) = 1.0 / std::sqrt(p.volume[i] * (q < D ? c.density : c.micro_inertia));
+  H = scale.asDiagonal() * H * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(H, Eigen::EigenvaluesOnly);
+  return std::max(0.0, eig.eigenvalues()(N - 1));
+}
+
+}  // namespace
+
+double point_block_eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
+  const bool polar = !p.rotation.empty();
+  if (p.dimension == 2) return polar ? eigenvalue<2, true>(p, f, c, i) : eigenvalue<2, false>(p, f, c, i);
+  return polar ? eigenvalue<3, true>(p, f, c, i) : eigenvalue<3, false>(p, f, c, i);
+}
+
+void point_stiffness_block(const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i,
+                           double* out) {
+  auto copy = [&](const auto& H) {
+    for (int r = 0; r < H.rows(); ++r)
+      for (int col = 0; col < H.cols(); ++col) out[r * H.cols() + col] = H(r, col);
+  };
+  const bool polar = !p.rotation.empty();
+  if (p.dimension == 2) {
+    if (polar) copy(block<2, true>(p, f, c, i));
+    else copy(block<2, false>(p, f, c, i));
+  } else {
+    if (polar) copy(block<3, true>(p, f, c, i));
+    else copy(block<3, false>(p, f, c, i));
+  }
+}
+
+double max_point_block_eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+  std::vector<double> value(p.owned, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    if (p.region[i] == 0) value[i] = point_block_eigenvalue(p, f, c, i);
+  }
+  // The maximum does not depend on the order, so any thread count gives the same value.
+  return value.empty() ? 0.0 : *std::max_element(value.begin(), value.end());
+}
+
+}  // namespace mppm::solver

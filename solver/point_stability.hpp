@@ -1,0 +1,37 @@
+// Stability of a point after its bonds changed (damage). Breaking bonds leaves lopsided families
+// whose shape tensor K_i is nearly singular; K_i^-1 then amplifies the point's stiffness and the
+// critical time step of the run falls below the step in use (measured: 0.8 -> 0.4 of the start-up
+// critical step in a strip whose crack ran, and the run blew up). SPEC section 2 detaches points
+// whose K_i is singular; this module decides when K_i is too badly conditioned for the run's step.
+//
+// The measure is the largest eigenvalue of M_i^-1 H_i, H_i the block of the stiffness matrix of
+// the point's own degrees of freedom (u_i, and w_i with micropolar): the Rayleigh quotient of any
+// field that moves only point i, so a lower bound of omega_max^2 of the whole model. It is computed
+// in closed form from the energy of such a field (the point's own energy and that of every point
+// whose family holds it), in O(family) operations. At start-up the Lanczos estimate omega_max^2 is
+// kappa_0 >= 1 times the largest block value; during the run a point is detached when kappa_0
+// times its block value exceeds (2 / dt)^2, i.e. when its block value exceeds
+// max_start x (critical step / dt)^2: the margin the chosen time step leaves is what a point may
+// use up.
+#pragma once
+#include <cstddef>
+
+#include "solver/bond_families.hpp"
+#include "solver/cosserat_material.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+// lambda_max(M_i^-1 H_i) [1/s^2] of point i with its bonds and shape tensors as they are; 0 for a
+// detached point.
+double point_block_eigenvalue(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
+                              std::size_t i);
+
+// The same block H_i itself (D + R square, row-major; translation first), for the tests.
+void point_stiffness_block(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
+                           std::size_t i, double* block);
+
+// The largest block value over the body points (region 0) that are not detached.
+double max_point_block_eigenvalue(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
+
+}  // namespace mppm::solver
