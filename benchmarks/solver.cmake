@@ -1,3 +1,10 @@
 # mppm-bench-solver: bond updates per second of the solver kernel and whole steps.
 add_executable(mppm-bench-solver bench_solver.cpp)
 target_link_libraries(mppm-bench-solver PRIVATE mppm_solver mppm_warnings)
+# mppm-damage-calibration: the released fraction of the `dissipation` calibration of the damage
+# effect (workflows/damage-calibration). Uses the verification problems' crack strip.
+if(NOT TARGET mppm_verification_problems)
+  add_subdirectory(${PROJECT_SOURCE_DIR}/tests/verification/problems ${CMAKE_BINARY_DIR}/verification_problems)
+endif()
+add_executable(mppm-damage-calibration ${CMAKE_CURRENT_LIST_DIR}/damage_calibration.cpp)
+target_link_libraries(mppm-damage-calibration PRIVATE mppm_verification_problems mppm_solver mppm_warnings)

@@ -478,9 +478,10 @@ class SceneReader {
     dp.no_fail_depth = quantity_or(node, p, "no_fail_depth", dim::length, 0.0);
     if (dp.no_fail_depth < 0.0) fail(node["no_fail_depth"], p + ".no_fail_depth", "must be >= 0");
     if (node["calibration"].IsDefined()) {
-      dp.calibration = scalar(node["calibration"], p + ".calibration", "lattice or continuum");
-      if (dp.calibration != "lattice" && dp.calibration != "continuum")
-        fail(node["calibration"], p + ".calibration", "unknown calibration '" + dp.calibration + "' (expected lattice or continuum)");
+      dp.calibration = scalar(node["calibration"], p + ".calibration", "lattice, continuum or dissipation");
+      if (dp.calibration != "lattice" && dp.calibration != "continuum" && dp.calibration != "dissipation")
+        fail(node["calibration"], p + ".calibration",
+             "unknown calibration '" + dp.calibration + "' (expected lattice, continuum or dissipation)");
     }
     scene_.material.damage = dp;
   }

@@ -68,8 +68,9 @@ struct DamageParameters {
   double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
   double no_fail_depth = 0.0;                  // [m] from kinematic and loaded boundaries
   // How w_cr follows from G_cr (solver/bond_breakage.hpp): "lattice" (the bonds of the lattice
-  // that cross a plane between two rows cost G_cr per unit area) or "continuum" (SPEC section 7's
-  // closed forms, their limit for a large horizon factor).
+  // that cross a plane between two rows cost G_cr per unit area), "continuum" (SPEC section 7's
+  // closed forms, their limit for a large horizon factor) or "dissipation" (lattice / rho: a
+  // running crack then dissipates G_cr per unit area; solver/damage_calibration.hpp).
   std::string calibration = "lattice";
 };
 

@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
+#include "solver/damage_calibration.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -37,10 +40,21 @@ double lattice_crossing_sum(int dimension, double horizon_factor) {
 }
 
 double critical_bond_work(const DamageParameters& damage, int dimension, double spacing, double horizon_factor,
-                          double thickness) {
+                          double thickness, double stabilization) {
   const double g_cr = damage.critical_energy_release_rate;
   if (damage.calibration == "continuum")
     return continuum_critical_bond_work(dimension, g_cr, horizon_factor * spacing, thickness);
+  if (damage.calibration == "dissipation") {
+    const auto rho = released_fraction(dimension, horizon_factor, stabilization);
+    if (!rho)
+      throw std::invalid_argument("the dissipation calibration is measured for " + released_fraction_ranges(dimension) +
+                                  " in " + std::to_string(dimension) + "-D (this scene: horizon factor " +
+                                  std::to_string(horizon_factor) + ", G_s " + std::to_string(stabilization) +
+                                  "); use calibration: lattice, or a setting in that range");
+    DamageParameters lattice = damage;
+    lattice.calibration = "lattice";
+    return critical_bond_work(lattice, dimension, spacing, horizon_factor, thickness, stabilization) / *rho;
+  }
   // Per cell of the plane (dx t in 2-D, dx^2 in 3-D) the crossing bonds carry S V^2 with V = dx^2 t
   // or dx^3: w_cr S dx^3 t = G_cr dx t (2-D), w_cr S dx^6 = G_cr dx^2 (3-D).
   const double s = lattice_crossing_sum(dimension, horizon_factor);

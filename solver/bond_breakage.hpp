@@ -20,8 +20,11 @@ namespace mppm::solver {
 // crossing sum differs from the continuum one by -21 % to +17 % at the usual horizon factors
 // (2-D 2.05: 0.87, 3.05: 0.95; 3-D 2.05: 0.79, 2.55: 1.17, 3.05: 1.03), which would otherwise be
 // a calibration error of the same size (tests/verification/test_solver_crack_energy.cpp).
+// "dissipation": the lattice value divided by the released fraction rho of a running crack
+// (solver/damage_calibration.hpp), which depends on the horizon factor and G_s
+// (`stabilization`); std::invalid_argument outside the measured ranges.
 double critical_bond_work(const DamageParameters& damage, int dimension, double spacing, double horizon_factor,
-                          double thickness);
+                          double thickness, double stabilization);
 double continuum_critical_bond_work(int dimension, double critical_energy_release_rate, double horizon,
                                     double thickness);
 // sum of b over the lattice offsets (a, b[, c]) with b > 0 within the horizon factor: the bonds

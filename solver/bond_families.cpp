@@ -132,7 +132,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   if (bonds > static_cast<std::size_t>(INT32_MAX) * 64)
     throw std::length_error("build_families: too many bonds");
   f.neighbor.resize(bonds);
-  f.xi.resize(bonds * D);
+  if (periodic) f.xi.resize(bonds * D);
 #pragma omp parallel for schedule(static) if (thread_bond_loop(bonds))
   for (std::int64_t s = 0; s < sn; ++s) {
     const auto i = static_cast<std::size_t>(s);
@@ -145,7 +145,8 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
     std::int64_t b = f.offset[i];
     for (const auto& [j, xi] : found) {
       f.neighbor[b] = j;
-      for (int a = 0; a < D; ++a) f.xi[b * D + a] = xi[a];
+      if (periodic)
+        for (int a = 0; a < D; ++a) f.xi[b * D + a] = xi[a];
       ++b;
     }
   }

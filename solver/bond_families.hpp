@@ -1,7 +1,10 @@
 // Families within the horizon (SPEC section 1), stored from both ends in CSR form: the bonds of
-// owned point i are offset[i] .. offset[i+1]-1, each with its neighbour's local index and the
-// reference bond vector xi = x_j - x_i. Every point owns its own bond list, so kernels write
-// only the point they loop over (no atomics, no races).
+// owned point i are offset[i] .. offset[i+1]-1, each with its neighbour's local index. The
+// reference bond vector xi = x_j - x_i is computed from the positions where it is needed (the
+// same bits as a stored one, and 8 D bytes per bond less to store and stream); only periodic
+// verification lattices store it, wrapped to the minimum image (bond_vector below). Every
+// point owns its own bond list, so kernels write only the point they loop over (no atomics,
+// no races).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -16,13 +19,28 @@ struct BondFamilies {
   int dimension = 2;
   std::vector<std::int64_t> offset;    // owned + 1 entries
   std::vector<std::int32_t> neighbor;  // local index (owned or ghost)
-  std::vector<double> xi;              // D per bond
+  std::vector<double> xi;              // D per bond, periodic lattices only (else empty)
   // Damage effect only (empty otherwise):
   std::vector<std::uint8_t> intact;    // 1 = the bond acts; 0 = broken (for good)
   std::vector<double> work;            // W_ij [J/m^6], the same bits at both ends of a bond
 
   std::size_t bond_count() const { return neighbor.size(); }
 };
+
+// xi of bond b of point i: x_j - x_i from the positions, or the stored minimum image.
+template <int D>
+inline void bond_vector(const BondFamilies& f, const double* position, std::size_t i, std::int64_t b, double* xi) {
+  if (!f.xi.empty()) {
+    for (int a = 0; a < D; ++a) xi[a] = f.xi[static_cast<std::size_t>(b) * D + a];
+  } else {
+    const auto j = static_cast<std::size_t>(f.neighbor[b]);
+    for (int a = 0; a < D; ++a) xi[a] = position[j * D + a] - position[i * D + a];
+  }
+}
+inline void bond_vector(const BondFamilies& f, const PointData& p, std::size_t i, std::int64_t b, double* xi) {
+  if (p.dimension == 2) bond_vector<2>(f, p.position.data(), i, b, xi);
+  else bond_vector<3>(f, p.position.data(), i, b, xi);
+}
 
 struct FamilyOptions {
   double horizon = 0.0;
@@ -47,14 +65,15 @@ void remove_bonds(BondFamilies& families, Predicate&& cut) {
     for (std::int64_t b = start; b < end; ++b) {
       if (cut(i, static_cast<std::size_t>(b))) continue;
       families.neighbor[kept] = families.neighbor[b];
-      for (int c = 0; c < D; ++c) families.xi[kept * D + c] = families.xi[b * D + c];
+      if (!families.xi.empty())
+        for (int c = 0; c < D; ++c) families.xi[kept * D + c] = families.xi[b * D + c];
       ++kept;
     }
     start = end;
     families.offset[i + 1] = static_cast<std::int64_t>(kept);
   }
   families.neighbor.resize(kept);
-  families.xi.resize(kept * D);
+  if (!families.xi.empty()) families.xi.resize(kept * D);
   if (!families.intact.empty()) families.intact.assign(kept, 1);
   if (!families.work.empty()) families.work.assign(kept, 0.0);
 }

@@ -1,6 +1,9 @@
 // Derivation of the Cosserat constants from the scene (SPEC sections 4-5).
 #include "solver/cosserat_material.hpp"
 
+#include <stdexcept>
+
+#include "common/input_error.hpp"
 #include "solver/bond_breakage.hpp"
 
 namespace mppm::solver {
@@ -23,8 +26,13 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.micro_inertia = m.micro_inertia();
   c.stabilization = scene.numerics.stabilization;
   if (scene.effects.damage && m.damage)
-    c.critical_bond_work = critical_bond_work(*m.damage, scene.dimension, scene.geometry.spacing,
-                                              scene.geometry.horizon_factor, scene.thickness);
+    try {
+      c.critical_bond_work = critical_bond_work(*m.damage, scene.dimension, scene.geometry.spacing,
+                                                scene.geometry.horizon_factor, scene.thickness,
+                                                scene.numerics.stabilization);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(scene.where("material.damage.calibration") + ": " + e.what());
+    }
 
   // Every value was validated where the scene was read (common/scene.cpp), the one place
   // that owns the rules and knows the file lines; nothing is re-checked here.

@@ -107,7 +107,7 @@ MPPM_INLINE double bond_stabilization_energy(const double* U, const double* xi, 
 
 // eps_i = [sum_j b V_j U_ij (x) xi] K_i^-1 and kap_i = [sum_j b V_j (w_j - w_i) (x) xi] K_i^-1 over
 // the bonds that act (intact != 0 with damage; a bond marked 2, breaking in this step, still acts).
-template <int D, class Effects>
+template <int D, class Effects, bool StoredXi>
 MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::size_t i,
                                const Mat<D>& kinv, Mat<D>& eps,
                                RMat<rotation_components<D>, D>& kap) {
@@ -118,6 +118,9 @@ MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::s
   const double* __restrict w = polar ? p.rotation.data() : nullptr;
   const double* __restrict vol = p.volume.data();
   const double* __restrict xis = f.xi.data();
+  const double* __restrict pos = p.position.data();
+  double pos_i[D];
+  for (int a = 0; a < D; ++a) pos_i[a] = pos[i * D + a];
   const std::int32_t* __restrict nb = f.neighbor.data();
   [[maybe_unused]] const std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
   const double* ui = u + i * D;
@@ -128,7 +131,8 @@ MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::s
     if constexpr (Effects::damage)
       if (!intact[b]) continue;
     const auto j = static_cast<std::size_t>(nb[b]);
-    const double* xi = xis + b * D;
+    double xi[D];
+    for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
     const double vj = vol[j];
     const double* wj = polar ? w + j * R : zero_rotation;
     double U[D];
@@ -162,7 +166,8 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
-  point_strains<D, Effects>(p, f, i, kinv, eps, kap);
+  if (f.xi.empty()) point_strains<D, Effects, false>(p, f, i, kinv, eps, kap);
+  else point_strains<D, Effects, true>(p, f, i, kinv, eps, kap);
   if constexpr (Effects::viscoplasticity) {
     const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]);
     e.force_stress = vi * viscoplastic::elastic_energy_density<D>(
@@ -187,7 +192,8 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
     if constexpr (Effects::damage)
       if (!f.intact[b]) continue;
     const auto j = static_cast<std::size_t>(f.neighbor[b]);
-    const double* xi = &f.xi[b * D];
+    double xi[D];
+    bond_vector<D>(f, p.position.data(), i, b, xi);
     const double* wj = polar ? &p.rotation[j * R] : zero_rotation;
     double U[D];
     composite_state<D, R, polar>(ui, &p.displacement[j * D], wi, wj, xi, U);
@@ -200,7 +206,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
 
 // Pass 1 at point i: strain and wryness, constitutive update (the return map with `advance`),
 // the force/moment tensors A_i, Q_i, and with WithEnergy the point's elastic energies.
-template <int D, class Effects, bool WithEnergy>
+template <int D, class Effects, bool WithEnergy, bool StoredXi>
 MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const CosseratConstants& c,
                              std::size_t i, [[maybe_unused]] const StepAdvance* advance) {
   constexpr int R = rotation_components<D>;
@@ -228,7 +234,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
-  point_strains<D, Effects>(p, f, i, kinv, eps, kap);
+  point_strains<D, Effects, StoredXi>(p, f, i, kinv, eps, kap);
   Mat<D> sigma;
   if constexpr (Effects::viscoplasticity) {
     double* plastic_strain = &p.plastic_strain[i * 9];
@@ -270,7 +276,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
 // Pass 2 at point i: force and moment from the tensors of both ends of every bond; with
 // accumulate_work (damage) the bond work and the breaking marks; with WithEnergy the point's
 // stabilization energy.
-template <int D, class Effects, bool WithEnergy>
+template <int D, class Effects, bool WithEnergy, bool StoredXi>
 MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConstants& c,
                              std::size_t i, [[maybe_unused]] bool accumulate_work) {
   constexpr int R = rotation_components<D>;
@@ -281,6 +287,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   const double* __restrict w = polar ? p.rotation.data() : nullptr;
   const double* __restrict vol = p.volume.data();
   const double* __restrict xis = f.xi.data();
+  const double* __restrict pos = p.position.data();
   const std::int32_t* __restrict nb = f.neighbor.data();
   const std::int64_t* __restrict off = f.offset.data();
   [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
@@ -290,23 +297,39 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   [[maybe_unused]] const double* w_old =
       Effects::damage && polar ? p.previous_rotation.data() : nullptr;
   [[maybe_unused]] const double* a_old = Effects::damage ? p.previous_force_tensor.data() : nullptr;
-  [[maybe_unused]] const double* ck_old =
-      Effects::damage ? p.previous_stabilization_ck.data() : nullptr;
   [[maybe_unused]] const double* q_old =
       Effects::damage && polar ? p.previous_moment_tensor.data() : nullptr;
-  [[maybe_unused]] const double* g_old =
-      Effects::damage && polar ? p.previous_stabilization_rot.data() : nullptr;
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
   const double* __restrict a_all = p.force_tensor.data();
   const double* __restrict ck_all = p.stabilization_ck.data();
   [[maybe_unused]] const double* __restrict q_all = polar ? p.moment_tensor.data() : nullptr;
   [[maybe_unused]] const double* __restrict g_all = polar ? p.stabilization_rot.data() : nullptr;
-  const double* ui = u + i * D;
-  const double* wi = polar ? w + i * R : zero_rotation;
-  const double* ai = a_all + i * DD;
-  const double* cki = ck_all + i * DD;
-  [[maybe_unused]] const double* qi = polar ? q_all + i * RD : nullptr;
+  // Point i's values in locals: the loop stores (bond work, breaking marks) could alias the
+  // arrays, which would make the compiler reload them for every bond.
+  double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0}, ai[DD], cki[DD];
+  [[maybe_unused]] double qi[RD];
+  for (int k = 0; k < D; ++k) ui[k] = u[i * D + k];
+  for (int k = 0; k < D; ++k) pos_i[k] = pos[i * D + k];
+  for (int k = 0; k < DD; ++k) ai[k] = a_all[i * DD + k];
+  for (int k = 0; k < DD; ++k) cki[k] = ck_all[i * DD + k];
+  if constexpr (polar) {
+    for (int k = 0; k < R; ++k) wi[k] = w[i * R + k];
+    for (int k = 0; k < RD; ++k) qi[k] = q_all[i * RD + k];
+  }
   [[maybe_unused]] const double gi = polar ? g_all[i] : 0.0;
+  // Damage: A_i + A_i0 and Q_i + Q_i0 of this and the previous evaluation (the bond work uses
+  // the sum of the two pair forces).
+  [[maybe_unused]] double ui0[D], wi0[3] = {0.0, 0.0, 0.0}, ai_both[DD], qi_both[RD];
+  if constexpr (Effects::damage) {
+    if (accumulate_work) {
+      for (int k = 0; k < D; ++k) ui0[k] = u_old[i * D + k];
+      for (int k = 0; k < DD; ++k) ai_both[k] = ai[k] + a_old[i * DD + k];
+      if constexpr (polar) {
+        for (int k = 0; k < R; ++k) wi0[k] = w_old[i * R + k];
+        for (int k = 0; k < RD; ++k) qi_both[k] = qi[k] + q_old[i * RD + k];
+      }
+    }
+  }
   [[maybe_unused]] const double* eps_i = WithEnergy ? &p.strain[i * DD] : nullptr;
   [[maybe_unused]] const double* kap_i = WithEnergy && polar ? &p.wryness[i * RD] : nullptr;
   double force[D] = {};
@@ -317,60 +340,63 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     if constexpr (Effects::damage)
       if (!intact[b]) continue;
     const auto j = static_cast<std::size_t>(nb[b]);
-    const double* xi = xis + b * D;
+    double xi[D];
+    for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
     const double vj = vol[j];
     const double* wj = polar ? w + j * R : zero_rotation;
     const double* aj = a_all + j * DD;
     const double* ckj = ck_all + j * DD;
     double U[D];
     composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
+    double ck_sum[DD];
+    for (int k = 0; k < DD; ++k) ck_sum[k] = cki[k] + ckj[k];
     double t[D];  // T_ij - T_ji
     for (int r = 0; r < D; ++r) {
       double sum = 0.0;
       for (int col = 0; col < D; ++col)
-        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] +
-               (cki[r * D + col] + ckj[r * D + col]) * U[col];
+        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] + ck_sum[r * D + col] * U[col];
       t[r] = sum;
       force[r] += vj * sum;
     }
-    [[maybe_unused]] double pair_moment[R];  // M_ij - M_ji
+    [[maybe_unused]] double g = 0.0;
     if constexpr (polar) {
       const double* qj = q_all + j * RD;
-      const double g = gi + g_all[j];
+      g = gi + g_all[j];
       for (int r = 0; r < R; ++r) {
         double sum = g * (wj[r] - wi[r]);
         for (int col = 0; col < D; ++col) sum += (qi[r * D + col] + qj[r * D + col]) * xi[col];
-        pair_moment[r] = sum;
         moment[r] += vj * sum;
       }
       add_cross<D>(xi, t, 0.5 * vj, moment);
     }
     if constexpr (Effects::damage) {
       if (accumulate_work) {
-        const double* wi0 = polar ? w_old + i * R : zero_rotation;
+        // dW = 1/2 (t0 + t) . (U - U0) + 1/2 (m0 + m) . (Om - Om0), with t0 + t summed before it is
+        // formed: the stabilization tensors are those of the previous evaluation (they change
+        // only where bonds broke, and refresh_after_breakage then starts the next increment from
+        // the new ones), so t0 + t = (A_i0 + A_i + A_j0 + A_j) xi + (Ck_i + Ck_j)(U0 + U) and
+        // m0 + m = (Q_i0 + Q_i + Q_j0 + Q_j) xi + (g_i + g_j)(Om0 + Om).
         const double* wj0 = polar ? w_old + j * R : zero_rotation;
         double U0[D];
-        composite_state<D, R, polar>(u_old + i * D, u_old + j * D, wi0, wj0, xi, U0);
-        const double* ai0 = a_old + i * DD;
+        composite_state<D, R, polar>(ui0, u_old + j * D, wi0, wj0, xi, U0);
         const double* aj0 = a_old + j * DD;
-        const double* cki0 = ck_old + i * DD;
-        const double* ckj0 = ck_old + j * DD;
         double dw = 0.0;
         for (int r = 0; r < D; ++r) {
-          double t0 = 0.0;
+          double both = 0.0;
           for (int col = 0; col < D; ++col)
-            t0 += (ai0[r * D + col] + aj0[r * D + col]) * xi[col] +
-                  (cki0[r * D + col] + ckj0[r * D + col]) * U0[col];
-          dw += (t0 + t[r]) * (U[r] - U0[r]);
+            both += (ai_both[r * D + col] + (aj[r * D + col] + aj0[r * D + col])) * xi[col] +
+                    ck_sum[r * D + col] * (U0[col] + U[col]);
+          dw += both * (U[r] - U0[r]);
         }
         if constexpr (polar) {
-          const double* qi0 = q_old + i * RD;
+          const double* qj = q_all + j * RD;
           const double* qj0 = q_old + j * RD;
-          const double g0 = g_old[i] + g_old[j];
           for (int r = 0; r < R; ++r) {
-            double m0 = g0 * (wj0[r] - wi0[r]);
-            for (int col = 0; col < D; ++col) m0 += (qi0[r * D + col] + qj0[r * D + col]) * xi[col];
-            dw += (m0 + pair_moment[r]) * ((wj[r] - wi[r]) - (wj0[r] - wi0[r]));
+            const double om = wj[r] - wi[r], om0 = wj0[r] - wi0[r];
+            double both = g * (om0 + om);
+            for (int col = 0; col < D; ++col)
+              both += (qi_both[r * D + col] + (qj[r * D + col] + qj0[r * D + col])) * xi[col];
+            dw += both * (om - om0);
           }
         }
         bond_work[b] += 0.5 * dw;
@@ -399,7 +425,6 @@ template <int D, class Effects, bool WithEnergy>
 void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
                      [[maybe_unused]] const StepAdvance* advance) {
   constexpr int R = rotation_components<D>;
-  constexpr int DD = D * D;
   // Damage: this evaluation's tensors replace the previous ones, which the bond work still needs.
   if constexpr (Effects::damage) {
     p.force_tensor.swap(p.previous_force_tensor);
@@ -408,18 +433,29 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
   const auto n = static_cast<std::int64_t>(p.owned);
   const bool accumulate_work = Effects::damage && advance != nullptr;
   const bool threaded = thread_bond_loop(f.bond_count());
+  const bool stored_xi = !f.xi.empty();
 
   // One parallel region for both passes (one fork/join per evaluation); the barrier at the end
   // of pass 1 makes every neighbour's tensors ready for pass 2.
 #pragma omp parallel if (threaded)
   {
+    // The bond vectors come from the positions, or stored for periodic lattices: two loop
+    // bodies, chosen once, so the bond loops carry no branch for it.
+    if (stored_xi) {
 #pragma omp for schedule(static)
-    for (std::int64_t s = 0; s < n; ++s)
-      pass1_point<D, Effects, WithEnergy>(p, f, c, static_cast<std::size_t>(s), advance);
-
+      for (std::int64_t s = 0; s < n; ++s)
+        pass1_point<D, Effects, WithEnergy, true>(p, f, c, static_cast<std::size_t>(s), advance);
 #pragma omp for schedule(static)
-    for (std::int64_t s = 0; s < n; ++s)
-      pass2_point<D, Effects, WithEnergy>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
+      for (std::int64_t s = 0; s < n; ++s)
+        pass2_point<D, Effects, WithEnergy, true>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
+    } else {
+#pragma omp for schedule(static)
+      for (std::int64_t s = 0; s < n; ++s)
+        pass1_point<D, Effects, WithEnergy, false>(p, f, c, static_cast<std::size_t>(s), advance);
+#pragma omp for schedule(static)
+      for (std::int64_t s = 0; s < n; ++s)
+        pass2_point<D, Effects, WithEnergy, false>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
+    }
 
     // Damage: remember this evaluation's state for the next bond-work increment (after the barrier
     // of pass 2, which read the previous one). The pass-1 tensors were swapped in at the start.
@@ -428,12 +464,8 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
       for (std::int64_t s = 0; s < n; ++s) {
         const auto i = static_cast<std::size_t>(s);
         for (int r = 0; r < D; ++r) p.previous_displacement[i * D + r] = p.displacement[i * D + r];
-        for (int k = 0; k < DD; ++k)
-          p.previous_stabilization_ck[i * DD + k] = p.stabilization_ck[i * DD + k];
-        if constexpr (Effects::micropolar) {
+        if constexpr (Effects::micropolar)
           for (int r = 0; r < R; ++r) p.previous_rotation[i * R + r] = p.rotation[i * R + r];
-          p.previous_stabilization_rot[i] = p.stabilization_rot[i];
-        }
       }
     }
   }  // omp parallel
@@ -457,9 +489,12 @@ double refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConst
   double kick = 0.0;
   if constexpr (Effects::damage) {
     constexpr int R = rotation_components<D>;
-    constexpr int DD = D * D;
     constexpr bool polar = Effects::micropolar;
-    for (const std::size_t i : changed) pass1_point<D, Effects, true>(p, f, c, i, nullptr);
+    const bool stored_xi = !f.xi.empty();
+    for (const std::size_t i : changed) {
+      if (stored_xi) pass1_point<D, Effects, true, true>(p, f, c, i, nullptr);
+      else pass1_point<D, Effects, true, false>(p, f, c, i, nullptr);
+    }
     std::vector<std::size_t> around = changed;
     for (const std::size_t i : changed)
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
@@ -472,16 +507,13 @@ double refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConst
       for (int r = 0; r < D; ++r) old_force[r] = p.force[i * D + r];
       if constexpr (polar)
         for (int r = 0; r < R; ++r) old_moment[r] = p.moment[i * R + r];
-      pass2_point<D, Effects, true>(p, f, c, i, false);
+      if (stored_xi) pass2_point<D, Effects, true, true>(p, f, c, i, false);
+      else pass2_point<D, Effects, true, false>(p, f, c, i, false);
       double change = 0.0;
       for (int r = 0; r < D; ++r) change += p.velocity[i * D + r] * (old_force[r] - p.force[i * D + r]);
       if constexpr (polar)
         for (int r = 0; r < R; ++r) change += p.spin[i * R + r] * (old_moment[r] - p.moment[i * R + r]);
       kick += half_step * p.volume[i] * change;
-    }
-    for (const std::size_t i : changed) {
-      for (int k = 0; k < DD; ++k) p.previous_stabilization_ck[i * DD + k] = p.stabilization_ck[i * DD + k];
-      if constexpr (polar) p.previous_stabilization_rot[i] = p.stabilization_rot[i];
     }
   } else {
     (void)p, (void)f, (void)c, (void)changed, (void)half_step;

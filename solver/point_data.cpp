@@ -67,11 +67,9 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
     p.bonds_broken.assign(n, 0);
     p.previous_displacement.assign(n * D, 0.0);
     p.previous_force_tensor.assign(n * DD, 0.0);
-    p.previous_stabilization_ck.assign(n * DD, 0.0);
     if (R > 0) {
       p.previous_rotation.assign(n * R, 0.0);
       p.previous_moment_tensor.assign(n * R * D, 0.0);
-      p.previous_stabilization_rot.assign(n, 0.0);
     }
   }
   return p;

@@ -66,7 +66,6 @@ struct PointData {
   // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond).
   std::vector<double> previous_displacement, previous_rotation;
   std::vector<double> previous_force_tensor, previous_moment_tensor;
-  std::vector<double> previous_stabilization_ck, previous_stabilization_rot;
 
   // Energy per point [J], filled when a force evaluation is asked for energies.
   std::vector<double> force_stress_energy;   // V 1/2 eps:sigma

@@ -79,7 +79,9 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if (damage && !f.intact[b]) continue;
     const double vj = p.volume[static_cast<std::size_t>(f.neighbor[b])];
-    s += vj * Eigen::Map<const Vec<D>>(&f.xi[b * D]);
+    Vec<D> xi;
+    bond_vector<D>(f, p.position.data(), i, b, xi.data());
+    s += vj * xi;
     family += vj;
   }
   const Vec<D> ci = kinv_i * s;
@@ -114,7 +116,8 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     const auto k = static_cast<std::size_t>(f.neighbor[b]);
     if (k >= p.owned || p.detached[k]) continue;
     const double vk = p.volume[k];
-    const double* xi_ik = &f.xi[b * D];
+    double xi_ik[D];
+    bond_vector<D>(f, p.position.data(), i, b, xi_ik);
     const Vec<D> xi_ki = -Eigen::Map<const Vec<D>>(xi_ik);
     const Mat<D> kinv_k = Eigen::Map<const Mat<D>>(&p.shape_inverse[k * D * D]);
     const Vec<D> d = kinv_k * xi_ki;

@@ -18,7 +18,8 @@ bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& 
   int count = 0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if (!f.intact.empty() && !f.intact[b]) continue;
-    const Vec xi = Eigen::Map<const Vec>(&f.xi[b * D]);
+    Vec xi;
+    bond_vector<D>(f, p.position.data(), i, b, xi.data());
     K += p.volume[f.neighbor[b]] * xi * xi.transpose();
     ++count;
   }

@@ -92,7 +92,9 @@ void porosity_field(const Model& m, std::vector<double>& out) {
       if (!f.intact.empty() && !f.intact[b]) continue;
       const auto j = static_cast<std::size_t>(f.neighbor[b]);
       const Vec du = Eigen::Map<const Vec>(&p.displacement[j * D]) - Eigen::Map<const Vec>(&p.displacement[i * D]);
-      S += p.volume[j] * du * Eigen::Map<const Vec>(&f.xi[b * D]).transpose();
+      Vec xi;
+      bond_vector<D>(f, p.position.data(), i, b, xi.data());
+      S += p.volume[j] * du * xi.transpose();
     }
     const Mat F = Mat::Identity() + S * Eigen::Map<const Mat>(&p.shape_inverse[i * D * D]);
     out[i] = 1.0 - m.constants.solid_fraction / F.determinant();

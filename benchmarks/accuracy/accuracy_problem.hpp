@@ -19,7 +19,6 @@ struct StudyParameters {
 };
 
 struct StudyResult {
-  bool available = true;        // false: the problem needs an effect that does not exist yet
   double spacing = 0.0;         // dx [m]
   // |measured / analytic - 1| (for the two-branch wave: the larger of its two branches)
   double error = 0.0;

@@ -182,7 +182,9 @@ TEST(SolverDamage, BadlyConditionedPointIsDetachedForTheTimeStep) {
     // [[32, 2], [2, 1]] V dx^2, reciprocal condition number 0.027, against 1 for the full family).
     std::fill(p.bonds_broken.begin(), p.bonds_broken.end(), 0);
     for (std::int64_t b = f.offset[centre]; b < f.offset[centre + 1]; ++b) {
-      const double ax = f.xi[b * 2] / kDx, ay = f.xi[b * 2 + 1] / kDx;
+      double xi[3];
+      bond_vector(f, p, centre, b, xi);
+      const double ax = xi[0] / kDx, ay = xi[1] / kDx;
       const bool keep = std::abs(ay) < 0.5 || (std::abs(ax - 2) < 0.1 && std::abs(ay - 1) < 0.1);
       if (keep) continue;
       const auto j = static_cast<std::size_t>(f.neighbor[b]);

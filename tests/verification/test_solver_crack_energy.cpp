@@ -19,6 +19,7 @@
 
 #include <cstdio>
 
+#include "common/input_error.hpp"
 #include "solver/bond_breakage.hpp"
 #include "tests/verification/problems/crack_energy.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
@@ -79,6 +80,70 @@ TEST(SolverCrackEnergy, SlabBrokenBondsAbsorbCriticalEnergyReleaseRate3d) {
   check("3-D slab, horizon factor 2.55", verification::drive_crack(crack_scene(3, 2.55), strip));
 }
 
+// With `calibration: dissipation` (w_cr = lattice value / rho, solver/damage_calibration.hpp) the
+// energy the breaks remove from the model is G_cr per unit new crack area, the literal statement
+// of SPEC section 7's verification. rho was measured with the crack-branching material at
+// dx = 0.5 mm and W H = 1.5 G_cr (lattice calibration); these runs change what the table assumes
+// does not matter: the material (Poisson ratio 0.1 instead of 0.25, mu_c = mu instead of mu / 3),
+// the spacing, G_cr and the drive (W H = 2.2 G_cr here, about 1.6 G_cr / rho). Tolerance 10 %:
+// the table's own spread is 2-4 % across horizon factors.
+Scene dissipation_scene(int dimension, double horizon_factor, double stabilization, double dx) {
+  Scene s = crack_scene(dimension, horizon_factor);
+  s.geometry.spacing = dx;
+  s.material.lambda = 0.25 * s.material.mu;  // Poisson ratio 0.1
+  s.material.mu_c = s.material.mu;
+  s.material.damage = DamageParameters{300.0, 0.0, "dissipation"};
+  s.numerics.stabilization = stabilization;
+  return s;
+}
+
+void check_dissipation(const char* what, const verification::CrackEnergyResult& r) {
+  std::printf("%s, dissipation calibration: energy removed per unit new crack area %.4g J/m^2 = %.4f G_cr; work of the "
+              "crossing bonds %.4f G_cr; separated at %.4g s; other pairs %zu; balance error %.2g; %.2f s\n",
+              what, r.measured_g, r.ratio(), r.crossing_bond_work / r.crack_area / r.critical_g, r.separation_time,
+              r.other_bonds_broken, r.balance_error, r.solve_seconds);
+  ASSERT_TRUE(r.separated);
+  EXPECT_NEAR(r.ratio(), 1.0, 0.10);
+  EXPECT_LT(std::abs(r.balance_error), 1e-9);
+}
+
+TEST(SolverCrackEnergy, StripDissipatesCriticalEnergyReleaseRate2d) {
+  verification::CrackStrip strip;
+  strip.overload = 2.2;
+  strip.safety = 0.4;
+  check_dissipation("2-D strip, horizon factor 4.05, G_s 0.1, dx 0.25 mm",
+                    verification::drive_crack(dissipation_scene(2, 4.05, 0.1, 0.25e-3), strip));
+}
+
+TEST(SolverCrackEnergy, SlabDissipatesCriticalEnergyReleaseRate3d) {
+  verification::CrackStrip strip;
+  strip.length = 30;
+  strip.height = 10;
+  strip.depth = 6;
+  strip.notch = 8;
+  strip.overload = 2.2;
+  strip.safety = 0.4;
+  check_dissipation("3-D slab, horizon factor 2.55, G_s 0.2, dx 1 mm",
+                    verification::drive_crack(dissipation_scene(3, 2.55, 0.2, 1e-3), strip));
+}
+
+// Outside the measured ranges the dissipation calibration is refused, naming the key.
+TEST(SolverCrackEnergy, DissipationCalibrationOutsideItsRangeIsRefused) {
+  Scene s = dissipation_scene(2, 2.05, 0.1, 1e-3);
+  s.key_lines["material.damage.calibration"] = 12;
+  try {
+    (void)cosserat_constants(s);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("solver-test.yaml:12: material.damage.calibration"), std::string::npos) << m;
+    EXPECT_NE(m.find("horizon factor 2.55 to 5.05"), std::string::npos) << m;
+  }
+  s.numerics.stabilization = 0.7;
+  s.geometry.horizon_factor = 3.05;
+  EXPECT_THROW((void)cosserat_constants(s), InputError);
+}
+
 // Below the threshold nothing breaks: at W H = 0.8 G_cr the grips open the strip and hold it; the
 // bonds at the notch tip are loaded (their work is a good part of w_cr) but none reaches it.
 TEST(SolverCrackEnergy, NoBondBreaksBelowTheThreshold) {
@@ -103,7 +168,7 @@ TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
     for (double m : {2.05, 3.05, 4.05, 8.05, 16.05}) {
       DamageParameters lattice{160.0, 0.0, "lattice"};
       const double dx = 1e-3, t = 2e-3;
-      const double ratio = critical_bond_work(lattice, d, dx, m, t) / continuum_critical_bond_work(d, 160.0, m * dx, t);
+      const double ratio = critical_bond_work(lattice, d, dx, m, t, 0.1) / continuum_critical_bond_work(d, 160.0, m * dx, t);
       std::printf("dimension %d, horizon factor %.2f: lattice / continuum w_cr = %.4f\n", d, m, ratio);
       // The lattice points within the horizon fill the disc / ball up to a boundary layer of
       // about one spacing: a relative difference of the order of 1/m (measured: at most 0.26 at
@@ -114,7 +179,7 @@ TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
       }
     }
   DamageParameters continuum{160.0, 0.0, "continuum"};
-  EXPECT_DOUBLE_EQ(critical_bond_work(continuum, 2, 1e-3, 3.05, 2e-3), continuum_critical_bond_work(2, 160.0, 3.05e-3, 2e-3));
+  EXPECT_DOUBLE_EQ(critical_bond_work(continuum, 2, 1e-3, 3.05, 2e-3, 0.1), continuum_critical_bond_work(2, 160.0, 3.05e-3, 2e-3));
 }
 
 }  // namespace

@@ -10,7 +10,10 @@ For every spacing sweep (problem, dimension, threads) at its fixed horizon facto
 - the cost grows: bond updates strictly, wall time from the coarsest to the finest lattice;
 - bond updates grow like dx^-(d+1) (the fitted exponent within 0.5 of d + 1): d from the
   points, 1 from the time step, at a fixed number of bonds per point.
-Every row must have run (status ok); the crack_energy slot may say not_available.
+crack_energy: its error is the work of each bond's last step before it breaks, so at a fixed
+safety factor the spacing sweep's rate is expected to be 0 (within 0.5; the error need not
+fall), and the safety sweep must show the error falling with the safety factor at rate 1 +- 0.5.
+Every row must have run (status ok).
 Exit 1 with every failed check listed.
 """
 import sys
@@ -24,9 +27,8 @@ def main():
     rows = study.load(sys.argv[1])
     failures = []
     for r in rows:
-        allowed = ("ok", "not_available") if r["problem"] == "crack_energy" else ("ok",)
-        if r["status"] not in allowed:
-            failures.append(f"{r['problem']} resolution {r['resolution']}: status {r['status']} (expected {' or '.join(allowed)})")
+        if r["status"] != "ok":
+            failures.append(f"{r['problem']} resolution {r['resolution']}: status {r['status']} (expected ok)")
     groups = study.spacing_groups(rows)
     if not groups:
         failures.append("no spacing sweep in the CSV")
@@ -37,7 +39,7 @@ def main():
             continue
         errors = [r["error"] for r in group]
         resolutions = [r["resolution"] for r in group]
-        if any(b >= a for a, b in zip(errors, errors[1:])):
+        if problem not in study.EXPECTED_SAFETY_RATE and any(b >= a for a, b in zip(errors, errors[1:])):
             failures.append(f"{name}: error does not fall with the spacing: {list(zip(resolutions, errors))}")
         rate = study.log_slope(group, "spacing_m", "error")
         expected = study.EXPECTED_RATE[problem]
@@ -55,6 +57,21 @@ def main():
             print(f"  bond updates ~ dx^-{exponent:.2f} (expected d + 1 = {dimension + 1})")
             if abs(exponent - (dimension + 1)) > 0.5:
                 failures.append(f"{name}: bond updates ~ dx^-{exponent:.2f}, expected dx^-{dimension + 1} +- 0.5")
+    for problem, expected in study.EXPECTED_SAFETY_RATE.items():
+        group = sorted((r for r in study.ok(rows) if r["problem"] == problem and r["sweep"] == "safety"),
+                       key=lambda r: r["safety"])
+        if not group:
+            continue
+        name = f"{study.label(problem, group[0]['dimension'])}, safety sweep"
+        errors = [r["error"] for r in group]
+        if any(b <= a for a, b in zip(errors, errors[1:])):
+            failures.append(f"{name}: error does not grow with the safety factor: "
+                            f"{[(r['safety'], r['error']) for r in group]}")
+        rate = study.log_slope(group, "safety", "error")
+        print(f"{name}: errors {', '.join(f'{e:.3g}' for e in errors)} at safety "
+              f"{[r['safety'] for r in group]}; observed rate {rate:.2f}, expected {expected:.0f}")
+        if abs(rate - expected) > 0.5:
+            failures.append(f"{name}: observed rate {rate:.2f} in the safety factor, expected {expected:.0f} +- 0.5")
     if failures:
         print("accuracy-cost check FAILED:\n  " + "\n  ".join(failures))
         sys.exit(1)

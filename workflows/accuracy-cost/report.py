@@ -92,7 +92,7 @@ def percent(value):
 
 
 def settings(r):
-    unit = "rows" if r["problem"] == "layer_shear" else "points/wavelength"
+    unit = "rows" if r["problem"] in ("layer_shear", "crack_energy") else "points/wavelength"
     text = f"{r['resolution']} {unit} (dx = {fmt(r['spacing_m'] * 1e3)} mm), m = {fmt(r['horizon_factor'])}"
     if r["problem"] != "layer_shear":
         text += f", safety {fmt(r['safety'])}"
@@ -258,9 +258,6 @@ def main():
     cost_section(rows, out)
     sweep_section(rows, out)
     recommendation_section(rows, out)
-    missing = sorted({r["problem"] for r in rows if r["status"] == "not_available"})
-    if missing:
-        out.append(f"Not available yet: {', '.join(missing)} (needs the solver's damage effect; the CSV keeps the slot).\n")
     temporary = markdown_path + ".tmp"
     with open(temporary, "w") as f:
         f.write("\n".join(out))

@@ -5,7 +5,12 @@ import math
 # Rates the scheme should show at a fixed horizon factor (derived in README.md):
 # waves: nonlocal dispersion O((k delta)^2) plus central-difference O((W dt)^2), dt ~ dx;
 # cut-off: exact in space, central differences only; layer: faces smeared over O(delta / h).
-EXPECTED_RATE = {"p_wave": 2.0, "shear_rotation_wave": 2.0, "cutoff_frequency": 2.0, "layer_shear": 1.0}
+# crack: the work of each bond's last step before it breaks, O(dt) at a fixed dx / dt ratio
+# and, at a fixed safety factor, the same share of w_cr at every spacing (the tip crosses a
+# horizon in a fixed number of steps): rate 0 in dx, rate 1 in the safety factor.
+EXPECTED_RATE = {"p_wave": 2.0, "shear_rotation_wave": 2.0, "cutoff_frequency": 2.0, "layer_shear": 1.0,
+                 "crack_energy": 0.0}
+EXPECTED_SAFETY_RATE = {"crack_energy": 1.0}
 NUMBERS = ("spacing_m", "horizon_factor", "safety", "stabilization", "error", "signed_error", "measured", "analytic", "load_average",
            "time_step_s", "setup_seconds", "wall_seconds", "bond_updates", "bond_updates_per_second")
 INTEGERS = ("dimension", "resolution", "threads", "points", "bonds", "steps", "peak_memory_bytes")

@@ -42,7 +42,12 @@ def full_study():
     for g in (0.0, 0.05, 0.1, 0.2, 0.5, 1.0):
         runs += [run(p, "stabilization", 80, stabilization=g) for p in ("p_wave", "shear_rotation_wave")]
         runs.append(run("layer_shear", "stabilization", 40, stabilization=g))
-    runs.append(run("crack_energy", "spacing", 40))
+    # The crack (rows across a 10 mm strip): its error is the breaking step's work, set by the
+    # safety factor; the other sweeps at 20 rows and safety 0.2.
+    runs += [run("crack_energy", "spacing", n, safety=0.2) for n in (16, 20, 24, 32)]
+    runs += [run("crack_energy", "safety", 20, safety=s) for s in (0.1, 0.2, 0.4, 0.8)]
+    runs += [run("crack_energy", "horizon_factor", 20, safety=0.2, horizon_factor=m) for m in (2.55, 3.05, 4.05)]
+    runs += [run("crack_energy", "stabilization", 20, safety=0.2, stabilization=g) for g in (0.1, 0.2, 0.3)]
     return runs
 
 
@@ -57,7 +62,7 @@ def quick_study():
     runs += [run("p_wave", "horizon_factor", 40, horizon_factor=m) for m in (2.05, 5.0)]
     runs += [run("p_wave", "safety", 40, safety=s) for s in (0.4, 0.95)]
     runs += [run("p_wave", "stabilization", 40, stabilization=g) for g in (0.0, 0.5)]
-    runs.append(run("crack_energy", "spacing", 40))
+    runs += [run("crack_energy", "safety", 20, safety=s) for s in (0.2, 0.4, 0.8)]
     return runs
 
 

@@ -101,10 +101,12 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   const solver::PointData& p = model.points;
   const solver::BondFamilies& f = model.bonds;
   auto crossing = [&](std::size_t i, std::int64_t b) {
-    const double yi = p.position[i * D + 1], dy = f.xi[b * D + 1];
+    double xi[3];
+    solver::bond_vector(f, p, i, b, xi);
+    const double yi = p.position[i * D + 1], dy = xi[1];
     const double yj = yi + dy;
     if (!((yi < y_crack) != (yj < y_crack))) return false;
-    const double x = p.position[i * D] + (y_crack - yi) / dy * f.xi[b * D];
+    const double x = p.position[i * D] + (y_crack - yi) / dy * xi[0];
     return x > x_tip;
   };
   auto count_crossing = [&](bool intact_only) {
