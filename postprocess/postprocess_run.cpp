@@ -361,6 +361,22 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
     summary.set("shear_band_angles_deg", angles);
     summary.set("shear_band_width_m", bands.mean_width_m);
     summary.set("shear_band_widths_m", widths);
+    // Each band's centre line as well, so a check can tell conjugate bands (one of positive,
+    // one of negative slope) and find the points inside a band.
+    auto details = JsonValue::array();
+    for (const auto& b : bands.bands) {
+      auto band = JsonValue::object();
+      band.set("angle_deg", b.angle_deg);
+      band.set("direction_deg", b.direction_deg);
+      auto centre = JsonValue::array();
+      centre.push(b.centre_x);
+      centre.push(b.centre_y);
+      band.set("centre_m", centre);
+      band.set("width_m", b.width_m);
+      band.set("points", static_cast<std::uint64_t>(b.points));
+      details.push(band);
+    }
+    summary.set("shear_bands", details);
     if (!bands.note.empty()) notes.push_back("shear bands: " + bands.note);
   } else if (has_plastic) {
     notes.push_back("shear-band metrics are measured in 2-D runs only");

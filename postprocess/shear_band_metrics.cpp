@@ -302,6 +302,17 @@ ShearBandResult measure_shear_bands(const std::vector<double>& x, const std::vec
     }
   }
 
+  // Two lines that the refinement drew onto one direction are not conjugate bands (e.g. the
+  // strain on both flanks of a void, which the Hough step took for two lines 30+ degrees apart):
+  // keep the stronger one only.
+  if (lines.size() == 2 &&
+      angular_distance_deg(lines[0].direction / kDegree, lines[1].direction / kDegree) < settings.min_separation_deg) {
+    result.note = "the second line converged to within " + std::to_string(static_cast<int>(settings.min_separation_deg)) +
+                  " degrees of the first band's direction: one band";
+    lines.pop_back();
+    members.pop_back();
+  }
+
   for (std::size_t k = 0; k < lines.size(); ++k) {
     ShearBand band;
     band.direction_deg = lines[k].direction / kDegree;

@@ -31,7 +31,7 @@ struct ShearBandResult {
   std::vector<ShearBand> bands;      // strongest first; empty if no localization
   std::optional<double> mean_angle_deg;
   std::optional<double> mean_width_m;
-  std::string note;                  // why no band was found, if none
+  std::string note;                  // why no band (or only one) was found
 };
 
 // x, y: point positions [m]; strain: equivalent plastic shear strain per point; include:

@@ -151,6 +151,15 @@ TEST(PostOutput, SummaryCarriesRunCountsResolvedBlocksAndMetrics) {
   EXPECT_NEAR(summary["shear_band_angle_deg"].as<double>(), std::atan2(0.6, 0.8) * 180.0 / std::numbers::pi, 1.0);
   EXPECT_NEAR(summary["shear_band_width_m"].as<double>(), 2.0 * std::sqrt(2.0 * std::log(2.0)) * 3e-3, 1e-3);
   EXPECT_DOUBLE_EQ(summary["shear_band_time_s"].as<double>(), 3e-6);
+  // The per-band details: the same angle and width, the line's direction (positive slope here)
+  // and a centre on the generated band's centre line (through the fixture's band centre).
+  ASSERT_EQ(summary["shear_bands"].size(), 1u);
+  const YAML::Node band = summary["shear_bands"][0];
+  EXPECT_DOUBLE_EQ(band["angle_deg"].as<double>(), summary["shear_band_angle_deg"].as<double>());
+  EXPECT_DOUBLE_EQ(band["width_m"].as<double>(), summary["shear_band_width_m"].as<double>());
+  EXPECT_NEAR(band["direction_deg"].as<double>(), band["angle_deg"].as<double>(), 1e-12);
+  ASSERT_EQ(band["centre_m"].size(), 2u);
+  EXPECT_GT(band["points"].as<long>(), 0);
 
   // The fixture's crack runs from the pre-crack (8 mm) 6.7 mm per snapshot: it starts in the
   // second snapshot, never branches and neither stops for 5 us nor reaches a boundary.

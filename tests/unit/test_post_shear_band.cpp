@@ -165,3 +165,24 @@ TEST(PostShearBand, UniformOrZeroStrainHasNoBand) {
 }
 
 }  // namespace
+
+TEST(PostShearBand, StrainOnBothFlanksOfAVoidIsNotTwoBands) {
+  // What a run with a central void gave (workflows/shear-band, README "Seed"): strain on the
+  // two flanks of the hole, two short parallel vertical strips. The Hough step takes the second
+  // strip for a line at least 30 degrees from the first, and the refinement then turns both
+  // lines vertical: two "bands" with one direction are not conjugate bands, so one is kept.
+  Lattice lattice(0.075, 0.18, 2.5e-3);
+  std::vector<double> strain(lattice.x.size());
+  for (std::size_t i = 0; i < strain.size(); ++i) {
+    const double px = lattice.x[i], py = lattice.y[i];
+    const double along = std::exp(-0.5 * std::pow((py - 0.09) / 6e-3, 2));
+    strain[i] = 0.1 * along * (band(px, py, 0.0285, 0.09, 90.0, 5e-3) + band(px, py, 0.0465, 0.09, 90.0, 5e-3));
+  }
+  ShearBandSettings settings;
+  settings.spacing = lattice.spacing;
+  const auto result = measure_shear_bands(lattice.x, lattice.y, strain, lattice.include, settings);
+  ASSERT_FALSE(result.bands.empty()) << result.note;
+  if (result.bands.size() == 2)
+    EXPECT_GE(std::fabs(result.bands[0].direction_deg - result.bands[1].direction_deg), settings.min_separation_deg);
+  EXPECT_LE(result.bands.size(), 1u);
+}

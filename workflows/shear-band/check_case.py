@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""Physics checks of the shear-band case (CASES.md case 1), on the outputs of its runs.
+
+Usage: check_case.py --out OUT --runs phi35-psi15 [phi25-psi15 ...] [--quiet]
+
+Per run:
+  - the run completed;
+  - energy: the largest |balance error| of energy.csv (its last column) stays below 1 %;
+  - two conjugate bands: the postprocessor reports two bands, one rising and one falling to
+    the right, and each is a band, not a blob: the mean plastic shear strain on its arms
+    (inside the band, away from the crossing) is at least twice the mean outside the bands;
+  - the postprocessor's band angle agrees with an independent ridge fit (band_measures.py);
+  - micro-rotation concentrated in the bands: mean |w| inside at least 3x outside.
+Across runs: the band angle grows with the dilatancy angle (friction 35 deg) and the peak load
+grows with the friction angle (dilatancy 15 deg), both strictly.
+
+--quick (the reduced form of the test suite, `make quick`: the long runs at 4x the platen
+speed) does not assert the micro-rotation ratio and the ridge fit, and prints them as SKIP
+with the measured value: at 4x the speed the bands are wider and less mature at the end
+(when this was written: widths 24-34 mm against 19-27 mm, rotation ratios 2.5-4.2 against
+3.3-7.0 for the long runs), and a 45-degree band 34 mm wide leaves no lattice row whose
+maximum lies inside the 75 mm interior for the ridge fit. The full checks are `make check`
+and `make check-long`.
+Prints one PASS/FAIL/SKIP line per check; exit 1 if any fails, 2 if the outputs are unusable.
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+from band_measures import BandRegions, bands_of
+from shear_band_fields import LastSnapshot, RunOutputError, parse_run_name, read_csv_columns, read_json
+
+MAX_BALANCE_ERROR = 0.01  # the issue: no run with an energy balance error above 1 %
+MIN_ROTATION_RATIO = 3.0  # the issue: mean |w| inside the bands >= 3x outside
+# A band carries at least twice the strain of the rest of the specimen. Inside a band by the
+# postprocessor's definition (the full width at half maximum), the strain is above half the
+# band's peak; a mean twice the outside mean says the outside is not a plateau at that level,
+# i.e. the strain is localized in the band. The nearly elastic run with the
+# triaxial-compression cone, whose faint X the postprocessor still reports as two bands,
+# measured 1.4; the long runs 2.9-5.9 (results.md).
+MIN_STRAIN_CONTRAST = 2.0
+# Independent ridge fit against the postprocessor's angle: the ridge points are interpolated
+# to a fraction of dx and the arms span 60-100 mm of the 75 x 180 mm interior, so a ridge
+# error of dx/2 over 60 mm is 1.2 deg at dx = 2.5 mm; the postprocessor's own error on the
+# case lattice with noise is 1.5 deg (tests/unit/test_post_shear_band.cpp). Sum: 3 deg.
+MAX_RIDGE_DIFFERENCE_DEG = 3.0
+FRICTION_SWEEP_DILATANCY = 15.0  # deg, CASES.md
+DILATANCY_SWEEP_FRICTION = 35.0  # deg, CASES.md
+
+
+def run_measures(folder):
+    """What the checks and the report need from one run folder (raises RunOutputError)."""
+    info = read_json(os.path.join(folder, "run", "run_info.json"))
+    summary = read_json(os.path.join(folder, "post", "summary.json"))
+    energy_path = os.path.join(folder, "run", "energy.csv")
+    energy = read_csv_columns(energy_path)
+    last_column = list(energy)[-1]
+    if last_column != "balance_error":
+        raise RunOutputError(f"{energy_path}: last column is '{last_column}' (expected balance_error)")
+    balance = energy["balance_error"]
+    measures = {
+        "info": info,
+        "summary": summary,
+        "worst_balance_error": float(np.max(np.abs(balance[1:]))) if len(balance) > 1 else 0.0,
+        "plastic_dissipation_J": float(energy["plastic_dissipation_J"][-1]),
+        "external_work_J": float(energy["external_work_J"][-1]),
+        "bands": bands_of(summary),
+        "contrasts": [], "ridge": [], "rotation_ratio": None,
+    }
+    snapshot = LastSnapshot(os.path.join(folder, "post"), summary["horizon_m"])
+    measures["max_plastic_shear_strain"] = float(snapshot.plastic_shear_strain[snapshot.interior].max())
+    bands = measures["bands"]
+    if bands and all(b.width for b in bands):
+        regions = BandRegions(snapshot, bands)
+        measures["contrasts"] = [regions.strain_contrast(k) for k in range(len(bands))]
+        measures["ridge"] = [regions.ridge_angle(k, summary["spacing_m"]) for k in range(len(bands))]
+        measures["rotation_ratio"] = regions.rotation_ratio()
+    return measures
+
+
+def check(out, runs, report, quick=False):
+    results = {}
+    for name in runs:
+        phi, psi = parse_run_name(name)
+        m = run_measures(os.path.join(out, name))
+        results[name] = (phi, psi, m)
+        status = m["info"].get("status")
+        report(status == "completed", f"{name}: run status '{status}' (expected completed)")
+        report(m["worst_balance_error"] < MAX_BALANCE_ERROR,
+               f"{name}: largest |energy balance error| {m['worst_balance_error']:.2g} (limit {MAX_BALANCE_ERROR:g})")
+        bands = m["bands"]
+        slopes = sorted(b.slope_sign for b in bands)
+        conjugate = len(bands) == 2 and slopes == [-1, 1]
+        contrasts = m["contrasts"]
+        localized = conjugate and all(c is not None and c >= MIN_STRAIN_CONTRAST for c in contrasts)
+        if not bands:
+            notes = "; ".join(m["summary"].get("notes") or []) or "no band"
+            detail = f"the postprocessor found no band ({notes})"
+        else:
+            detail = ", ".join(
+                f"direction {b.direction:.1f} deg, width {1e3 * b.width:.1f} mm, arm/outside strain "
+                + ("n/a" if c is None else f"{c:.2f}")
+                for b, c in zip(bands, contrasts or [None] * len(bands)))
+        report(localized, f"{name}: two conjugate bands (one rising, one falling, arm/outside strain >= "
+                          f"{MIN_STRAIN_CONTRAST:g}): {detail}")
+        if bands and m["ridge"]:
+            pairs = [(b.angle, r) for b, (r, _) in zip(bands, m["ridge"])]
+            ok = all(r is not None and abs(a - r) <= MAX_RIDGE_DIFFERENCE_DEG for a, r in pairs)
+            report(None if quick else ok, f"{name}: band angles {', '.join(f'{a:.1f}' for a, _ in pairs)} deg against the ridge fit "
+                       f"{', '.join('n/a' if r is None else f'{r:.1f}' for _, r in pairs)} deg "
+                       f"(within {MAX_RIDGE_DIFFERENCE_DEG:g})")
+        ratio = m["rotation_ratio"]
+        report(None if quick else ratio is not None and ratio >= MIN_ROTATION_RATIO,
+               f"{name}: mean |micro-rotation| inside / outside the bands = "
+               f"{'n/a (no bands)' if ratio is None else f'{ratio:.2f}'} (need >= {MIN_ROTATION_RATIO:g})")
+
+    def sweep(fixed_index, fixed_value, varied_index, value_of, label, unit):
+        members = sorted((r for r in results.values() if r[fixed_index] == fixed_value), key=lambda r: r[varied_index])
+        values = [(r[varied_index], value_of(r[2])) for r in members]
+        text = ", ".join(f"{v:g} deg: " + ("none" if x is None else f"{x:.4g} {unit}") for v, x in values)
+        if len(values) < 2:
+            report(False, f"{label}: needs at least two runs of the sweep ({text or 'none'})")
+            return
+        ok = all(x is not None for _, x in values) and all(a[1] < b[1] for a, b in zip(values, values[1:]))
+        report(ok, f"{label} (strictly): {text}")
+
+    sweep(0, DILATANCY_SWEEP_FRICTION, 1, lambda m: m["summary"].get("shear_band_angle_deg"),
+          f"band angle grows with the dilatancy angle at friction {DILATANCY_SWEEP_FRICTION:g} deg", "deg")
+    sweep(1, FRICTION_SWEEP_DILATANCY, 0, lambda m: m["summary"].get("peak_load_N"),
+          f"peak load grows with the friction angle at dilatancy {FRICTION_SWEEP_DILATANCY:g} deg", "N")
+    return results
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", required=True, help="folder holding one sub-folder per run")
+    ap.add_argument("--runs", nargs="+", required=True, help="run names phi<deg>-psi<deg>[-variant]")
+    ap.add_argument("--quick", action="store_true", help="the reduced form: see above")
+    args = ap.parse_args()
+    failures = 0
+
+    def report(ok, text):
+        """ok: True (PASS), False (FAIL) or None (SKIP: measured, not asserted)."""
+        nonlocal failures
+        print(("SKIP " if ok is None else "PASS " if ok else "FAIL ") + text)
+        failures += 1 if ok is False else 0
+
+    try:
+        check(args.out, args.runs, report, quick=args.quick)
+    except (RunOutputError, KeyError) as e:
+        print(f"check_case: cannot read the outputs: {e}", file=sys.stderr)
+        return 2
+    print(f"{failures} check(s) failed" if failures else "all checks passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

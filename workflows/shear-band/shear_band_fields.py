@@ -1,0 +1,95 @@
+"""Reading one shear-band run's outputs for check_case.py and report_case.py.
+
+A run folder (out/<run-name>/) holds run/ (solver) and post/ (postprocessor). Everything here
+comes from those files: post/summary.json, post/load_curve.csv, run/energy.csv,
+run/run_info.json and the last snapshot post/results/*.vtu (through post/results.pvd, so the
+frame order is the postprocessor's).
+"""
+import csv
+import json
+import os
+import re
+import xml.etree.ElementTree as ElementTree
+
+import numpy as np
+
+
+class RunOutputError(Exception):
+    """A run's outputs are missing or unreadable (the message names the file)."""
+
+
+def read_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        raise RunOutputError(f"{path}: {e}") from e
+
+
+def read_csv_columns(path):
+    """Columns of a CSV file with a header row, as float arrays keyed by name."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        raise RunOutputError(f"{path}: {e}") from e
+    if len(rows) < 2:
+        raise RunOutputError(f"{path}: no data rows")
+    header, data = rows[0], rows[1:]
+    try:
+        values = np.array([[float(v) for v in row] for row in data if row])
+    except ValueError as e:
+        raise RunOutputError(f"{path}: {e}") from e
+    return {name: values[:, i] for i, name in enumerate(header)}
+
+
+def parse_run_name(name):
+    """'phi35-psi15' or 'phi35-psi15-long' -> (35.0, 15.0): the angles the Makefile sets for
+    that run (the optional last word names the variant: long, quick, triaxial)."""
+    m = re.fullmatch(r"phi([\d.]+)-psi([\d.]+)(-(long|quick|triaxial))?", name)
+    if not m:
+        raise RunOutputError(f"run name '{name}': expected phi<deg>-psi<deg>[-long|-quick|-triaxial]")
+    return float(m.group(1)), float(m.group(2))
+
+
+class LastSnapshot:
+    """The last frame of post/results.pvd: body points, deformed positions and fields."""
+
+    def __init__(self, post_dir, horizon):
+        import meshio  # imported here so the table-only paths do not need it
+
+        pvd = os.path.join(post_dir, "results.pvd")
+        try:
+            frames = ElementTree.parse(pvd).getroot().findall(".//DataSet")
+        except (OSError, ElementTree.ParseError) as e:
+            raise RunOutputError(f"{pvd}: {e}") from e
+        if not frames:
+            raise RunOutputError(f"{pvd}: no frames")
+        path = os.path.join(post_dir, frames[-1].get("file"))
+        try:
+            mesh = meshio.read(path)
+        except Exception as e:  # meshio raises several types on a bad file
+            raise RunOutputError(f"{path}: {e}") from e
+        self.path = path
+        self.time = float(frames[-1].get("timestep"))
+        data = mesh.point_data
+        for name in ("region", "boundary_id", "displacement", "rotation", "plastic_shear_strain"):
+            if name not in data:
+                raise RunOutputError(f"{path}: no point array '{name}' (the scene's output.fields must hold it)")
+        self.reference = mesh.points[:, :2]
+        self.displacement = data["displacement"][:, :2]
+        self.rotation = np.asarray(data["rotation"]).reshape(len(self.reference), -1)[:, -1]
+        self.plastic_shear_strain = np.asarray(data["plastic_shear_strain"]).ravel()
+        self.body = np.asarray(data["region"]).ravel() == 0
+        # Same interior as the postprocessor's shear-band metrics (postprocess/README.md):
+        # body points farther than 2 horizons from every boundary-layer or loaded point,
+        # because strain and rotation concentrate under the platens and the pressure layers.
+        boundary = (np.asarray(data["region"]).ravel() != 0) | (np.asarray(data["boundary_id"]).ravel() != 0)
+        from scipy.spatial import cKDTree
+
+        distance, _ = cKDTree(self.reference[boundary]).query(self.reference)
+        self.interior = self.body & (distance > 2.0 * horizon)
+
+    @property
+    def deformed(self):
+        return self.reference + self.displacement
