@@ -113,19 +113,22 @@ TEST_F(StabilityRefusals, CoupleModulusMuCInGigapascalIsRefusedBeforeTheFirstSte
   record_margin({"02-couple-modulus-mu-c-1000x", "couple modulus mu_c entered in GPa for MPa-scale (1000 x), fixed step 0.1 us",
                  "refused before the first step: exit 2 naming material.mu_c",
                  "exit " + std::to_string(r.exit_code) + "; critical step with the slip " + sci(slip_critical) +
-                     " s; message " + (names_mu_c ? "names material.mu_c" : "credits lambda and mu, not mu_c (solver TODO)"),
+                     " s; message " + (names_mu_c ? "names material.mu_c" : "credits lambda and mu, not mu_c"),
                  "given step / slipped critical step " + sci(0.1e-6 / slip_critical) + " (refused)",
-                 r.exit_code == 2 && nothing_written(run)});
+                 r.exit_code == 2 && nothing_written(run) && names_mu_c});
 }
 
-// The refusal must also tell the user which parameter to fix. Today the solver names the
-// translational mode "driven by material.lambda and material.mu (P-wave modulus ...)", which
-// did not change; the stiff parameter is mu_c (shear modulus mu + mu_c). Disabled until the
-// solver's attribution includes mu_c (README.md, pending cases).
-TEST_F(StabilityRefusals, DISABLED_CoupleModulusMuCRefusalNamesMuC) {
+// The refusal must also tell the user which parameter to fix. The limiting block is the
+// translational one (mu_c stiffens the shear waves, (mu + mu_c) / rho), and the solver credits it
+// to mu_c because the same estimate without mu_c leaves less than half of omega_max^2
+// (solver/critical_time_step.cpp); before that fix it named lambda and mu, which did not change.
+TEST_F(StabilityRefusals, CoupleModulusMuCRefusalNamesMuC) {
   const CommandResult r = solve_with_mu_c_slip(fresh_directory("slip-mu-c-message"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.output, "material.mu_c")) << r.output;
+  EXPECT_TRUE(contains(r.output, "translational")) << r.output;
+  // It names mu_c as the driver, not lambda and mu.
+  EXPECT_FALSE(contains(r.output, "driven by material.lambda")) << r.output;
 }
 
 TEST_F(StabilityRefusals, BadTimeStepIsRefusedWithTheKeyAndNothingWritten) {
