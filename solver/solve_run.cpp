@@ -194,6 +194,10 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   const auto steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end / dt - 1e-9)));
   if (std::abs(static_cast<double>(steps) * dt - end) > 1e-9 * end) dt = end / static_cast<double>(steps);
   scene.time.step = dt;
+  if (options.inject_nan && options.inject_nan->step > steps)
+    throw InputError("mppm-solve: --inject-nan: STEP " + std::to_string(options.inject_nan->step) +
+                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
+                     std::to_string(steps) + ")");
   model.set_breakage_time_step(dt, critical.step);
 
   RunWriter writer(options.run_directory, options.force);

@@ -303,7 +303,8 @@ TEST_F(StabilityGuardsEndToEnd, NanInjectedInOnePointStopsMppmSolveWithExitCode3
   // The hook itself refuses what it cannot do (exit 2, nothing written).
   const std::vector<std::pair<std::string, std::string>> bad{
       {"0:1", "STEP"}, {"x:1", "STEP"}, {"5:100000", "POINT"}, {"5:1:pressure", "FIELD"}, {"5", "STEP:POINT"},
-      {"5:1:velocity:2", "COMPONENT"}};
+      {"5:1:velocity:2", "COMPONENT"},
+      {"100000:1", "beyond"}};
   for (const auto& [hook, word] : bad) {
     const std::string dir = fresh_directory("nan-inject-bad");
     const CommandResult r = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points",
