@@ -1,6 +1,7 @@
 // Largest eigenvalue of M^-1 K with the internal-force kernel as the operator (K v = -f(v) V).
 #include "solver/critical_time_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -128,31 +129,65 @@ CriticalTimeStep critical_time_step(Model& model) {
   out.translational = 2.0 / std::sqrt(trans.lambda);
   out.iterations = coupled.iterations;
   CosseratConstants& c = model.constants;
-  std::string trans_driver = "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " +
-                             number(c.lambda + 2.0 * c.mu) + " Pa, with numerics.stabilization G_s = " +
-                             number(c.stabilization) + ") over the density rho = solid_fraction * density = " +
-                             number(c.density) + " kg/m^3";
+  const std::string density = " over the density rho = solid_fraction * density = " + number(c.density) + " kg/m^3";
+  const std::string trans_driver = "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " +
+                                   number(c.lambda + 2.0 * c.mu) + " Pa, with numerics.stabilization G_s = " +
+                                   number(c.stabilization) + ")" + density;
   out.limiting_mode = "translational";
   out.driver = trans_driver;
+  // Which stiffness drives a block is told by the same estimate with a modulus switched off: the
+  // operator is linear in the moduli, and each term of the energy is positive semi-definite, so
+  // switching one off can only lower omega_max^2; the block is credited to the modulus without
+  // which less than half of omega_max^2 is left. These extra estimates run only for the limiting
+  // block, with a coarser tolerance (they name a parameter, they do not set the step).
+  auto estimate_without = [&](Block b, auto&& switch_off) {
+    const CosseratConstants saved = c;
+    const std::vector<double> saved_ck = p.stabilization_ck;
+    switch_off();
+    const OperatorEstimate e = largest_eigenvalue(model, b, 1e-4, 60);
+    c = saved;
+    p.stabilization_ck = saved_ck;
+    return e.lambda;
+  };
+  const std::string inertia = " over the micro-inertia I = 1/2 pi rho l^2 = " + number(c.micro_inertia) +
+                              " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
+  double rot_lambda = 0.0;
   if (p.rotation_components > 0) {
     const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, 1e-5, 100);
     out.rotational = 2.0 / std::sqrt(rot.lambda);
-    if (out.rotational < out.translational) {
-      out.limiting_mode = "rotational";
-      // Which stiffness drives the rotational block: the same estimate without the couple
-      // modulus mu_c keeps only the bending part (B_w and its stabilization).
-      const double mu_c = c.mu_c;
-      c.mu_c = 0.0;
-      const OperatorEstimate bending = largest_eigenvalue(model, Block::rotational, 1e-4, 60);
-      c.mu_c = mu_c;
-      const std::string inertia = " over the micro-inertia I = 1/2 pi rho l^2 = " + number(c.micro_inertia) +
-                                  " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
-      if (bending.lambda >= 0.5 * rot.lambda)
-        out.driver = std::string("material.couple_moduli (bending modulus B_w = ") +
-                     (c.dimension == 2 ? "a3" : "a2") + " = " + number(c.bending_modulus) + " N)" + inertia;
-      else
-        out.driver = "material.mu_c = " + number(c.mu_c) + " Pa" + inertia;
+    rot_lambda = rot.lambda;
+  }
+  if (out.rotational > 0.0 && out.rotational < out.translational) {
+    out.limiting_mode = "rotational";
+    // Three stiffnesses act on a micro-rotation: the bending modulus B_w (couple stress and its
+    // stabilization), mu_c on the skew strain -[w]_x, and, at the lattice scale, lambda and mu
+    // through the 1/2 (w_i + w_j) x xi term of the composite state (for a rotation pattern of high
+    // wave number the family average of w_i + w_j is anisotropic: it has a symmetric strain part)
+    // and the stabilization of U. First the bending modulus alone (lambda = mu = mu_c = 0, the
+    // translational stabilization C:K^-1 off); if that is not it, the estimate without mu_c tells
+    // mu_c from lambda and mu.
+    const double bending = estimate_without(Block::rotational, [&] {
+      c.lambda = c.mu = c.mu_c = 0.0;
+      std::fill(p.stabilization_ck.begin(), p.stabilization_ck.end(), 0.0);
+    });
+    if (bending >= 0.5 * rot_lambda) {
+      out.driver = std::string("material.couple_moduli (bending modulus B_w = ") + (c.dimension == 2 ? "a3" : "a2") +
+                   " = " + number(c.bending_modulus) + " N)" + inertia;
+    } else if (c.mu_c > 0.0 && estimate_without(Block::rotational, [&] { c.mu_c = 0.0; }) < 0.5 * rot_lambda) {
+      out.driver = "material.mu_c = " + number(c.mu_c) + " Pa" + inertia;
+    } else {
+      out.driver = "material.lambda and material.mu (lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
+                   " Pa) acting on the micro-rotation through the composite state U = (u_j - u_i) - 1/2 (w_i + w_j) x xi "
+                   "(the bending modulus B_w = " + number(c.bending_modulus) + " N alone gives " +
+                   number(bending / rot_lambda) + " of omega_max^2)" + inertia;
     }
+  } else if (c.mu_c > 0.0 && p.rotation_components > 0 &&
+             estimate_without(Block::translational, [&] { c.mu_c = 0.0; }) < 0.5 * trans.lambda) {
+    // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
+    // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
+    out.driver = "material.mu_c = " + number(c.mu_c) + " Pa (the couple modulus stiffens the shear waves: mu + mu_c = " +
+                 number(c.mu + c.mu_c) + " Pa against the P-wave modulus lambda + 2 mu = " +
+                 number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
   }
   p.displacement = saved_u;
   p.rotation = saved_w;

@@ -1,6 +1,15 @@
 // The running energy check of a run (SPEC section 9): energy growth that the external work does
 // not explain stops the run. Relative to the largest energy seen so far, so that round-off in a
-// run whose energy is (still, or again) near zero is never mistaken for growth.
+// run whose energy is (still, or again) near zero is never mistaken for growth; the scale also
+// holds the size of the kinetic-energy terms (EnergyState::kinetic_terms), so that the round-off
+// of the step in which a load starts, when every energy is still round-off, is not either.
+//
+// The balance counts the dissipations (plastic, fracture) as energy that left the model. A
+// dissipation can only grow: where an accumulated dissipation decreases between two checked rows,
+// the process put that energy into the model (e.g. bonds whose breaking raised the stored and
+// kinetic energy, booked as a negative fracture dissipation), and a balance that books it closes
+// while the model gained energy from nothing. The check therefore adds every such decrease to the
+// unexplained growth, and names the process in its reason.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -17,13 +26,21 @@ class EnergyGuard {
   explicit EnergyGuard(double tolerance, std::int64_t start_step = 50)
       : tolerance_(tolerance), start_step_(start_step) {}
 
-  // Returns the reason to stop, if any.
+  // Returns the reason to stop, if any. Call it at every energy row (the decreases of the
+  // dissipations are measured from row to row).
   std::optional<std::string> check(std::int64_t step, const EnergyState& energy, double initial_total);
+
+  // Energy put into the model by a dissipative process so far [J]: the sum of the row-to-row
+  // decreases of the plastic and of the fracture dissipation.
+  double created_by_plasticity() const { return created_plastic_; }
+  double created_by_breakage() const { return created_fracture_; }
 
  private:
   double tolerance_;
   std::int64_t start_step_;
   double scale_ = 0.0;
+  double last_plastic_ = 0.0, last_fracture_ = 0.0;
+  double created_plastic_ = 0.0, created_fracture_ = 0.0;
 };
 
 }  // namespace mppm::solver

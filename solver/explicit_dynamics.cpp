@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mppm::solver {
 
@@ -51,27 +52,32 @@ void ExplicitDynamics::evaluate_energy() {
   // the trapezoid-rule work of the loads for a linear elastic model (the plain 1/2 M v^n . v^n
   // differs from it by O((omega dt)^2) in the highest modes).
   const double h2 = 0.25 * dt_ * dt_;
-  double kinetic = 0.0, rotational = 0.0;
+  double kinetic = 0.0, rotational = 0.0, terms = 0.0;
   for (std::size_t i = 0; i < p.owned; ++i) {
-    double v2 = 0.0;
+    double v2 = 0.0, t2 = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
       if (fixed_u[k]) continue;
       const double a = (p.force[k] + body_force_[k]) / rho;
       v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
+      t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
     }
     kinetic += 0.5 * rho * p.volume[i] * v2;
+    terms += 0.5 * rho * p.volume[i] * t2;
     if (R > 0) {
-      double s2 = 0.0;
+      double s2 = 0.0, r2 = 0.0;
       for (int c = 0; c < R; ++c) {
         const std::size_t k = i * R + c;
         if (fixed_w[k]) continue;
         const double a = p.moment[k] / inertia;
         s2 += p.spin[k] * p.spin[k] - h2 * a * a;
+        r2 += p.spin[k] * p.spin[k] + h2 * a * a;
       }
       rotational += 0.5 * inertia * p.volume[i] * s2;
+      terms += 0.5 * inertia * p.volume[i] * r2;
     }
   }
+  energy_.kinetic_terms = terms;
   const InternalEnergy e = internal_energy(model_);
   energy_.kinetic = kinetic;
   energy_.rotational_kinetic = rotational;
@@ -143,6 +149,7 @@ void ExplicitDynamics::step(bool with_energy) {
                            : static_cast<double>(steps_ + 1) * dt_;
   conditions_.prescribe(p, time_);
   compute_loads_and_forces(with_energy, true);
+  if (injection_ && injection_->step == steps_ + 1) inject_nan();
 
   // Second half kick, work increments (trapezoid: mean of the start and end forces times the
   // increment), non-finite guard.
@@ -192,9 +199,61 @@ void ExplicitDynamics::step(bool with_energy) {
   if (with_energy) evaluate_energy();
 }
 
+const char* NanInjection::name(Field f) {
+  switch (f) {
+    case Field::displacement: return "displacement";
+    case Field::velocity: return "velocity";
+    case Field::rotation: return "rotation";
+    case Field::rotation_rate: return "rotation_rate";
+    case Field::force: return "force";
+  }
+  return "?";
+}
+
+void ExplicitDynamics::inject_nan() {
+  PointData& p = model_.points;
+  const NanInjection& k = *injection_;
+  const std::size_t D = static_cast<std::size_t>(p.dimension), R = static_cast<std::size_t>(p.rotation_components);
+  const auto c = static_cast<std::size_t>(k.component);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  switch (k.field) {
+    case NanInjection::Field::displacement: p.displacement[k.point * D + c] = nan; break;
+    case NanInjection::Field::velocity: p.velocity[k.point * D + c] = nan; break;
+    case NanInjection::Field::force: p.force[k.point * D + c] = nan; break;
+    case NanInjection::Field::rotation: p.rotation[k.point * R + c] = nan; break;
+    case NanInjection::Field::rotation_rate: p.spin[k.point * R + c] = nan; break;
+  }
+}
+
+std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite() const {
+  const PointData& p = model_.points;
+  const auto D = static_cast<std::size_t>(p.dimension), R = static_cast<std::size_t>(p.rotation_components);
+  auto bad = [](const std::vector<double>& v, std::size_t i, std::size_t n) {
+    for (std::size_t c = 0; c < n; ++c)
+      if (!std::isfinite(v[i * n + c])) return true;
+    return false;
+  };
+  std::optional<NonFinitePoint> out;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const char* field = bad(p.displacement, i, D) ? "displacement"
+                        : bad(p.velocity, i, D)   ? "velocity"
+                        : R > 0 && bad(p.rotation, i, R) ? "rotation"
+                        : R > 0 && bad(p.spin, i, R)     ? "rotation_rate"
+                                                         : nullptr;
+    if (!field) continue;
+    if (!out) out = NonFinitePoint{i, field, 0};
+    ++out->points;
+  }
+  return out;
+}
+
 double ExplicitDynamics::balance_error() const {
   const double unexplained = energy_.accounted() - initial_total_ - energy_.external_work;
-  const double scale = std::max({std::abs(energy_.external_work), energy_.accounted(), initial_total_, 1e-300});
+  // Every magnitude the sum is made of: a negative dissipation (energy booked as put in by a
+  // process) or a negative work must not leave a scale of round-off behind.
+  const double scale = std::max({std::abs(energy_.external_work), std::abs(energy_.accounted()), energy_.total(),
+                                 initial_total_, energy_.kinetic_terms, std::abs(energy_.plastic_dissipation),
+                                 std::abs(energy_.fracture_dissipation), 1e-300});
   return unexplained / scale;
 }
 

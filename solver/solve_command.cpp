@@ -33,7 +33,9 @@ int solve_command(int argc, char** argv) {
       "exit codes: 0 success, 2 bad input, 3 numerical failure (run directory kept up to the\n"
       "last good snapshot), 1 other errors or interrupted (Ctrl-C: the run stops cleanly after\n"
       "its step with a last snapshot and status \"interrupted\")\n";
-  spec.value_options = {"-o", "--points"};
+  // --inject-nan STEP:POINT[:FIELD[:COMPONENT]] is a test hook (solver/README.md "Test hooks"), not
+  // listed in the usage: it makes the run fail on purpose.
+  spec.value_options = {"-o", "--points", "--inject-nan"};
   spec.flag_options = {"--force"};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) {
     if (cl.positional.size() != 1)
@@ -42,6 +44,8 @@ int solve_command(int argc, char** argv) {
     const auto out = cl.option("-o");
     if (!points) throw mppm::InputError("mppm-solve: --points POINTS.vtp is required (see --help)");
     if (!out) throw mppm::InputError("mppm-solve: -o RUN_DIR is required (see --help)");
+    std::optional<mppm::solver::NanInjection> inject_nan;
+    if (const auto hook = cl.option("--inject-nan")) inject_nan = mppm::solver::parse_nan_injection(*hook);
     const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
     const mppm::PointCloud cloud = mppm::read_point_cloud(*points);
     mppm::solver::SolveOptions options;
@@ -49,6 +53,7 @@ int solve_command(int argc, char** argv) {
     options.points_file = *points;
     options.force = cl.has_flag("--force");
     options.quiet = cl.quiet;
+    options.inject_nan = inject_nan;
     const mppm::solver::SolveResult result = mppm::solver::solve(scene, cloud, options);
     if (result.interrupted) {
       std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";

@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/input_error.hpp"
 #include "common/progress.hpp"
@@ -73,7 +76,68 @@ class Schedule {
   double next_ = 1.0;
 };
 
+// "1.5e-3, 2e-3" for the position of point i.
+std::string position_of(const PointData& p, std::size_t i) {
+  std::string s;
+  for (int c = 0; c < p.dimension; ++c) s += (c ? ", " : "") + text(p.position[i * p.dimension + c]);
+  return "(" + s + ") m";
+}
+
+// The reason of a stop on non-finite values: which point (the lowest index), which field, how many.
+std::string non_finite_reason(const ExplicitDynamics& dynamics) {
+  const auto bad = dynamics.first_non_finite();
+  if (!bad) return "non-finite displacement, rotation or velocity";
+  const PointData& p = dynamics.model().points;
+  return "non-finite " + bad->field + " at point " + std::to_string(bad->point) + " of the points file (0-based; region " +
+         std::to_string(p.region[bad->point]) + ", position " + position_of(p, bad->point) + "); " +
+         std::to_string(bad->points) + " point(s) non-finite";
+}
+
+// 1-based ("3") or 0-based ("17") non-negative integers of --inject-nan.
+std::int64_t injection_integer(const std::string& part, const std::string& what, const std::string& value) {
+  std::size_t used = 0;
+  long long v = -1;
+  try {
+    v = std::stoll(part, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != part.size() || part.empty() || v < 0)
+    throw InputError("mppm-solve: --inject-nan " + value + ": " + what + " '" + part +
+                     "' is not a non-negative integer (expected STEP:POINT[:FIELD[:COMPONENT]], e.g. 200:17:velocity)");
+  return v;
+}
+
 }  // namespace
+
+NanInjection parse_nan_injection(const std::string& value) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
+    parts.push_back(value.substr(start, at - start));
+  parts.push_back(value.substr(start));
+  if (parts.size() < 2 || parts.size() > 4)
+    throw InputError("mppm-solve: --inject-nan " + value +
+                     ": expected STEP:POINT[:FIELD[:COMPONENT]] (e.g. 200:17:velocity)");
+  NanInjection k;
+  k.step = injection_integer(parts[0], "STEP", value);
+  if (k.step < 1) throw InputError("mppm-solve: --inject-nan " + value + ": STEP counts from 1 (the first step)");
+  k.point = static_cast<std::size_t>(injection_integer(parts[1], "POINT", value));
+  if (parts.size() > 2) {
+    using F = NanInjection::Field;
+    bool known = false;
+    for (F f : {F::displacement, F::velocity, F::rotation, F::rotation_rate, F::force})
+      if (parts[2] == NanInjection::name(f)) {
+        k.field = f;
+        known = true;
+      }
+    if (!known)
+      throw InputError("mppm-solve: --inject-nan " + value + ": unknown FIELD '" + parts[2] +
+                       "' (expected displacement, velocity, rotation, rotation_rate or force)");
+  }
+  if (parts.size() > 3) k.component = static_cast<int>(injection_integer(parts[3], "COMPONENT", value));
+  return k;
+}
 
 SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
@@ -97,6 +161,20 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     throw InputError(options.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
                      text(scene.geometry.horizon()) +
                      " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
+  if (const auto& k = options.inject_nan) {
+    // Checked against the points before anything is written (exit 2 like any bad option).
+    const bool rotational = k->field == NanInjection::Field::rotation || k->field == NanInjection::Field::rotation_rate;
+    const int components = rotational ? model.points.rotation_components : model.dimension();
+    if (k->point >= model.points.owned)
+      throw InputError("mppm-solve: --inject-nan: POINT " + std::to_string(k->point) + " is not a point of " +
+                       options.points_file + " (expected 0 to " + std::to_string(model.points.owned - 1) + ")");
+    if (components == 0)
+      throw InputError(std::string("mppm-solve: --inject-nan: FIELD ") + NanInjection::name(k->field) +
+                       " needs the micropolar effect (this run has no micro-rotation)");
+    if (k->component >= components)
+      throw InputError("mppm-solve: --inject-nan: COMPONENT " + std::to_string(k->component) + " of " +
+                       NanInjection::name(k->field) + " (expected 0 to " + std::to_string(components - 1) + ")");
+  }
   const CriticalTimeStep critical = critical_time_step(model);
   if (!(critical.step > 0.0 && std::isfinite(critical.step)))
     throw NumericalFailure(options.run_directory + ": the critical time step could not be estimated (" +
@@ -116,6 +194,10 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   const auto steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end / dt - 1e-9)));
   if (std::abs(static_cast<double>(steps) * dt - end) > 1e-9 * end) dt = end / static_cast<double>(steps);
   scene.time.step = dt;
+  if (options.inject_nan && options.inject_nan->step > steps)
+    throw InputError("mppm-solve: --inject-nan: STEP " + std::to_string(options.inject_nan->step) +
+                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
+                     std::to_string(steps) + ")");
   model.set_breakage_time_step(dt, critical.step);
 
   RunWriter writer(options.run_directory, options.force);
@@ -156,6 +238,10 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
                " (return map once per step; the critical step above is the elastic bound, which "
                "plastic flow does not lower)");
   for (const auto& w : scene.warnings) writer.log("warning: " + w);
+  if (const auto& k = options.inject_nan)
+    writer.log("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
+               " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
+               std::to_string(k->step));
   const auto available = available_fields(model);
   for (const auto& f : scene.output.fields)
     if (std::find(available.begin(), available.end(), f) == available.end())
@@ -174,6 +260,7 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   ExplicitDynamics dynamics(model, conditions, dt, scene.gravity);
   dynamics.set_damping(scene.numerics.damping);
   dynamics.set_clock(end, steps);
+  dynamics.set_nan_injection(options.inject_nan);
   dynamics.initialize();
 
   auto record_rows = [&] {
@@ -205,6 +292,11 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     const std::string message = "numerical failure at step " + std::to_string(dynamics.steps()) + ", t = " +
                                 text(dynamics.time()) + " s: " + reason +
                                 "; the last good snapshot is kept (try a smaller time.step or check the material)";
+    if (scene.effects.damage)
+      writer.log("at the failure: broken bonds " + std::to_string(model.broken_bonds) + " (pairs), fracture dissipation " +
+                 text(dynamics.energy().fracture_dissipation) + " J, detached points " +
+                 std::to_string(model.detached_points) + " (" + std::to_string(model.unstable_detached_points) +
+                 " of them for the time step's sake)");
     writer.log(message);
     update_info("numerical_failure", message);
     writer.flush(info);
@@ -216,17 +308,23 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   Schedule rows(scene.output.load_interval, dt, true);
   Schedule snapshots(scene.output.interval, dt, false);
   Progress progress("mppm-solve", steps, options.quiet);
-  EnergyGuard guard(scene.numerics.energy_check_tolerance);
+  constexpr std::int64_t kGuardStartStep = 50;
+  EnergyGuard guard(scene.numerics.energy_check_tolerance, kGuardStartStep);
+  // The energy check stops growth; energy that disappears without a dissipation that accounts for
+  // it is not an instability but a wrong answer all the same: reported at the end.
+  double worst_balance = 0.0;
   const InterruptionHandlers handlers;
   SolveResult r;
   for (std::int64_t s = 1; s <= steps; ++s) {
     const bool row = rows.due(s) || s == steps;
     const bool snap = snapshots.due(s) || s == steps;
     dynamics.step(row);
-    if (!dynamics.finite()) fail("non-finite displacement, rotation or velocity");
+    if (!dynamics.finite()) fail(non_finite_reason(dynamics));
     if (row) {
       record_rows();
       if (const auto reason = guard.check(s, dynamics.energy(), dynamics.initial_total_energy())) fail(*reason);
+      if (s >= kGuardStartStep && std::abs(dynamics.balance_error()) > std::abs(worst_balance))
+        worst_balance = dynamics.balance_error();
     }
     if (interruption_requested()) {
       clear_interruption();
@@ -244,12 +342,21 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     progress.update(s, "t = " + text(dynamics.time()) + " s");
   }
   if (!r.interrupted) {
-    update_info("completed", "");
+    std::string warning;
+    if (std::abs(worst_balance) > scene.numerics.energy_check_tolerance)
+      warning = "warning: the energy balance error reached " + text(worst_balance) +
+                " (beyond numerics.energy_check_tolerance " + text(scene.numerics.energy_check_tolerance) +
+                "): energy " + (worst_balance < 0.0 ? "disappeared" : "appeared") +
+                " that neither the external work nor a dissipation accounts for (energy.csv, balance_error)";
+    if (!warning.empty()) writer.log(warning);
+    update_info("completed", warning);
     writer.log("completed " + std::to_string(steps) + " steps in " + text(info.wall_seconds) +
                " s, final balance error " + text(dynamics.balance_error()) +
                (scene.effects.damage ? ", broken bonds " + std::to_string(model.broken_bonds) + " (pairs), fracture dissipation " +
                                            text(dynamics.energy().fracture_dissipation) + " J, detached points " +
-                                           std::to_string(model.detached_points)
+                                           std::to_string(model.detached_points) + " (" +
+                                           std::to_string(model.unstable_detached_points) +
+                                           " of them for the time step's sake)"
                                      : std::string()));
     writer.flush(info);
   }

@@ -7,6 +7,7 @@
 
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "solver/explicit_dynamics.hpp"
 
 namespace mppm::solver {
 
@@ -15,7 +16,15 @@ struct SolveOptions {
   std::string points_file = "points";  // named in messages
   bool force = false;                  // overwrite an earlier run in run_directory
   bool quiet = true;                   // no progress display
+  // Test hook (mppm-solve --inject-nan STEP:POINT[:FIELD[:COMPONENT]], solver/README.md "Test
+  // hooks"): a NaN appears in one point during one step, to test the guard end to end.
+  std::optional<NanInjection> inject_nan;
 };
+
+// Parses the value of --inject-nan: STEP:POINT[:FIELD[:COMPONENT]] with STEP >= 1, POINT the
+// 0-based index in the points file, FIELD displacement, velocity (default), rotation,
+// rotation_rate or force, COMPONENT 0-based (default 0). Throws InputError naming the option.
+NanInjection parse_nan_injection(const std::string& value);
 
 struct SolveResult {
   std::int64_t steps = 0;

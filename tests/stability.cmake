@@ -14,13 +14,15 @@ if(TARGET mppm_solver AND TARGET mppm_preprocess)
     stability/test_stability_hourglass.cpp
     stability/test_stability_guards.cpp
     stability/test_stability_refusals.cpp
+    stability/test_stability_fragmentation.cpp
+    stability/test_stability_damage_runs.cpp
   )
   # The exit-code cases run the stage executables of this build.
   add_dependencies(test_stability mppm-solve mppm-preprocess)
 
   # Long forms: the same checks over 10^5 steps.
   foreach(suite StabilityLengthScale StabilityEnergyBalance StabilityNearIncompressible StabilityHourglass
-                StabilitySoftening)
+                StabilitySoftening StabilityFragmentation StabilityCrackBranchingRate StabilityNotchedImpact3d)
     add_test(NAME stability.long.${suite}
       COMMAND test_stability --gtest_filter=${suite}.*)
     set_tests_properties(stability.long.${suite} PROPERTIES

@@ -28,7 +28,8 @@ std::string fresh_directory(const std::string& name);
 // ${CMAKE_BINARY_DIR}/bin/NAME
 std::string program(const std::string& name);
 
-// The points of a scene, made by the preprocessor library (cached per scene path).
+// The points of a scene, made by the preprocessor library (cached per scene path, spacing and
+// horizon factor: the cases override nothing else the lattice depends on).
 const PointCloud& points_of(const Scene& scene);
 
 // A run directory read back through its files, as a user or the postprocessor sees it.
@@ -50,6 +51,22 @@ struct RunReport {
   double final_total_energy = 0.0;
   double final_plastic_dissipation = 0.0;
   bool plastic_dissipation_never_decreases = true;  // row to row, beyond round-off
+  double final_fracture_dissipation = 0.0;
+  bool fracture_dissipation_never_decreases = true;  // row to row, beyond round-off
+  // Energy put into the model by bond breakage, as the energy check measures it
+  // (solver/energy_guard.hpp): the sum of the row-to-row decreases of the fracture dissipation.
+  double fracture_dissipation_decrease = 0.0;
+  // The balance error recomputed from the energy columns (kinetic + rotational + elastic +
+  // stabilization + plastic + fracture dissipation - external work - first row's total, over
+  // max(|work|, kinetic + stored + dissipated, first row's total)), worst over the rows whose scale
+  // is above 1e-12 of the run's largest (earlier rows hold round-off only), and the same without
+  // the fracture column: what the balance would say if it did not count the breaks.
+  double worst_recomputed_balance_error = 0.0;
+  double worst_balance_without_fracture = 0.0;
+  std::int64_t detached_points = -1;   // run_info.json
+  std::int64_t broken_bonds = -1;      // "broken bonds N (pairs)" of log.txt's last line (damage runs)
+  std::vector<std::string> snapshots;  // the snapshot files listed in run_info.json, in order
+  std::string log;                     // log.txt
 };
 RunReport read_run(const std::string& run_directory);
 

@@ -154,5 +154,53 @@ TEST(StabilityLengthScale, TranslationalStepIsRefusedAtTheSmallestLengthScale) {
                  !message.empty() && message.find("rotational") != std::string::npos && !written});
 }
 
+// Which parameter the log credits for the rotational step at small l (README.md, finding 2): the
+// solver credits a block to the modulus without which less than half of omega_max^2 is left
+// (solver/critical_time_step.cpp). At l = 0.05 mm that is lambda and mu, acting on the rotation
+// through the 1/2 (w_i + w_j) x xi term of the composite state, not the bending modulus a3. The
+// credit is checked against what the step actually depends on, with the scene's own moduli:
+// - a3 x 10 changes the critical step by less than 5 % (B_w / I is ~4e12 1/s^2 on this lattice,
+//   0.2 % of omega_max^2 at this l, so x 10 gives ~2 %; 5 % would still mean "not a3");
+// - mu_c = 0 leaves more than half of omega_max^2: the step grows by less than sqrt(2);
+// - lambda, mu and mu_c / 10 (a3 kept) lengthen the step by more than 2 x (sqrt(10) = 3.16 if
+//   they held all of omega_max^2; 1 if a3 held it).
+TEST(StabilityLengthScale, RotationalStepAtSmallLengthIsCreditedToWhatItDependsOn) {
+  const std::string scene = scene_path("elastic_block.yaml");
+  const double l = 0.05e-3;
+  const std::vector<std::string> base{"material.length_scale=" + exact(l),
+                                      "material.couple_moduli=[0, 0, " + exact(kMu * l * l) + "]"};
+  auto step = [&](std::vector<std::string> extra, const std::string& name, std::string* driver = nullptr) {
+    extra.insert(extra.begin(), base.begin(), base.end());
+    const double dt = auto_time_step(scene, extra, name);
+    if (driver) *driver = read_run(work_path(name + "-probe")).driver;
+    return dt;
+  };
+  std::string driver;
+  const double dt = step({}, "credit-base", &driver);
+  const double a3_times_10 = step({"material.couple_moduli=[0, 0, " + exact(10 * kMu * l * l) + "]"}, "credit-a3x10") / dt;
+  const double no_mu_c = step({"material.mu_c=0"}, "credit-no-mu-c") / dt;
+  const double moduli_over_10 =
+      step({"material.lambda=1.4 GPa", "material.mu=1.4 GPa", "material.mu_c=0.4667 GPa"}, "credit-moduli-over-10") / dt;
+  std::printf("l = 0.05 mm: critical step x %.4f with a3 x 10, x %.4f with mu_c = 0, x %.4f with lambda, mu, mu_c / 10\n"
+              "  driven by %s\n",
+              a3_times_10, no_mu_c, moduli_over_10, driver.c_str());
+  EXPECT_NE(driver.find("material.lambda and material.mu"), std::string::npos) << driver;
+  EXPECT_NE(driver.find("composite state"), std::string::npos) << driver;
+  EXPECT_EQ(driver.find("material.couple_moduli"), std::string::npos) << driver;
+  EXPECT_NE(driver.find("material.length_scale"), std::string::npos) << driver;
+  EXPECT_NEAR(a3_times_10, 1.0, 0.05);
+  EXPECT_LT(no_mu_c, std::sqrt(2.0));
+  EXPECT_GT(moduli_over_10, 2.0);
+  const bool pass = driver.find("material.lambda and material.mu") != std::string::npos &&
+                    std::abs(a3_times_10 - 1.0) < 0.05 && no_mu_c < std::sqrt(2.0) && moduli_over_10 > 2.0;
+  record_margin({"01-length-scale-6-credit", "l = 0.05 mm: which modulus the rotational step is credited to",
+                 "the log names what the step depends on: lambda and mu through the composite state, not a3",
+                 "critical step x " + sci(a3_times_10, 4) + " with a3 x 10, x " + sci(no_mu_c, 4) + " with mu_c = 0, x " +
+                     sci(moduli_over_10, 4) + " with lambda, mu, mu_c / 10; log: driven by material.lambda and material.mu",
+                 "a3: |x - 1| " + sci(std::abs(a3_times_10 - 1.0), 2) + " vs 0.05; moduli / 10: " + sci(moduli_over_10, 3) +
+                     " vs > 2",
+                 pass});
+}
+
 }  // namespace
 }  // namespace mppm::stability

@@ -5,7 +5,16 @@
 // - a broken points file (missing, not VTK, truncated, a negative or zero volume, a NaN
 //   coordinate);
 // - a geometry that yields no points (thinner than dx; a ring whose material falls between
-//   the lattice points).
+//   the lattice points);
+// - a negative volume from a broken geometry: point volumes are dx^2 t (2-D) or dx^3, set by
+//   the preprocessor from the validated spacing and thickness, never from the geometry, so a
+//   geometry cannot give a negative volume directly. What can is the orientation of its
+//   boundary, if trusted: an outline traversed clockwise, a surface turned inside out (negative
+//   signed area / volume), a self-overlapping outline (lobes of opposite sign). The first two
+//   are oriented by the preprocessor (same points as the intact geometry, all volumes > 0), the
+//   third is refused (exit 2 naming the file); a non-positive thickness (the one scene value in
+//   the 2-D volume besides dx) is refused naming `thickness`; a points file that carries a
+//   negative volume anyway is refused by mppm-solve (the broken-points-file case).
 // Hazard: each of these either blows up after hours or produces a silent wrong answer.
 // Expected: exit code 2 before the first step, a message naming the file (and the key, the
 // mode and the parameter where it applies) and what was expected, and no output file: the run
@@ -19,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -113,19 +123,22 @@ TEST_F(StabilityRefusals, CoupleModulusMuCInGigapascalIsRefusedBeforeTheFirstSte
   record_margin({"02-couple-modulus-mu-c-1000x", "couple modulus mu_c entered in GPa for MPa-scale (1000 x), fixed step 0.1 us",
                  "refused before the first step: exit 2 naming material.mu_c",
                  "exit " + std::to_string(r.exit_code) + "; critical step with the slip " + sci(slip_critical) +
-                     " s; message " + (names_mu_c ? "names material.mu_c" : "credits lambda and mu, not mu_c (solver TODO)"),
+                     " s; message " + (names_mu_c ? "names material.mu_c" : "credits lambda and mu, not mu_c"),
                  "given step / slipped critical step " + sci(0.1e-6 / slip_critical) + " (refused)",
-                 r.exit_code == 2 && nothing_written(run)});
+                 r.exit_code == 2 && nothing_written(run) && names_mu_c});
 }
 
-// The refusal must also tell the user which parameter to fix. Today the solver names the
-// translational mode "driven by material.lambda and material.mu (P-wave modulus ...)", which
-// did not change; the stiff parameter is mu_c (shear modulus mu + mu_c). Disabled until the
-// solver's attribution includes mu_c (README.md, pending cases).
-TEST_F(StabilityRefusals, DISABLED_CoupleModulusMuCRefusalNamesMuC) {
+// The refusal must also tell the user which parameter to fix. The limiting block is the
+// translational one (mu_c stiffens the shear waves, (mu + mu_c) / rho), and the solver credits it
+// to mu_c because the same estimate without mu_c leaves less than half of omega_max^2
+// (solver/critical_time_step.cpp); before that fix it named lambda and mu, which did not change.
+TEST_F(StabilityRefusals, CoupleModulusMuCRefusalNamesMuC) {
   const CommandResult r = solve_with_mu_c_slip(fresh_directory("slip-mu-c-message"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.output, "material.mu_c")) << r.output;
+  EXPECT_TRUE(contains(r.output, "translational")) << r.output;
+  // It names mu_c as the driver, not lambda and mu.
+  EXPECT_FALSE(contains(r.output, "driven by material.lambda")) << r.output;
 }
 
 TEST_F(StabilityRefusals, BadTimeStepIsRefusedWithTheKeyAndNothingWritten) {
@@ -250,6 +263,120 @@ TEST_F(StabilityRefusals, GeometryWithoutPointsIsRefusedNamingTheGeometry) {
   record_margin({"10-geometry-without-points", "geometry yielding no points: 0.2 mm strip, ring between lattice points",
                  "mppm-preprocess exit 2 naming the scene and the geometry, no points file", "exit codes: " + codes,
                  "contract check (no numeric margin)", all_refused});
+}
+
+TEST_F(StabilityRefusals, NegativeVolumeFromABrokenGeometryIsImpossibleOrRefused) {
+  std::string measured;
+  bool all = true;
+  auto note = [&](const std::string& what, bool ok) {
+    measured += (measured.empty() ? "" : "; ") + what;
+    all = all && ok;
+  };
+  // 1. The outline traversed clockwise: the same points as block.geo, every volume dx^2 t.
+  {
+    const std::string turned = fresh_directory("negative-volume-clockwise") + ".vtp";
+    const std::string intact = fresh_directory("negative-volume-intact") + ".vtp";
+    const CommandResult a = run_program(program("mppm-preprocess"),
+                                        {scene_path("negative_volume_clockwise.yaml"), "-o", turned, "--quiet"});
+    const CommandResult b = run_program(program("mppm-preprocess"), {scene_path("negative_volume_clockwise.yaml"), "-o",
+                                                                     intact, "--quiet", "--set", "geometry.file=block.geo"});
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    const PointCloud pa = read_point_cloud(turned), pb = read_point_cloud(intact);
+    const double dv = 1e-3 * 1e-3 * 1e-3;  // dx^2 t
+    bool same = pa.size() == pb.size() && pa.size() == 400;
+    for (std::size_t i = 0; same && i < pa.size(); ++i)
+      same = pa.x[i] == pb.x[i] && pa.y[i] == pb.y[i] && pa.volume[i] == pb.volume[i] &&
+             std::abs(pa.volume[i] - dv) <= 1e-12 * dv;
+    EXPECT_TRUE(same);
+    note("clockwise outline: exit " + std::to_string(a.exit_code) + ", " + std::to_string(pa.size()) +
+             " points, identical to the intact block, volumes dx^2 t",
+         a.exit_code == 0 && same);
+    fs::remove(turned);
+    fs::remove(intact);
+  }
+  // 2. A closed surface turned inside out (every triangle of closed_cube.stl reversed): the same
+  //    points as the intact cube, every volume dx^3.
+  {
+    const std::string dir = fresh_directory("negative-volume-inside-out");
+    fs::create_directories(dir);
+    const std::string cube = std::string(MPPM_SOURCE_DIR) + "/tests/data/geometry/closed_cube.stl";
+    std::istringstream in(read_text(cube));
+    std::ofstream out(dir + "/inside_out_cube.stl");
+    std::string line;
+    std::vector<std::string> loop;
+    while (std::getline(in, line)) {
+      if (line.find("vertex") != std::string::npos) {
+        loop.push_back(line);
+        if (loop.size() == 3) {
+          out << loop[0] << "\n" << loop[2] << "\n" << loop[1] << "\n";  // reversed winding
+          loop.clear();
+        }
+        continue;
+      }
+      out << line << "\n";
+    }
+    out.close();
+    auto scene_for = [&](const std::string& geometry) {
+      const std::string path = dir + "/" + fs::path(geometry).stem().string() + ".yaml";
+      std::ofstream(path) << "mppm: 1\nname: inside-out\ndimension: 3\ngeometry:\n  file: " << geometry
+                          << "\n  unit: mm\n  spacing: 1 mm\n  horizon_factor: 2.05\nmaterial: {density: 2650, "
+                             "lambda: 14 GPa, mu: 14 GPa}\neffects: []\ntime: {end: 1 us, step: auto}\n";
+      return path;
+    };
+    const CommandResult a = run_program(program("mppm-preprocess"),
+                                        {scene_for(dir + "/inside_out_cube.stl"), "-o", dir + "/turned.vtp", "--quiet"});
+    const CommandResult b = run_program(program("mppm-preprocess"), {scene_for(cube), "-o", dir + "/intact.vtp", "--quiet"});
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    const PointCloud pa = read_point_cloud(dir + "/turned.vtp"), pb = read_point_cloud(dir + "/intact.vtp");
+    bool same = pa.size() == pb.size() && pa.size() == 1000;
+    for (std::size_t i = 0; same && i < pa.size(); ++i)
+      same = pa.x[i] == pb.x[i] && pa.y[i] == pb.y[i] && pa.z[i] == pb.z[i] && pa.volume[i] == pb.volume[i] &&
+             std::abs(pa.volume[i] - 1e-9) <= 1e-21;
+    EXPECT_TRUE(same);
+    note("inside-out STL cube: exit " + std::to_string(a.exit_code) + ", " + std::to_string(pa.size()) +
+             " points, identical to the intact cube, volumes dx^3",
+         a.exit_code == 0 && same);
+  }
+  // 3. A self-overlapping outline (bow tie): refused naming the file.
+  {
+    const std::string out = fresh_directory("negative-volume-bowtie") + ".vtp";
+    fs::remove(out);
+    const CommandResult r =
+        run_program(program("mppm-preprocess"), {scene_path("negative_volume_bowtie.yaml"), "-o", out, "--quiet"});
+    std::printf("bow tie: exit %d\n%s", r.exit_code, r.output.c_str());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(contains(r.output, "bowtie.geo")) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+    note("bow-tie outline: exit " + std::to_string(r.exit_code), r.exit_code == 2 && !fs::exists(out));
+  }
+  // 4. A thickness that would make dx^2 t negative or zero: refused naming the key, by both stages.
+  for (const char* t : {"-1 mm", "0"}) {
+    const std::string out = fresh_directory("negative-volume-thickness") + ".vtp";
+    fs::remove(out);
+    const std::string set = std::string("thickness=") + t;
+    const CommandResult pre =
+        run_program(program("mppm-preprocess"), {scene_path("elastic_block.yaml"), "-o", out, "--quiet", "--set", set});
+    const std::string run = fresh_directory("negative-volume-thickness-run");
+    const CommandResult solve = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points", points_,
+                                                                    "-o", run, "--quiet", "--set", set});
+    std::printf("--set %s: preprocess exit %d, solve exit %d\n%s%s", set.c_str(), pre.exit_code, solve.exit_code,
+                pre.output.c_str(), solve.output.c_str());
+    EXPECT_EQ(pre.exit_code, 2);
+    EXPECT_EQ(solve.exit_code, 2);
+    EXPECT_TRUE(contains(pre.output, "thickness")) << pre.output;
+    EXPECT_TRUE(contains(solve.output, "thickness")) << solve.output;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_TRUE(nothing_written(run));
+    note("thickness " + std::string(t) + ": exit " + std::to_string(pre.exit_code) + " / " + std::to_string(solve.exit_code),
+         pre.exit_code == 2 && solve.exit_code == 2 && !fs::exists(out) && nothing_written(run));
+  }
+  record_margin({"09b-negative-volume-geometry", "a geometry that would give negative volumes: clockwise outline, inside-out surface, "
+                 "self-overlapping outline, non-positive thickness",
+                 "no negative volume ever reaches a points file: oriented (same points) or refused with exit 2 naming the "
+                 "file or key",
+                 measured, "contract check (no numeric margin)", all});
 }
 
 }  // namespace
