@@ -4,6 +4,7 @@
 // where the pair force is at hand; a bond breaks there, at both ends in the same step.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "solver/bond_families.hpp"
@@ -48,7 +49,8 @@ std::vector<double> damage_field(const PointData& points, const BondFamilies& bo
 // detached and its remaining bonds break (it moves ballistically). The energy the breaks release
 // is measured, not assumed: the stored energy of the affected points before minus after, at the
 // same configuration (so the energy balance closes; the bond work W_ij is the breakage criterion,
-// not the measure of what a break dissipates). A body point whose stiffness block exceeds
+// not the measure of what a break dissipates). A point whose stored energy would rise by losing
+// bonds is detached (see the .cpp for why). A body point whose stiffness block exceeds
 // `block_eigenvalue_limit` (point_stability.hpp; 0: no such check) is detached as well: its
 // lopsided family would make the run's time step unstable. Returns the pairs broken in that
 // evaluation (cascade included), the points newly detached (of them for stability) and the
@@ -56,12 +58,23 @@ std::vector<double> damage_field(const PointData& points, const BondFamilies& bo
 struct BreakageUpdate {
   std::size_t broken_pairs = 0;
   std::size_t newly_detached = 0;
-  std::size_t unstable_detached = 0;
-  double released_energy = 0.0;  // stored energy released + kick_energy: what the breaks dissipate
-  double kick_energy = 0.0;      // of it, the kinetic-energy change of the kick (O(dt))
+  std::size_t unstable_detached = 0;  // of them, for the time step's sake
+  std::size_t energy_detached = 0;    // of them, because losing bonds raised their stored energy
+  double released_energy = 0.0;       // stored energy released by the breaks [J]
+};
+// A point whose stored energy would rise by more than this share when it loses bonds is detached
+// (bond_breakage.cpp says why and what was measured).
+inline constexpr double kEnergyRiseToDetach = 0.5;
+
+// Scratch arrays kept from one step to the next (no allocation in the time loop once warm).
+struct BreakageWorkspace {
+  std::vector<std::int64_t> affected_index;  // per point: index into affected, -1 if not met
+  std::vector<std::size_t> affected, changed, next, detach, candidates, sorted;
+  std::vector<double> energy_before;
+  std::vector<std::uint8_t> was_detached;
 };
 BreakageUpdate update_after_breakage(PointData& points, BondFamilies& bonds, const CosseratConstants& c,
                                      const InternalForceFunctions& kernel, double block_eigenvalue_limit,
-                                     double dt);
+                                     BreakageWorkspace& workspace);
 
 }  // namespace mppm::solver

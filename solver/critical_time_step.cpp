@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "common/input_error.hpp"
+#include "solver/point_stability.hpp"
 
 namespace mppm::solver {
 
@@ -195,10 +196,18 @@ CriticalTimeStep critical_time_step(Model& model) {
   return out;
 }
 
-double choose_time_step(const Scene& scene, const CriticalTimeStep& critical) {
-  if (!scene.time.step) return scene.time.safety * critical.step;
+double choose_time_step(const Scene& scene, const CriticalTimeStep& critical, double damage_step) {
+  const bool damage_bound = damage_step > 0.0 && damage_step < critical.step;
+  if (!scene.time.step) return scene.time.safety * (damage_bound ? damage_step : critical.step);
   const double dt = *scene.time.step;
   if (!(dt > 0.0)) throw InputError(scene.path + ": time.step: must be positive or 'auto', got " + number(dt) + " s");
+  if (damage_bound && dt > damage_step && dt <= critical.step)
+    throw InputError(scene.path + ": time.step: " + number(dt) + " s is above " + number(damage_step) +
+                     " s, the largest step a run with the damage effect may use (" +
+                     number(damage_step / critical.step) + " of the critical step " + number(critical.step) +
+                     " s: the lopsided families that broken bonds leave raise the highest frequency by up to " +
+                     number(kDamagedFrequencyRatio) + "x the largest point stiffness; solver/point_stability.hpp) "
+                     "(expected time.step <= " + number(damage_step) + " s, or time.step: auto)");
   if (dt > critical.step) {
     const double mode_step = critical.limiting_mode == "rotational" ? critical.rotational : critical.translational;
     throw InputError(scene.path + ": time.step: " + number(dt) + " s is above the critical step " +

@@ -24,7 +24,8 @@ struct CriticalTimeStep {
 CriticalTimeStep critical_time_step(Model& model);
 
 // time.step: auto -> safety * critical; a given step above the critical one is refused with an
-// InputError naming the limiting mode, its critical value and the parameter driving it.
-double choose_time_step(const Scene& scene, const CriticalTimeStep& critical);
+// InputError naming the limiting mode, its critical value and the parameter driving it. With the
+// damage effect the bound is `damage_step` (Model::damage_critical_step) where it is lower.
+double choose_time_step(const Scene& scene, const CriticalTimeStep& critical, double damage_step = 0.0);
 
 }  // namespace mppm::solver

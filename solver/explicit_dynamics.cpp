@@ -151,6 +151,35 @@ void ExplicitDynamics::step(bool with_energy) {
   compute_loads_and_forces(with_energy, true);
   if (injection_ && injection_->step == steps_ + 1) inject_nan();
 
+  // Damage: where breaks refreshed the forces (Model::advance_internal_forces), this step's kick
+  // and next step's use the forces without the broken bonds, as they must (a bond past its
+  // breaking would do work nothing accounts for), while the step that ends here ran with the
+  // bonds. The energy bookkeeping takes that from the forces before the refresh: the layers'
+  // reaction work over this step uses them at its end (the trapezoid rule of the bonds as they
+  // were), and on a free component the new force changes the scheme's kinetic energy
+  // 1/2 M v^(n-1/2) . v^(n+1/2) by dt/2 v^(n-1/2) . (f_new - f_old) V, which the breaks dissipate
+  // (O(dt): the work the broken bonds would have done over the rest of the step). With the stored
+  // energy they release, kinetic + stored + dissipated - external work then stays conserved.
+  double breakage_kick = 0.0, breakage_work = 0.0;
+  if (model_.effects.damage) {
+    const auto& refreshed = p.refreshed_points;
+    for (std::size_t r = 0; r < refreshed.size(); ++r) {
+      const std::size_t i = refreshed[r];
+      for (int c = 0; c < D; ++c) {
+        const std::size_t k = i * D + c;
+        const double change = p.force_before_refresh[r * D + c] - p.force[k];  // f_old - f_new
+        if (fixed_u[k]) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[k]) * p.volume[i];
+        else breakage_kick += half * p.velocity[k] * change * p.volume[i];
+      }
+      for (int c = 0; c < R; ++c) {
+        const std::size_t k = i * R + c;
+        const double change = p.moment_before_refresh[r * R + c] - p.moment[k];
+        if (fixed_w[k]) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[k]) * p.volume[i];
+        else breakage_kick += half * p.spin[k] * change * p.volume[i];
+      }
+    }
+  }
+
   // Second half kick, work increments (trapezoid: mean of the start and end forces times the
   // increment), non-finite guard.
   const double damp_factor = 1.0 / (1.0 + half * c_damp);
@@ -194,7 +223,10 @@ void ExplicitDynamics::step(bool with_energy) {
     for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.plastic_dissipation[i];
     energy_.plastic_dissipation += dissipated;
   }
-  if (model_.effects.damage) energy_.fracture_dissipation += model_.last_fracture_dissipation;
+  if (model_.effects.damage) {
+    energy_.external_work += breakage_work;
+    energy_.fracture_dissipation += model_.last_fracture_dissipation + breakage_kick;
+  }
   ++steps_;
   if (with_energy) evaluate_energy();
 }

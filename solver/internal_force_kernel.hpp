@@ -476,17 +476,12 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
 // accounts for). Only the points whose families changed (`changed`, sorted) have new tensors, and
 // only they and their neighbours have new forces: pass 1 runs on the former (the plastic state is
 // not advanced again), pass 2 on both (the bond work is not accumulated again), with energies.
-// The next step's bond-work increment starts from these tensors.
-// Returns sum V (half_step (v . (f_old - f_new) + s . (m_old - m_new))) over the points whose
-// force changed, with the velocities v, spins s of the step's middle (a prescribed layer: its
-// prescribed velocity): by how much the new forces lower the scheme's kinetic energy
-// 1/2 M v^(n-1/2) . v^(n+1/2) against a kick with the old forces, and the trapezoid-rule work of a
-// layer's reaction against the old forces at the end of the step (the breaks' share of the
-// energy balance, bond_breakage.cpp; exact for layers moving at a constant velocity).
+// The next step's bond-work increment starts from these tensors. The points whose force was
+// recomputed and their force and moment before are left in points.refreshed_points and
+// force/moment_before_refresh, for the integrator's energy bookkeeping.
 template <int D, class Effects>
-double refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
-                              const std::vector<std::size_t>& changed, double half_step) {
-  double kick = 0.0;
+void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                            const std::vector<std::size_t>& changed) {
   if constexpr (Effects::damage) {
     constexpr int R = rotation_components<D>;
     constexpr bool polar = Effects::micropolar;
@@ -495,30 +490,27 @@ double refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConst
       if (stored_xi) pass1_point<D, Effects, true, true>(p, f, c, i, nullptr);
       else pass1_point<D, Effects, true, false>(p, f, c, i, nullptr);
     }
-    std::vector<std::size_t> around = changed;
+    std::vector<std::size_t>& around = p.refreshed_points;
+    around = changed;
     for (const std::size_t i : changed)
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
         if (f.intact[b]) around.push_back(static_cast<std::size_t>(f.neighbor[b]));
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
-    for (const std::size_t i : around) {
-      if (i >= p.owned) continue;
-      double old_force[D], old_moment[R];
-      for (int r = 0; r < D; ++r) old_force[r] = p.force[i * D + r];
+    while (!around.empty() && around.back() >= p.owned) around.pop_back();
+    p.force_before_refresh.resize(around.size() * D);
+    p.moment_before_refresh.resize(around.size() * R);
+    for (std::size_t k = 0; k < around.size(); ++k) {
+      const std::size_t i = around[k];
+      for (int r = 0; r < D; ++r) p.force_before_refresh[k * D + r] = p.force[i * D + r];
       if constexpr (polar)
-        for (int r = 0; r < R; ++r) old_moment[r] = p.moment[i * R + r];
+        for (int r = 0; r < R; ++r) p.moment_before_refresh[k * R + r] = p.moment[i * R + r];
       if (stored_xi) pass2_point<D, Effects, true, true>(p, f, c, i, false);
       else pass2_point<D, Effects, true, false>(p, f, c, i, false);
-      double change = 0.0;
-      for (int r = 0; r < D; ++r) change += p.velocity[i * D + r] * (old_force[r] - p.force[i * D + r]);
-      if constexpr (polar)
-        for (int r = 0; r < R; ++r) change += p.spin[i * R + r] * (old_moment[r] - p.moment[i * R + r]);
-      kick += half_step * p.volume[i] * change;
     }
   } else {
-    (void)p, (void)f, (void)c, (void)changed, (void)half_step;
+    (void)p, (void)f, (void)c, (void)changed;
   }
-  return kick;
 }
 
 #undef MPPM_INLINE

@@ -26,10 +26,9 @@ using PointEnergyFunction = PointEnergy (*)(const PointData&, const BondFamilies
                                             std::size_t point);
 
 // Damage: the forces (and energies) again after bonds broke, for the listed points whose families
-// changed (sorted) and their neighbours; returns the kick's share of the energy balance
-// (kernel::refresh_after_breakage).
-using BreakageRefreshFunction = double (*)(PointData&, BondFamilies&, const CosseratConstants&,
-                                           const std::vector<std::size_t>& changed_points, double half_step);
+// changed (sorted) and their neighbours (kernel::refresh_after_breakage).
+using BreakageRefreshFunction = void (*)(PointData&, BondFamilies&, const CosseratConstants&,
+                                         const std::vector<std::size_t>& changed_points);
 
 struct InternalForceFunctions {
   InternalForceFunction forces = nullptr;              // force and moment only

@@ -3,6 +3,8 @@
 #include "solver/model.hpp"
 
 #include <algorithm>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "common/precrack_crossing.hpp"
@@ -80,18 +82,24 @@ void Model::advance_internal_forces(double dt, bool with_energy) {
   const StepAdvance step{viscoplastic_model.get(), dt};
   (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, &step);
   if (effects.damage) {
-    const BreakageUpdate u = update_after_breakage(points, bonds, constants, kernel, block_eigenvalue_limit, dt);
+    const BreakageUpdate u = update_after_breakage(points, bonds, constants, kernel, block_eigenvalue_limit, breakage_workspace);
     broken_bonds += u.broken_pairs;
     detached_points += u.newly_detached;
     unstable_detached_points += u.unstable_detached;
+    energy_detached_points += u.energy_detached;
     last_fracture_dissipation = u.released_energy;
   }
 }
 
-void Model::set_breakage_time_step(double dt, double critical_step) {
-  if (!effects.damage) return;
+double Model::damage_critical_step(double critical_step) const {
+  if (!effects.damage) return critical_step;
   const double start = max_point_block_eigenvalue(points, bonds, constants);
-  block_eigenvalue_limit = start * (critical_step / dt) * (critical_step / dt);
+  return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(kDamagedFrequencyRatio * start)) : critical_step;
+}
+
+void Model::set_breakage_time_step(double dt) {
+  if (!effects.damage) return;
+  block_eigenvalue_limit = 4.0 / (dt * dt) / kDamagedFrequencyRatio;
 }
 
 InternalEnergy internal_energy(const Model& model) {

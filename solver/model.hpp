@@ -6,6 +6,7 @@
 
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "solver/bond_breakage.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/internal_forces.hpp"
@@ -38,6 +39,8 @@ struct Model {
   std::size_t broken_bonds = 0;  // pairs broken by damage so far (pre-crack cuts not included)
   double last_fracture_dissipation = 0.0;  // [J] released by the breaks of the last advance
   std::size_t unstable_detached_points = 0;  // of detached_points: detached for the time step's sake
+  std::size_t energy_detached_points = 0;    // of detached_points: losing bonds raised their energy
+  BreakageWorkspace breakage_workspace;
   // Damage: a body point whose stiffness block exceeds this is detached (point_stability.hpp);
   // 0 = no such check. Set by set_breakage_time_step.
   double block_eigenvalue_limit = 0.0;
@@ -57,9 +60,14 @@ struct Model {
   // Call it once per step, after the previous evaluation (the step's start); without these
   // effects it is compute_internal_forces.
   void advance_internal_forces(double dt, bool with_energy);
-  // Damage: points whose bonds broke stay stable at the time step dt, given the start-up
-  // critical step (point_stability.hpp). Call it once the step is chosen; no-op without damage.
-  void set_breakage_time_step(double dt, double critical_step);
+  // Damage: the largest time step a damage run may use, given the start-up critical step: lopsided
+  // families left by breaks raise the highest frequency (point_stability.hpp), so it is
+  // min(critical, 2 / sqrt(kDamagedFrequencyRatio x largest point block)); without damage, critical.
+  double damage_critical_step(double critical_step) const;
+  // Damage: points whose bonds broke stay stable at the time step dt (point_stability.hpp): a body
+  // point whose block exceeds (2 / dt)^2 / kDamagedFrequencyRatio is detached. Call it once the
+  // step is chosen; no-op without damage.
+  void set_breakage_time_step(double dt);
 };
 
 // Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.

@@ -66,6 +66,11 @@ struct PointData {
   // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond).
   std::vector<double> previous_displacement, previous_rotation;
   std::vector<double> previous_force_tensor, previous_moment_tensor;
+  // The points whose force the last breakage refresh changed (sorted), with their force and moment
+  // before it: the integrator books the kick and the layers' reaction work with them
+  // (ExplicitDynamics::step). Cleared at every advance.
+  std::vector<std::size_t> refreshed_points;
+  std::vector<double> force_before_refresh, moment_before_refresh;
 
   // Energy per point [J], filled when a force evaluation is asked for energies.
   std::vector<double> force_stress_energy;   // V 1/2 eps:sigma

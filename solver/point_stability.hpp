@@ -8,11 +8,14 @@
 // the point's own degrees of freedom (u_i, and w_i with micropolar): the Rayleigh quotient of any
 // field that moves only point i, so a lower bound of omega_max^2 of the whole model. It is computed
 // in closed form from the energy of such a field (the point's own energy and that of every point
-// whose family holds it), in O(family) operations. At start-up the Lanczos estimate omega_max^2 is
-// kappa_0 >= 1 times the largest block value; during the run a point is detached when kappa_0
-// times its block value exceeds (2 / dt)^2, i.e. when its block value exceeds
-// max_start x (critical step / dt)^2: the margin the chosen time step leaves is what a point may
-// use up.
+// whose family holds it), in O(family) operations. omega_max^2 is kappa times the largest block
+// value: kappa_0 = 1.4 on intact lattices, and up to 3.1 measured on damaged ones (crack faces,
+// fragments: neighbouring lopsided families couple), where the critical step then falls to 0.45
+// of the start-up one. So a point is detached when kDamagedFrequencyRatio times its block value
+// exceeds (2 / dt)^2, which keeps omega_max dt <= 2 for kappa up to that ratio; and the time step
+// of a damage run must leave every intact point inside that limit from the start:
+// dt <= 2 / sqrt(kDamagedFrequencyRatio x max block value), about 0.6 of the start-up critical step
+// (Model::damage_critical_step).
 #pragma once
 #include <cstddef>
 
@@ -21,6 +24,9 @@
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
+
+// The largest omega_max^2 / (largest block value) a damaged lattice is allowed (measured up to 3.1).
+inline constexpr double kDamagedFrequencyRatio = 3.5;
 
 // lambda_max(M_i^-1 H_i) [1/s^2] of point i with its bonds and shape tensors as they are; 0 for a
 // detached point.

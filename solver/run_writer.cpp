@@ -125,6 +125,7 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"dimension\": " + std::to_string(info.dimension) + ",\n";
   j += "  \"time_step_s\": " + format_number(info.time_step) + ",\n";
   j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
+  j += "  \"largest_time_step_s\": " + format_number(info.largest_time_step) + ",\n";
   j += "  \"limiting_mode\": " + json_string(info.limiting_mode) + ",\n";
   j += "  \"snapshots\": [";
   for (std::size_t k = 0; k < snapshots_.size(); ++k)

@@ -24,6 +24,7 @@ struct RunInfo {
   std::vector<std::string> effects;
   int dimension = 2;
   double time_step = 0.0, critical_time_step = 0.0;
+  double largest_time_step = 0.0;  // the bound the step must respect (lower with damage)
   std::string limiting_mode;
   std::uint64_t detached_points = 0;
 };

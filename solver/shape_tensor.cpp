@@ -56,9 +56,14 @@ std::size_t update_all(PointData& p, const BondFamilies& f, const CosseratConsta
 template <int D>
 void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c, const std::vector<std::size_t>& points) {
   const auto n = static_cast<std::int64_t>(points.size());
-  // Each listed point writes only its own tensors; a few hundred points are not worth threads.
+  // Each listed point writes only its own tensors; a few hundred points are not worth threads. A
+  // detached point stays detached (it may keep bonds to no-fail points, which would otherwise
+  // give it a lopsided shape tensor back).
 #pragma omp parallel for schedule(static) if (n > 2048)
-  for (std::int64_t s = 0; s < n; ++s) update_point<D>(p, f, c, points[static_cast<std::size_t>(s)]);
+  for (std::int64_t s = 0; s < n; ++s) {
+    const std::size_t i = points[static_cast<std::size_t>(s)];
+    if (!p.detached[i]) update_point<D>(p, f, c, i);
+  }
 }
 
 }  // namespace

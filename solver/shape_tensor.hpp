@@ -22,7 +22,8 @@ std::size_t update_shape_tensors(PointData& points, const BondFamilies& bonds, c
 // and moves ballistically (its bonds are the caller's business).
 void detach_point(PointData& points, std::size_t i);
 
-// The same for the listed points only (those whose bonds changed); detached flags are updated.
+// The same for the listed points only (those whose bonds changed); a point may become detached,
+// a detached one stays so.
 void update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
                           const std::vector<std::size_t>& changed_points);
 

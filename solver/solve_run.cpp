@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <optional>
 #include <cmath>
 #include <exception>
 #include <sstream>
@@ -16,6 +18,7 @@
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
 #include "solver/boundary_conditions.hpp"
+#include "common/memory_estimate.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/energy_guard.hpp"
 #include "solver/explicit_dynamics.hpp"
@@ -139,11 +142,33 @@ NanInjection parse_nan_injection(const std::string& value) {
   return k;
 }
 
+// Before anything big is allocated: the memory estimate (common/memory_estimate.hpp) against what
+// this machine has available (MemAvailable, or MPPM_MEMORY_AVAILABLE in bytes: a budget a user or
+// a test sets), refused with the estimate and the advice.
+static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cloud) {
+  MemoryEstimateInput in;
+  in.points = cloud.size();
+  in.horizon_factor = scene.geometry.horizon_factor;
+  in.dimension = scene.dimension;
+  in.effects = scene.effects.names();
+  in.snapshot_fields = scene.output.fields;
+  std::optional<std::uint64_t> available = available_memory_bytes();
+  if (const char* budget = std::getenv("MPPM_MEMORY_AVAILABLE")) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(budget, &end, 10);
+    if (!*budget || *end != '\0')
+      throw InputError(std::string("MPPM_MEMORY_AVAILABLE: expected a number of bytes, got '") + budget + "'");
+    available = v;
+  }
+  if (available) require_memory_fits(estimate_run_memory(in), *available, scene.path);
+}
+
 SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   Scene scene = scene_in;
   check_points_match_scene(scene, cloud, options.points_file);
   if (!(scene.time.end > 0.0)) throw InputError(scene.path + ": time.end: must be positive");
+  refuse_runs_that_do_not_fit(scene, cloud);
 
   ModelOptions mo;
   mo.constants = cosserat_constants(scene);
@@ -179,7 +204,8 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   if (!(critical.step > 0.0 && std::isfinite(critical.step)))
     throw NumericalFailure(options.run_directory + ": the critical time step could not be estimated (" +
                            text(critical.step) + " s): the discrete operator is not positive");
-  double dt = choose_time_step(scene, critical);
+  const double damage_step = model.damage_critical_step(critical.step);
+  double dt = choose_time_step(scene, critical, damage_step);
   // A whole number of steps ends exactly at time.end (the step only shrinks; a given step that
   // divides time.end is kept as written). An automatic step is also fitted to output.interval
   // when that divides time.end, so that snapshots fall on the interval's multiples.
@@ -198,7 +224,7 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     throw InputError("mppm-solve: --inject-nan: STEP " + std::to_string(options.inject_nan->step) +
                      " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
                      std::to_string(steps) + ")");
-  model.set_breakage_time_step(dt, critical.step);
+  model.set_breakage_time_step(dt);
 
   RunWriter writer(options.run_directory, options.force);
   std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", critical.step}};
@@ -214,6 +240,7 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   info.dimension = scene.dimension;
   info.time_step = dt;
   info.critical_time_step = critical.step;
+  info.largest_time_step = damage_step;
   info.limiting_mode = critical.limiting_mode;
   info.detached_points = model.detached_points;
 
@@ -231,8 +258,10 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     writer.log("damage: critical bond work w_cr " + text(model.constants.critical_bond_work) + " J/m^6 (G_cr " +
                text(scene.material.damage->critical_energy_release_rate) + " J/m^2, " +
                scene.material.damage->calibration + " calibration), no-fail depth " +
-               text(scene.material.damage->no_fail_depth) + " m; a point whose lopsided family would need a step below " +
-               text(dt) + " s is detached (stiffness block limit " + text(model.block_eigenvalue_limit) + " 1/s^2)");
+               text(scene.material.damage->no_fail_depth) + " m; largest step of a damage run " + text(damage_step) +
+               " s (" + text(damage_step / critical.step) +
+               " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
+               " s is detached (stiffness block limit " + text(model.block_eigenvalue_limit) + " 1/s^2)");
   if (model.viscoplastic_model)
     writer.log("viscoplastic model " + model.viscoplastic_model->name() +
                " (return map once per step; the critical step above is the elastic bound, which "

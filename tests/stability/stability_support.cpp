@@ -139,6 +139,7 @@ RunReport read_run(const std::string& run_directory) {
   r.steps = static_cast<std::int64_t>(json_number(info, "steps"));
   r.time_step = json_number(info, "time_step_s");
   r.critical_time_step = json_number(info, "critical_time_step_s");
+  r.largest_time_step = json_number(info, "largest_time_step_s");
 
   r.detached_points = static_cast<std::int64_t>(json_number(info, "detached_points"));
   for (std::size_t at = info.find("{\"file\": \""); at != std::string::npos; at = info.find("{\"file\": \"", at + 1)) {
@@ -236,7 +237,8 @@ double auto_time_step(const std::string& scene_file, const std::vector<std::stri
   solver::SolveOptions options;
   options.run_directory = fresh_directory(name + "-probe");
   solver::solve(scene, points_of(scene), options);
-  return read_run(options.run_directory).critical_time_step * scene.time.safety;
+  // The bound the solver applies: the critical step, or the lower one of a damage run.
+  return read_run(options.run_directory).largest_time_step * scene.time.safety;
 }
 
 CommandResult run_program(const std::string& executable, const std::vector<std::string>& arguments) {

@@ -41,6 +41,7 @@ struct RunReport {
   std::int64_t steps = 0;
   double time_step = 0.0;
   double critical_time_step = 0.0;
+  double largest_time_step = 0.0;  // run_info.json largest_time_step_s
   // energy.csv
   std::size_t energy_rows = 0;
   bool all_finite = true;            // every cell of every row

@@ -154,5 +154,29 @@ TEST(MemoryEstimate, AgreesWithThePeakMemoryOfARealRun) {
   EXPECT_LT(from_lattice, 1.5 * measured);
 }
 
+// mppm-solve checks the estimate before it allocates anything: with a budget below it
+// (MPPM_MEMORY_AVAILABLE, the same path as MemAvailable) the run is refused, exit 2, with the
+// estimate and the advice, and no run directory is made.
+TEST(MemoryEstimate, SolverRefusesARunThatDoesNotFit) {
+  const std::string dir = scratch("refused");
+  const std::string scene = std::string(MPPM_SOURCE_DIR) + "/workflows/quickstart/scene.yaml";
+  const auto p = testing::run_stage_process({testing::binary("mppm-preprocess"), scene, "-o", dir + "/points.vtp", "--quiet"});
+  ASSERT_EQ(p.code, 0) << p.err;
+  ::setenv("MPPM_MEMORY_AVAILABLE", "1000000", 1);
+  const auto r = testing::run_stage_process(
+      {testing::binary("mppm-solve"), scene, "--points", dir + "/points.vtp", "-o", dir + "/run", "--quiet"});
+  ::setenv("MPPM_MEMORY_AVAILABLE", "not-a-number", 1);
+  const auto bad = testing::run_stage_process(
+      {testing::binary("mppm-solve"), scene, "--points", dir + "/points.vtp", "-o", dir + "/run2", "--quiet"});
+  ::unsetenv("MPPM_MEMORY_AVAILABLE");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("needs about"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("coarser geometry.spacing"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("scene.yaml"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/run"));
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("MPPM_MEMORY_AVAILABLE"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace mppm

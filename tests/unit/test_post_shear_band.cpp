@@ -182,7 +182,8 @@ TEST(PostShearBand, StrainOnBothFlanksOfAVoidIsNotTwoBands) {
   settings.spacing = lattice.spacing;
   const auto result = measure_shear_bands(lattice.x, lattice.y, strain, lattice.include, settings);
   ASSERT_FALSE(result.bands.empty()) << result.note;
-  if (result.bands.size() == 2)
+  if (result.bands.size() == 2) {
     EXPECT_GE(std::fabs(result.bands[0].direction_deg - result.bands[1].direction_deg), settings.min_separation_deg);
+  }
   EXPECT_LE(result.bands.size(), 1u);
 }

@@ -84,8 +84,8 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   solver::Model model = make_model(cloud, scene, {0.0, 0.0, D == 3 ? depth * dx : 0.0});
   const solver::BoundaryConditions conditions(scene, cloud, model.points, "crack-strip");
   const double critical = solver::critical_time_step(model).step;
-  const double dt = strip.safety * critical;
-  model.set_breakage_time_step(dt, critical);
+  const double dt = strip.safety * model.damage_critical_step(critical);
+  model.set_breakage_time_step(dt);
   solver::ExplicitDynamics dynamics(model, conditions, dt);
   dynamics.initialize();
 
