@@ -65,7 +65,7 @@ Scene calibration_scene(int dimension, double horizon_factor, double stabilizati
                                             : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
   s.effects.micropolar = true;
   s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice"};
+  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
   s.numerics.stabilization = stabilization;
   return s;
 }

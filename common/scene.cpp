@@ -471,7 +471,7 @@ class SceneReader {
       return;
     }
     if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
-    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth", "calibration"});
+    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"});
     DamageParameters dp;
     dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"), p + ".critical_energy_release_rate", dim::energy_per_area);
     positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate", dp.critical_energy_release_rate);
@@ -483,7 +483,19 @@ class SceneReader {
         fail(node["calibration"], p + ".calibration",
              "unknown calibration '" + dp.calibration + "' (expected lattice, continuum or dissipation)");
     }
+    if (node["region"].IsDefined()) dp.region = read_region(node["region"], p + ".region");
     scene_.material.damage = dp;
+  }
+
+  // An effect's region: {box: [[x0, y0(, z0)], [x1, y1(, z1)]]} (the points file knows the body
+  // and its boundaries, not volume groups, so a box is what can select points).
+  Selector read_region(const YAML::Node& node, const std::string& path) {
+    if (!node.IsMap()) fail(node, path, "expected {box: [[x0, y0(, z0)], [x1, y1(, z1)]]}");
+    check_keys(node, path, {"box"});
+    if (!node["box"].IsDefined()) fail(node, path, "missing: box (expected {box: [[x0, y0(, z0)], [x1, y1(, z1)]]})");
+    Selector s;
+    read_selector_keys(node, path, s);
+    return s;
   }
 
   void read_viscoplasticity(const YAML::Node& m) {
@@ -497,7 +509,7 @@ class SceneReader {
       fail(m, p, "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, viscosity}");
     }
     check_keys(node, p, {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
-                         "residual_cohesion", "cone_match"});
+                         "residual_cohesion", "cone_match", "region"});
     ViscoplasticParameters vp;
     if (node["model"].IsDefined()) vp.model = scalar(node["model"], p + ".model", "a model name");
     vp.friction_angle = quantity(require(node, p, "friction_angle", "e.g. 35 deg"), p + ".friction_angle", dim::angle);
@@ -524,6 +536,7 @@ class SceneReader {
         fail(node["cone_match"], p + ".cone_match", "unknown match '" + vp.cone_match + "' (expected triaxial-compression or plane-strain)");
       }
     }
+    if (node["region"].IsDefined()) vp.region = read_region(node["region"], p + ".region");
     scene_.material.viscoplasticity = vp;
   }
 

@@ -72,6 +72,9 @@ struct DamageParameters {
   // closed forms, their limit for a large horizon factor) or "dissipation" (lattice / rho: a
   // running crack then dissipates G_cr per unit area; solver/damage_calibration.hpp).
   std::string calibration = "lattice";
+  // Damage only inside this box (scene units of length, a 2-D box spans every z): bonds with an
+  // end outside never break and cost no bond-work bookkeeping. Empty: the whole body.
+  std::optional<Selector> region;
 };
 
 struct ViscoplasticParameters {
@@ -83,6 +86,9 @@ struct ViscoplasticParameters {
   double viscosity = 0.0;          // eta [Pa s]
   double residual_cohesion = 0.0;  // floor of c [Pa]
   std::string cone_match = "triaxial-compression";  // or "plane-strain"
+  // Viscoplastic flow only inside this box; outside the points stay elastic and skip the return
+  // map. Empty: the whole body.
+  std::optional<Selector> region;
 };
 
 struct Material {

@@ -105,6 +105,11 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{m.damage->critical_energy_release_rate};
     out << YAML::Key << "no_fail_depth" << YAML::Value << Num{m.damage->no_fail_depth};
     out << YAML::Key << "calibration" << YAML::Value << m.damage->calibration;
+    if (m.damage->region) {
+      out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
+      emit_selector_keys(out, *m.damage->region);
+      out << YAML::EndMap;
+    }
     out << YAML::EndMap;
   }
   if (m.viscoplasticity) {
@@ -118,6 +123,11 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     out << YAML::Key << "viscosity" << YAML::Value << Num{vp.viscosity};
     out << YAML::Key << "residual_cohesion" << YAML::Value << Num{vp.residual_cohesion};
     out << YAML::Key << "cone_match" << YAML::Value << vp.cone_match;
+    if (vp.region) {
+      out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
+      emit_selector_keys(out, *vp.region);
+      out << YAML::EndMap;
+    }
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

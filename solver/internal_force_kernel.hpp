@@ -238,7 +238,9 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   Mat<D> sigma;
   if constexpr (Effects::viscoplasticity) {
     double* plastic_strain = &p.plastic_strain[i * 9];
-    if (advance) {
+    // Outside material.viscoplasticity.region the point stays elastic: no return map.
+    if (advance && !p.plastic_active[i]) p.plastic_dissipation[i] = 0.0;
+    if (advance && p.plastic_active[i]) {
       // eps_out and the stored wryness still hold the previous evaluation: the step's start.
       p.plastic_dissipation[i] =
           vol[i] * viscoplastic::advance_point<D, R, polar>(
@@ -320,8 +322,12 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   // Damage: A_i + A_i0 and Q_i + Q_i0 of this and the previous evaluation (the bond work uses
   // the sum of the two pair forces).
   [[maybe_unused]] double ui0[D], wi0[3] = {0.0, 0.0, 0.0}, ai_both[DD], qi_both[RD];
+  // A bond with a no-fail end never breaks, so its work is not needed: a no-fail point (near a
+  // boundary condition, or outside material.damage.region) skips the bookkeeping of all its bonds.
+  [[maybe_unused]] const bool work_here = Effects::damage && accumulate_work && !p.no_fail[i];
+  [[maybe_unused]] const std::uint8_t* no_fail = Effects::damage ? p.no_fail.data() : nullptr;
   if constexpr (Effects::damage) {
-    if (accumulate_work) {
+    if (work_here) {
       for (int k = 0; k < D; ++k) ui0[k] = u_old[i * D + k];
       for (int k = 0; k < DD; ++k) ai_both[k] = ai[k] + a_old[i * DD + k];
       if constexpr (polar) {
@@ -370,7 +376,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
       add_cross<D>(xi, t, 0.5 * vj, moment);
     }
     if constexpr (Effects::damage) {
-      if (accumulate_work) {
+      if (work_here && !no_fail[j]) {
         // dW = 1/2 (t0 + t) . (U - U0) + 1/2 (m0 + m) . (Om - Om0), with t0 + t summed before it is
         // formed: the stabilization tensors are those of the previous evaluation (they change
         // only where bonds broke, and refresh_after_breakage then starts the next increment from
@@ -402,7 +408,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
         bond_work[b] += 0.5 * dw;
         // Marked 2 (breaking): this step's force had the bond, and update_after_breakage still
         // needs it acting to measure the energy the break releases before it sets 0 (broken).
-        if (bond_work[b] >= critical_work && !p.no_fail[i] && !p.no_fail[j]) {
+        if (bond_work[b] >= critical_work) {
           intact[b] = 2;
           ++broken;
         }

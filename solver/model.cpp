@@ -3,12 +3,12 @@
 #include "solver/model.hpp"
 
 #include <algorithm>
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "common/precrack_crossing.hpp"
 #include "solver/bond_breakage.hpp"
+#include "solver/plasticity/material_registry.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -44,7 +44,32 @@ std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamili
   return removed / 2;
 }
 
+// Point i inside a box (a 2-D box's z range is unbounded).
+bool inside(const PointData& p, std::size_t i, const std::array<std::array<double, 3>, 2>& box) {
+  for (int a = 0; a < p.dimension; ++a) {
+    const double x = p.position[i * static_cast<std::size_t>(p.dimension) + static_cast<std::size_t>(a)];
+    if (x < box[0][a] || x > box[1][a]) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+ModelOptions model_options(const Scene& scene) {
+  ModelOptions mo;
+  mo.constants = cosserat_constants(scene);
+  mo.effects = scene.effects;
+  mo.horizon = scene.geometry.horizon();
+  mo.spacing = scene.geometry.spacing;
+  if (scene.effects.damage && scene.material.damage) {
+    mo.no_fail_depth = scene.material.damage->no_fail_depth;
+    if (scene.material.damage->region) mo.damage_region = scene.material.damage->region->box;
+  }
+  if (scene.effects.viscoplasticity && scene.material.viscoplasticity && scene.material.viscoplasticity->region)
+    mo.plastic_region = scene.material.viscoplasticity->region->box;
+  if (scene.effects.viscoplasticity) mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
+  return mo;
+}
 
 Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   Model m;
@@ -62,7 +87,12 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
     m.bonds.intact.assign(m.bonds.bond_count(), 1);
     m.bonds.work.assign(m.bonds.bond_count(), 0.0);
     mark_no_fail_zone(m.points, o.no_fail_depth);
+    if (o.damage_region)
+      for (std::size_t i = 0; i < m.points.owned; ++i)
+        if (!inside(m.points, i, *o.damage_region)) m.points.no_fail[i] = 1;
   }
+  if (o.effects.viscoplasticity && o.plastic_region)
+    for (std::size_t i = 0; i < m.points.owned; ++i) m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
   for (std::size_t i = 0; i < m.points.owned; ++i)
     m.points.bond_count_at_start[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.offset[i]);
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <memory>
+#include <optional>
 
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
@@ -23,6 +24,9 @@ struct ModelOptions {
   double spacing = 0.0;
   std::array<double, 3> period{0.0, 0.0, 0.0};  // verification lattices only
   double no_fail_depth = 0.0;  // damage: bonds of points this close to a boundary condition never break
+  // Regions of the effects (material.damage.region, material.viscoplasticity.region): a box,
+  // [[x0, y0, z0], [x1, y1, z1]] in metres; none: the whole body.
+  std::optional<std::array<std::array<double, 3>, 2>> damage_region, plastic_region;
   // Required with the viscoplasticity effect (make_viscoplastic_model of the scene's material).
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;
 };
@@ -69,6 +73,11 @@ struct Model {
   // step is chosen; no-op without damage.
   void set_breakage_time_step(double dt);
 };
+
+// The options a scene asks for: constants, effects, horizon, spacing, the no-fail depth and the
+// effects' regions, and the viscoplastic model by name from the registry (an InputError naming the
+// key for bad parameters). Periodic lattices set `period` themselves.
+ModelOptions model_options(const Scene& scene);
 
 // Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.
 Model build_model(const PointCloud& cloud, const ModelOptions& options);

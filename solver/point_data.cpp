@@ -60,6 +60,7 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
     p.equivalent_plastic_strain.assign(n, 0.0);
     p.plastic_cohesion.assign(n, 0.0);  // set from the model's initial state by build_model
     p.plastic_dissipation.assign(n, 0.0);
+    p.plastic_active.assign(n, 1);  // narrowed to the region by build_model
   }
   if (effects.damage) {
     p.family_volume.assign(n, 0.0);  // filled by build_model before the pre-crack cuts

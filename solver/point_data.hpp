@@ -57,6 +57,7 @@ struct PointData {
   std::vector<double> equivalent_plastic_strain;  // ebar
   std::vector<double> plastic_cohesion;           // c(ebar) [Pa]
   std::vector<double> plastic_dissipation;        // [J] of the last step (trapezoid rule)
+  std::vector<std::uint8_t> plastic_active;       // 1 inside material.viscoplasticity.region
 
   // Damage state (allocated only when the effect is on, SPEC section 7).
   std::vector<double> family_volume;         // sum V_j over the family before pre-crack cuts

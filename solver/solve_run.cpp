@@ -170,16 +170,8 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   if (!(scene.time.end > 0.0)) throw InputError(scene.path + ": time.end: must be positive");
   refuse_runs_that_do_not_fit(scene, cloud);
 
-  ModelOptions mo;
-  mo.constants = cosserat_constants(scene);
-  mo.effects = scene.effects;
-  mo.horizon = scene.geometry.horizon();
-  mo.spacing = scene.geometry.spacing;
-  if (scene.effects.damage && scene.material.damage) mo.no_fail_depth = scene.material.damage->no_fail_depth;
-  // The viscoplastic model by name from the registry (material.viscoplasticity.model); bad
-  // parameters are an InputError naming the key.
-  if (scene.effects.viscoplasticity) mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
-  Model model = build_model(cloud, mo);
+  // Bad viscoplastic parameters are an InputError naming the key.
+  Model model = build_model(cloud, model_options(scene));
   const BoundaryConditions conditions(scene, cloud, model.points, options.points_file);
 
   if (model.detached_points == model.points.owned)

@@ -153,7 +153,7 @@ StudyResult run_crack(const StudyParameters& p) {
   s.material.couple_moduli = p.dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
                                               : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
   s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice"};
+  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
   verification::CrackStrip strip;
   strip.height = p.resolution + p.resolution % 2;
   strip.length = 4 * strip.height;

@@ -172,6 +172,33 @@ TEST(Scene, FreeComponentsHistoriesAndRotation) {
   EXPECT_DOUBLE_EQ((*left.selector.box)[0][0], -1e-3);
 }
 
+// An effect limited to a box (material.damage.region, material.viscoplasticity.region): read in
+// scene units, written back by the resolved scene; a region without a box, or with another
+// selector, is bad input naming the key.
+TEST(Scene, EffectRegions) {
+  const std::string damage = "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm}\n";
+  const std::string text =
+      replace(kExample, damage,
+              "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm,\n"
+              "           region: {box: [[40 mm, 20 mm], [100 mm, 60 mm]]}}\n");
+  const Scene s = parse_scene(text, kPath);
+  ASSERT_TRUE(s.material.damage->region.has_value());
+  ASSERT_TRUE(s.material.damage->region->box.has_value());
+  EXPECT_DOUBLE_EQ((*s.material.damage->region->box)[0][0], 40e-3);
+  EXPECT_DOUBLE_EQ((*s.material.damage->region->box)[1][1], 60e-3);
+  const Scene back = parse_scene(resolved_scene_yaml(s, {}), "/elsewhere/scene.resolved.yaml");
+  ASSERT_TRUE(back.material.damage->region.has_value());
+  EXPECT_EQ(*back.material.damage->region->box, *s.material.damage->region->box);
+  std::string e = error_of(replace(kExample, damage, "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: {}}\n"));
+  EXPECT_NE(e.find("material.damage.region: missing: box"), std::string::npos) << e;
+  e = error_of(replace(kExample, damage,
+                       "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: {boundary: top}}\n"));
+  EXPECT_NE(e.find("material.damage.region"), std::string::npos) << e;
+  EXPECT_NE(e.find("boundary"), std::string::npos) << e;
+  e = error_of(replace(kExample, damage, "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: near the notch}\n"));
+  EXPECT_NE(e.find("material.damage.region: expected {box:"), std::string::npos) << e;
+}
+
 TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
   const std::string text = replace(kExample, "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
       "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0.5,\n"

@@ -25,7 +25,7 @@ constexpr double kDx = 1e-3;
 Scene damage_scene(int dimension, double g_cr) {
   Scene s = testing::make_scene(dimension, true, kDx, dimension == 2 ? 3.05 : 2.05);
   s.effects.damage = true;
-  s.material.damage = DamageParameters{g_cr, 0.0, "lattice"};
+  s.material.damage = DamageParameters{g_cr, 0.0, "lattice", std::nullopt};
   return s;
 }
 
@@ -52,15 +52,15 @@ std::array<double, 3> momentum(const Model& m, double* scale = nullptr) {
 
 // A free lattice given a random velocity field of `speed` (an impact from every side at once):
 // with a small G_cr most bonds break and many points lose all of theirs.
-ShatterRun shatter(int dimension, std::array<int, 3> n, double speed, int steps) {
-  ShatterRun r{testing::make_model(testing::make_lattice(dimension, n, kDx), damage_scene(dimension, 0.5)), 0.0, {}, {}, 0.0,
-               {}, true};
+ShatterRun shatter(int dimension, std::array<int, 3> n, double speed, int steps, const Scene& scene) {
+  ShatterRun r{testing::make_model(testing::make_lattice(dimension, n, kDx), scene), 0.0, {}, {}, 0.0, {}, true};
   Model& m = r.model;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> g(-1.0, 1.0);
   for (auto& v : m.points.velocity) v = speed * g(rng);
+  // The step of an undamaged model when damage is off (the same step for runs compared bit for bit).
   const double critical = critical_time_step(m).step;
-  const double dt = 0.8 * m.damage_critical_step(critical);
+  const double dt = 0.8 * (scene.effects.damage ? m.damage_critical_step(critical) : critical);
   m.set_breakage_time_step(dt);
   BoundaryConditions free_body(m.points);
   ExplicitDynamics dynamics(m, free_body, dt);
@@ -76,6 +76,10 @@ ShatterRun shatter(int dimension, std::array<int, 3> n, double speed, int steps)
   r.balance_error = dynamics.balance_error();
   r.momentum_end = momentum(m);
   return r;
+}
+
+ShatterRun shatter(int dimension, std::array<int, 3> n, double speed, int steps) {
+  return shatter(dimension, n, speed, steps, damage_scene(dimension, 0.5));
 }
 
 void check_shatter(int dimension, std::array<int, 3> n, double speed) {
@@ -130,6 +134,81 @@ TEST(SolverDamage, BreakageIsIdenticalOnOneAndTwoThreads) {
   EXPECT_TRUE(same(one.model.points.displacement, two.model.points.displacement));
   EXPECT_TRUE(same(one.model.points.rotation, two.model.points.rotation));
   EXPECT_EQ(std::memcmp(&one.balance_error, &two.balance_error, sizeof(double)), 0);
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// material.damage.region: a bond with an end outside the box never breaks (and its work is not
+// booked), bonds inside break as without a region.
+TEST(SolverDamage, RegionLimitsBreakageToItsBox) {
+  Scene scene = damage_scene(2, 0.5);
+  Selector left;
+  left.box = std::array<std::array<double, 3>, 2>{{{-1.0, -1.0, -1.0}, {12e-3, 1.0, 1.0}}};  // x < 12 of 24 mm
+  scene.material.damage->region = left;
+  const ShatterRun r = shatter(2, {24, 24, 1}, 10.0, 100, scene);
+  const Model& m = r.model;
+  ASSERT_TRUE(r.finite);
+  std::size_t broken_inside = 0;
+  for (std::size_t i = 0; i < m.points.owned; ++i)
+    for (auto b = m.bonds.offset[i]; b < m.bonds.offset[i + 1]; ++b) {
+      const std::size_t j = m.bonds.neighbor[b];
+      const bool outside = m.points.position[i * 2] > 12e-3 || m.points.position[j * 2] > 12e-3;
+      if (outside) {
+        ASSERT_EQ(m.bonds.intact[b], 1) << "bond " << i << "-" << j << " with an end outside the region broke";
+        ASSERT_EQ(m.bonds.work[b], 0.0);
+      } else if (!m.bonds.intact[b]) {
+        ++broken_inside;
+      }
+    }
+  // The shatter breaks more than a tenth of all bonds without a region (check_shatter): inside the
+  // half that may break, it still does.
+  EXPECT_GT(broken_inside, m.bonds.bond_count() / 20);
+  EXPECT_LT(std::abs(r.balance_error), 1e-9);
+}
+
+// A region holding the whole body is no region: the same bits.
+TEST(SolverDamage, RegionHoldingTheBodyChangesNothing) {
+  Scene scene = damage_scene(2, 0.5);
+  Selector all;
+  all.box = std::array<std::array<double, 3>, 2>{{{-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0}}};
+  scene.material.damage->region = all;
+  const ShatterRun with = shatter(2, {24, 24, 1}, 10.0, 60, scene);
+  const ShatterRun without = shatter(2, {24, 24, 1}, 10.0, 60);
+  ASSERT_GT(without.model.broken_bonds, 0u);
+  EXPECT_EQ(with.model.bonds.intact, without.model.bonds.intact);
+  EXPECT_TRUE(same_bits(with.model.points.displacement, without.model.points.displacement));
+  EXPECT_TRUE(same_bits(with.model.points.rotation, without.model.points.rotation));
+}
+
+// Issue 9: the damage effect on but inactive (an enormous G_cr) moves the body exactly as the
+// model without it, at the same time step (the damage step bound is not applied to the run
+// without damage, so the damaged run is given the same step).
+TEST(SolverDamage, EnormousCriticalEnergyGivesTheUndamagedRunBitForBit) {
+  for (int d : {2, 3}) {
+    const std::array<int, 3> n = d == 2 ? std::array<int, 3>{16, 16, 1} : std::array<int, 3>{7, 7, 7};
+    Scene off = damage_scene(d, 1e30);
+    off.effects.damage = false;
+    off.material.damage.reset();
+    ShatterRun undamaged = shatter(d, n, 0.05, 80, off);
+    // The same step: the one of the undamaged model.
+    Scene on = damage_scene(d, 1e30);
+    Model m = testing::make_model(testing::make_lattice(d, n, kDx), on);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    for (auto& v : m.points.velocity) v = 0.05 * g(rng);
+    const double dt = 0.8 * critical_time_step(m).step;
+    m.set_breakage_time_step(dt);
+    BoundaryConditions free_body(m.points);
+    ExplicitDynamics dynamics(m, free_body, dt);
+    dynamics.initialize();
+    for (int k = 0; k < 81; ++k) dynamics.step(k >= 79);
+    EXPECT_EQ(m.broken_bonds, 0u);
+    EXPECT_TRUE(same_bits(m.points.displacement, undamaged.model.points.displacement)) << d << "-D";
+    EXPECT_TRUE(same_bits(m.points.velocity, undamaged.model.points.velocity)) << d << "-D";
+    EXPECT_TRUE(same_bits(m.points.rotation, undamaged.model.points.rotation)) << d << "-D";
+  }
 }
 
 // The closed-form block H_i equals the kernel's own stiffness: with every other point at rest,

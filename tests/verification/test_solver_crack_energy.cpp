@@ -39,7 +39,7 @@ Scene crack_scene(int dimension, double horizon_factor) {
   s.material.couple_moduli = dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
                                             : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
   s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice"};
+  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
   return s;
 }
 
@@ -92,7 +92,7 @@ Scene dissipation_scene(int dimension, double horizon_factor, double stabilizati
   s.geometry.spacing = dx;
   s.material.lambda = 0.25 * s.material.mu;  // Poisson ratio 0.1
   s.material.mu_c = s.material.mu;
-  s.material.damage = DamageParameters{300.0, 0.0, "dissipation"};
+  s.material.damage = DamageParameters{300.0, 0.0, "dissipation", std::nullopt};
   s.numerics.stabilization = stabilization;
   return s;
 }
@@ -166,7 +166,7 @@ TEST(SolverCrackEnergy, NoBondBreaksBelowTheThreshold) {
 TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
   for (int d : {2, 3})
     for (double m : {2.05, 3.05, 4.05, 8.05, 16.05}) {
-      DamageParameters lattice{160.0, 0.0, "lattice"};
+      DamageParameters lattice{160.0, 0.0, "lattice", std::nullopt};
       const double dx = 1e-3, t = 2e-3;
       const double ratio = critical_bond_work(lattice, d, dx, m, t, 0.1) / continuum_critical_bond_work(d, 160.0, m * dx, t);
       std::printf("dimension %d, horizon factor %.2f: lattice / continuum w_cr = %.4f\n", d, m, ratio);
@@ -178,7 +178,7 @@ TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
         EXPECT_NEAR(ratio, 1.0, 0.03);
       }
     }
-  DamageParameters continuum{160.0, 0.0, "continuum"};
+  DamageParameters continuum{160.0, 0.0, "continuum", std::nullopt};
   EXPECT_DOUBLE_EQ(critical_bond_work(continuum, 2, 1e-3, 3.05, 2e-3, 0.1), continuum_critical_bond_work(2, 160.0, 3.05e-3, 2e-3));
 }
 

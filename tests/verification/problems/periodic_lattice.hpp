@@ -37,13 +37,8 @@ inline PointCloud make_lattice(int dimension, std::array<int, 3> n, double dx, d
 
 // The model of a cloud with the scene's material, effects, horizon and spacing.
 inline solver::Model make_model(const PointCloud& cloud, const Scene& scene, std::array<double, 3> period = {0, 0, 0}) {
-  solver::ModelOptions o;
-  o.constants = solver::cosserat_constants(scene);
-  o.effects = scene.effects;
-  o.horizon = scene.geometry.horizon();
-  o.spacing = scene.geometry.spacing;
+  solver::ModelOptions o = solver::model_options(scene);
   o.period = period;
-  if (scene.effects.damage && scene.material.damage) o.no_fail_depth = scene.material.damage->no_fail_depth;
   return solver::build_model(cloud, o);
 }
 
