@@ -118,6 +118,7 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"steps\": " + std::to_string(info.steps) + ",\n";
   j += "  \"time_s\": " + format_number(info.time) + ",\n";
   j += "  \"wall_seconds\": " + format_number(info.wall_seconds) + ",\n";
+  j += "  \"loop_wall_seconds\": " + format_number(info.loop_wall_seconds) + ",\n";
   j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
   j += "  \"effects\": [";
   for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_string(info.effects[k]);

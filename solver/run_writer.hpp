@@ -19,7 +19,8 @@ struct RunInfo {
   std::uint64_t points = 0, bonds = 0;
   std::int64_t steps = 0;
   double time = 0.0;
-  double wall_seconds = 0.0;
+  double wall_seconds = 0.0;       // the whole run: reading, families, critical step, loop, files
+  double loop_wall_seconds = 0.0;  // the time loop only (snapshot and row writing included)
   int threads = 1;
   std::vector<std::string> effects;
   int dimension = 2;

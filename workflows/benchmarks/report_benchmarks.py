@@ -1,0 +1,191 @@
+#!/usr/bin/python3
+"""Writes results.md and the throughput figure from the benchmark CSVs (nothing typed in).
+
+Reads out/benchmarks.csv (run_mppm.py) and, when present, out/lammps.csv (run_lammps.py), and
+writes results.md with: every run; the cost of each effect relative to the plain elastic
+(non-polar) model; the inactive-effect runs against the run without the effect; mppm against
+LAMMPS peri/lps and peri/pmb at equal process count; the two-thread efficiency; the
+crack-branching base case's wall time; memory per bond. Each target of issue 9 is stated next to
+its measured value with "met" or "NOT met". Exit codes: 0 written; 2 bad input.
+"""
+
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+class InputError(Exception):
+    pass
+
+
+def read_rows(path, required):
+    try:
+        with open(path, newline="") as stream:
+            rows = list(csv.DictReader(stream))
+    except FileNotFoundError:
+        if required:
+            raise InputError(f"{path}: not found (run make first)")
+        return []
+    for r in rows:
+        for key in ("threads", "points", "bonds", "steps", "peak_memory_bytes"):
+            r[key] = int(r[key])
+        for key in ("wall_seconds", "bond_updates_per_second"):
+            r[key] = float(r[key])
+        r["run_seconds"] = float(r["run_seconds"]) if r.get("run_seconds") else None
+    return rows
+
+
+def find(rows, case, effects, threads):
+    for r in rows:
+        if r["case"] == case and r["effects"] == effects and r["threads"] == threads:
+            return r
+    return None
+
+
+def verdict(ok):
+    return "met" if ok else "**NOT met**"
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--mppm", required=True, help="benchmarks.csv of run_mppm.py")
+    parser.add_argument("--lammps", required=True, help="lammps.csv of run_lammps.py (may be missing)")
+    parser.add_argument("--results", required=True, help="results.md to write")
+    parser.add_argument("--figure", required=True, help="PNG of the throughputs")
+    parser.add_argument("--machine", default="", help="one line describing the machine")
+    args = parser.parse_args(argv)
+    mppm = read_rows(args.mppm, True)
+    lammps = read_rows(args.lammps, False)
+    plate = [r for r in mppm if r["case"] == "plate"]
+    if not plate:
+        raise InputError(f"{args.mppm}: no plate rows")
+    threads = sorted({r["threads"] for r in plate})
+    out = []
+    out.append("# Benchmarks: results\n")
+    out.append("Written by `make` (report_benchmarks.py) from `out/benchmarks.csv` and `out/lammps.csv`; "
+               "nothing typed in. " + (args.machine + " " if args.machine else "") +
+               "`wall_seconds` is the time loop only (LAMMPS: its `Loop time`), `run_seconds` the whole "
+               "`mppm-solve` run; a bond update is one bond of one point in one step (bonds counted "
+               "from both ends, as LAMMPS counts them).\n")
+
+    out.append("## Every run\n")
+    out.append("| case | effects | threads | points | bonds | steps | loop s | run s | bond updates/s | peak memory MB | bytes per bond |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in mppm + lammps:
+        run_s = f"{r['run_seconds']:.2f}" if r["run_seconds"] is not None else ""
+        out.append(f"| {r['case']} | {r['effects']} | {r['threads']} | {r['points']} | {r['bonds']} | {r['steps']} | "
+                   f"{r['wall_seconds']:.2f} | {run_s} | {r['bond_updates_per_second']:.3g} | "
+                   f"{r['peak_memory_bytes'] / 1e6:.1f} | {r['peak_memory_bytes'] / r['bonds']:.1f} |")
+    out.append("")
+
+    out.append("## Cost of each effect (plate, time loop relative to the non-polar elastic model)\n")
+    header = "| effects | " + " | ".join(f"{t} thread{'s' if t > 1 else ''}" for t in threads) + " |"
+    out.append(header)
+    out.append("|---" * (len(threads) + 1) + "|")
+    names = []
+    for r in plate:
+        if r["effects"] not in names:
+            names.append(r["effects"])
+    for name in names:
+        cells = []
+        for t in threads:
+            base, this = find(plate, "plate", "none", t), find(plate, "plate", name, t)
+            cells.append(f"{this['wall_seconds'] / base['wall_seconds']:.2f}" if base and this else "")
+        out.append(f"| {name} | " + " | ".join(cells) + " |")
+    out.append("")
+
+    out.append("## An effect that is on but inactive\n")
+    out.append("Damage with G_cr = 1e12 N/m and viscoplasticity with a cohesion of 1e15 Pa: run_mppm.py "
+               "checked that `load.csv` and the last snapshot are byte-identical to the `micropolar` run "
+               "(it stops with an error otherwise). The run without the effect is the cheaper one when "
+               "the ratio below is above 1.\n")
+    out.append("| effect on, inactive | threads | loop s | loop s without it | ratio |")
+    out.append("|---|---|---|---|---|")
+    for r in plate:
+        if "(inactive)" in r["effects"]:
+            without = find(plate, "plate", "micropolar", r["threads"])
+            if without:
+                out.append(f"| {r['effects']} | {r['threads']} | {r['wall_seconds']:.2f} | {without['wall_seconds']:.2f} | "
+                           f"{r['wall_seconds'] / without['wall_seconds']:.2f} |")
+    out.append("")
+
+    out.append("## Targets of issue 9 (measured in this run)\n")
+    out.append("| target | measured | |")
+    out.append("|---|---|---|")
+    for t in threads:
+        none = find(plate, "plate", "none", t)
+        lps = find(lammps, "plate-lammps-lps", "peri/lps", t)
+        if none and lps:
+            ratio = none["bond_updates_per_second"] / lps["bond_updates_per_second"]
+            out.append(f"| non-polar elastic >= 2x LAMMPS peri/lps, {t} process{'es' if t > 1 else ''} | "
+                       f"{none['bond_updates_per_second']:.3g} vs {lps['bond_updates_per_second']:.3g}: {ratio:.2f}x | {verdict(ratio >= 2)} |")
+        full = find(plate, "plate", "micropolar+damage", t)
+        pmb = find(lammps, "plate-lammps-pmb", "peri/pmb", t)
+        if full and pmb:
+            ratio = full["bond_updates_per_second"] / pmb["bond_updates_per_second"]
+            out.append(f"| micro-polar + damage faster than LAMMPS peri/pmb, {t} process{'es' if t > 1 else ''} | "
+                       f"{full['bond_updates_per_second']:.3g} vs {pmb['bond_updates_per_second']:.3g}: {ratio:.2f}x | {verdict(ratio > 1)} |")
+    crack = [r for r in mppm if r["case"] == "crack-branching-base"]
+    for r in crack:
+        out.append(f"| crack-branching base case ({r['steps']} steps, its own output) < 10 s, {r['threads']} threads | "
+                   f"{r['run_seconds']:.2f} s (time loop {r['wall_seconds']:.2f} s) | {verdict(r['run_seconds'] < 10)} |")
+    if 1 in threads and 2 in threads:
+        for name in names:
+            one, two = find(plate, "plate", name, 1), find(plate, "plate", name, 2)
+            if one and two:
+                efficiency = one["wall_seconds"] / (2 * two["wall_seconds"])
+                out.append(f"| two-thread efficiency >= 90 %, {name} | {100 * efficiency:.0f} % | {verdict(efficiency >= 0.9)} |")
+    block = [r for r in mppm if r["case"] == "block-3d"]
+    for r in block:
+        per_bond = r["peak_memory_bytes"] / r["bonds"]
+        out.append(f"| memory per bond, full model, < 40 bytes (3-D block, {r['points']} points, peak RSS / bonds) | "
+                   f"{per_bond:.1f} bytes | {verdict(per_bond < 40)} |")
+    full2 = find(plate, "plate", "all", max(threads))
+    if full2:
+        out.append(f"| memory per bond, full model, plate (peak RSS / bonds; libraries included) | "
+                   f"{full2['peak_memory_bytes'] / full2['bonds']:.1f} bytes | |")
+    out.append("")
+    if not lammps:
+        out.append("LAMMPS rows missing (`make lammps` did not run): no ratios against LAMMPS.\n")
+
+    # Figure: bond updates per second of each plate effect set and LAMMPS, per thread count.
+    labels = names + [r["effects"] for r in lammps if r["threads"] == threads[0]]
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    width = 0.8 / len(threads)
+    for k, t in enumerate(threads):
+        values = []
+        for label in labels:
+            r = find(plate, "plate", label, t) or next((x for x in lammps if x["effects"] == label and x["threads"] == t), None)
+            values.append(r["bond_updates_per_second"] if r else 0.0)
+        ax.bar([i + k * width for i in range(len(labels))], values, width, label=f"{t} thread(s) / rank(s)")
+    ax.set_xticks([i + 0.4 - width / 2 for i in range(len(labels))])
+    ax.set_xticklabels([label.replace("+", "+\n") for label in labels], fontsize=7)
+    ax.set_ylabel("bond updates per second")
+    ax.set_title("crack-branching plate, 200 x 80 points, 2000 steps (time loop)")
+    ax.legend()
+    fig.tight_layout()
+    temporary = args.figure + ".tmp.png"
+    fig.savefig(temporary, dpi=110)
+    os.replace(temporary, args.figure)
+    out.append(f"![bond updates per second]({os.path.relpath(args.figure, os.path.dirname(os.path.abspath(args.results)))})\n")
+
+    temporary = args.results + ".tmp"
+    with open(temporary, "w") as stream:
+        stream.write("\n".join(out))
+    os.replace(temporary, args.results)
+    print(f"wrote {args.results} and {args.figure}")
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except (InputError, KeyError, ValueError) as error:
+        print(f"report_benchmarks.py: {error}", file=sys.stderr)
+        sys.exit(2)

@@ -1,0 +1,198 @@
+#!/usr/bin/python3
+"""Runs mppm-solve on the benchmark scenes and appends benchmark rows to a CSV.
+
+Owns: the effect sets of the plate (issue 9: none, micropolar, micropolar+damage,
+micropolar+viscoplasticity, all) at each thread count, the inactive-effect runs (damage with an
+enormous G_cr, viscoplasticity with an unreachable cohesion) and their bitwise comparison with
+the run without the effect, the 3-D block, per-run peak memory (GNU time), and the CSV rows
+  case,effects,threads,points,bonds,steps,wall_seconds,bond_updates_per_second,peak_memory_bytes
+(the columns of run_lammps.py) plus run_seconds (the whole mppm-solve run: reading the points,
+families, critical step, time loop, files). wall_seconds is the time loop only
+(run_info.json's loop_wall_seconds, the counterpart of LAMMPS's "Loop time") and
+bond_updates_per_second = bonds * steps / wall_seconds. Standard library only.
+
+Exit codes: 0 success; 2 bad input; 1 a run failed or an inactive effect changed the results.
+"""
+
+import argparse
+import csv
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+CSV_COLUMNS = ["case", "effects", "threads", "points", "bonds", "steps", "wall_seconds",
+               "bond_updates_per_second", "peak_memory_bytes", "run_seconds"]
+
+# The plate's effect sets (issue 9) and the two inactive variants.
+PLATE_SETS = {
+    "none": [],
+    "micropolar": ["micropolar"],
+    "micropolar+damage": ["micropolar", "damage"],
+    "micropolar+viscoplasticity": ["micropolar", "viscoplasticity"],
+    "all": ["micropolar", "damage", "viscoplasticity", "gravity"],
+}
+# Effect on but inactive: the same run as "micropolar", bit for bit.
+INACTIVE_SETS = {
+    "micropolar+damage(inactive)": (["micropolar", "damage"],
+                                    ["material.damage.critical_energy_release_rate=1e12 N/m"]),
+    "micropolar+viscoplasticity(inactive)": (["micropolar", "viscoplasticity"],
+                                             ["material.viscoplasticity.cohesion=1e15 Pa"]),
+}
+
+
+class InputError(Exception):
+    """Reported with exit code 2."""
+
+
+class RunError(Exception):
+    """Reported with exit code 1."""
+
+
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(description="Run the mppm benchmark cases and append CSV rows.")
+    parser.add_argument("csv", help="CSV file to write (replaced)")
+    parser.add_argument("--bin", required=True, help="directory of mppm-preprocess and mppm-solve")
+    parser.add_argument("--work", required=True, help="directory for points files and run directories")
+    parser.add_argument("--scenes", required=True, help="directory of plate.yaml and block.yaml")
+    parser.add_argument("--threads", default="1,2", help="thread counts of the plate runs (default 1,2)")
+    parser.add_argument("--block-threads", default="2", help="thread counts of the 3-D block (default 2)")
+    parser.add_argument("--plate-set", action="append", default=[],
+                        help="extra --set of every plate run (e.g. time.end=1us for a smoke test)")
+    parser.add_argument("--block-set", action="append", default=[],
+                        help="extra --set of the block run (e.g. geometry.spacing=5mm)")
+    parser.add_argument("--skip-block", action="store_true", help="no 3-D block")
+    parser.add_argument("--crack-scene", help="the crack-branching case's scene.yaml: its base run, "
+                        "shortened to --crack-end, with its own output, at the largest thread count")
+    parser.add_argument("--crack-end", default="60 us", help="time.end of that run (default 60 us: 2400 steps)")
+    args = parser.parse_args(argv)
+    try:
+        args.threads = [int(t) for t in args.threads.split(",") if t.strip()]
+        args.block_threads = [int(t) for t in args.block_threads.split(",") if t.strip()]
+    except ValueError:
+        raise InputError("--threads / --block-threads: expected comma-separated positive integers")
+    if min(args.threads + args.block_threads, default=0) < 1:
+        raise InputError("--threads / --block-threads: expected positive integers")
+    for tool in ("mppm-preprocess", "mppm-solve"):
+        if not os.access(os.path.join(args.bin, tool), os.X_OK):
+            raise InputError(f"{os.path.join(args.bin, tool)}: not found (build mppm first: make -C workflows build)")
+    if not shutil.which("/usr/bin/time"):
+        raise InputError("/usr/bin/time: not found (Debian package 'time'; make installs it)")
+    return args
+
+
+def run(command, what):
+    print("+ " + " ".join(command), flush=True)
+    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if result.returncode != 0:
+        raise RunError(f"{what} failed with exit code {result.returncode}:\n{result.stderr.strip()}")
+    return result
+
+
+def preprocess(args, scene, points, extra_sets):
+    if os.path.exists(points):
+        return
+    os.makedirs(os.path.dirname(points), exist_ok=True)
+    command = [os.path.join(args.bin, "mppm-preprocess"), scene, "-o", points + ".tmp.vtp"]
+    for s in extra_sets:
+        command += ["--set", s]
+    run(command, f"mppm-preprocess {scene}")
+    os.replace(points + ".tmp.vtp", points)
+
+
+def solve(args, scene, points, run_dir, effects, threads, extra_sets):
+    """One mppm-solve run under GNU time; returns run_info.json and the peak RSS in bytes."""
+    sets = ["effects=[" + ", ".join(effects) + "]"] + extra_sets
+    command = ["/usr/bin/time", "-f", "peak_rss_kib %M", os.path.join(args.bin, "mppm-solve"), scene,
+               "--points", points, "-o", run_dir, "--force", "--quiet", "--threads", str(threads)]
+    for s in sets:
+        command += ["--set", s]
+    result = run(command, f"mppm-solve {run_dir}")
+    peak = [line for line in result.stderr.splitlines() if line.startswith("peak_rss_kib ")]
+    if not peak:
+        raise RunError(f"{run_dir}: GNU time printed no peak memory")
+    with open(os.path.join(run_dir, "run_info.json")) as stream:
+        info = json.load(stream)
+    if info.get("status") != "completed":
+        raise RunError(f"{run_dir}: status {info.get('status')}: {info.get('message')}")
+    return info, int(peak[-1].split()[1]) * 1024
+
+
+def row(case, effects_name, threads, info, peak_bytes):
+    loop = info["loop_wall_seconds"]
+    return {"case": case, "effects": effects_name, "threads": threads, "points": info["points"],
+            "bonds": info["bonds"], "steps": info["steps"], "wall_seconds": f"{loop:.4g}",
+            "bond_updates_per_second": f"{info['bonds'] * info['steps'] / loop:.4g}",
+            "peak_memory_bytes": peak_bytes, "run_seconds": f"{info['wall_seconds']:.4g}"}
+
+
+def same_results(a, b):
+    """load.csv and the last snapshot of two run directories, byte for byte."""
+    if not filecmp.cmp(os.path.join(a, "load.csv"), os.path.join(b, "load.csv"), shallow=False):
+        return False, "load.csv differs"
+    snaps = sorted(os.listdir(os.path.join(a, "snapshots")))
+    if snaps != sorted(os.listdir(os.path.join(b, "snapshots"))) or not snaps:
+        return False, "different snapshot lists"
+    if not filecmp.cmp(os.path.join(a, "snapshots", snaps[-1]), os.path.join(b, "snapshots", snaps[-1]), shallow=False):
+        return False, f"snapshots/{snaps[-1]} differs"
+    return True, ""
+
+
+def main(argv):
+    args = parse_arguments(argv)
+    rows = []
+    plate_scene = os.path.join(args.scenes, "plate.yaml")
+    plate_points = os.path.join(args.work, "plate", "points.vtp")
+    preprocess(args, plate_scene, plate_points, [])
+    for threads in args.threads:
+        for name, effects in PLATE_SETS.items():
+            run_dir = os.path.join(args.work, "plate", f"{name}-{threads}t")
+            info, peak = solve(args, plate_scene, plate_points, run_dir, effects, threads, args.plate_set)
+            rows.append(row("plate", name, threads, info, peak))
+        reference = os.path.join(args.work, "plate", f"micropolar-{threads}t")
+        for name, (effects, sets) in INACTIVE_SETS.items():
+            run_dir = os.path.join(args.work, "plate", name.replace("(", "-").replace(")", "") + f"-{threads}t")
+            info, peak = solve(args, plate_scene, plate_points, run_dir, effects, threads, args.plate_set + sets)
+            same, why = same_results(run_dir, reference)
+            if not same:
+                raise RunError(f"{name}: an inactive effect changed the results ({why}: {run_dir} vs {reference})")
+            rows.append(row("plate", name, threads, info, peak))
+    if args.crack_scene:
+        crack_points = os.path.join(args.work, "crack-branching", "points.vtp")
+        preprocess(args, args.crack_scene, crack_points, [])
+        threads = max(args.threads)
+        run_dir = os.path.join(args.work, "crack-branching", f"base-{threads}t")
+        info, peak = solve(args, args.crack_scene, crack_points, run_dir, ["micropolar", "damage"], threads,
+                           [f"time.end={args.crack_end}"])
+        rows.append(row("crack-branching-base", "micropolar+damage", threads, info, peak))
+    if not args.skip_block:
+        block_scene = os.path.join(args.scenes, "block.yaml")
+        block_points = os.path.join(args.work, "block", "points.vtp")
+        preprocess(args, block_scene, block_points, args.block_set)
+        for threads in args.block_threads:
+            run_dir = os.path.join(args.work, "block", f"all-{threads}t")
+            info, peak = solve(args, block_scene, block_points, run_dir,
+                               ["micropolar", "damage", "viscoplasticity"], threads, args.block_set)
+            rows.append(row("block-3d", "micropolar+damage+viscoplasticity", threads, info, peak))
+            shutil.rmtree(os.path.join(run_dir, "snapshots"), ignore_errors=True)  # 1e6-point snapshots
+    temporary = args.csv + ".tmp"
+    with open(temporary, "w", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=CSV_COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+    os.replace(temporary, args.csv)
+    print(f"wrote {args.csv} ({len(rows)} rows)")
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except InputError as error:
+        print(f"run_mppm.py: {error}", file=sys.stderr)
+        sys.exit(2)
+    except RunError as error:
+        print(f"run_mppm.py: {error}", file=sys.stderr)
+        sys.exit(1)
