@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""results.md of the crack-branching case from its outputs (nothing typed in).
+
+usage: report_case.py --out OUT --base base --rate-runs RUN... --results results.md --figures figures
+
+Writes the timing table (t0, crack start, branching and end times, largest tip speed, wall
+time) of every run, the loading curves (reaction of the top boundary against time) on one plot,
+and copies the base run's damage and micro-rotation pictures (rendered by mppm-postprocess
+--figures) next to results.md.
+"""
+import argparse
+import glob
+import json
+import os
+import shutil
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import crack_case  # noqa: E402
+
+
+def us(value):
+    return "-" if value is None else f"{value * 1e6:.4g}"
+
+
+def write_atomically(path, text):
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--base", required=True)
+    ap.add_argument("--rate-runs", nargs="+", required=True)
+    ap.add_argument("--results", required=True)
+    ap.add_argument("--figures", required=True)
+    args = ap.parse_args()
+    runs = [args.base] + args.rate_runs
+    os.makedirs(args.figures, exist_ok=True)
+    rows, curves = [], {}
+    for run in runs:
+        s = crack_case.summary(args.out, run)
+        with open(os.path.join(args.out, run, "run", "run_info.json")) as f:
+            info = json.load(f)
+        energy = crack_case.energy_rows(args.out, run)
+        ramp = s["boundary_conditions"][0]["history"][1][0]
+        rows.append((run, s, info, ramp, max(abs(float(r["balance_error"])) for r in energy),
+                     crack_case.rayleigh_speed(s["material"])))
+        load = crack_case.load_rows(args.out, run)
+        curves[run] = ([float(r["time_s"]) * 1e6 for r in load], [float(r["top_Fy_N"]) for r in load],
+                       [float(r["top_uy_m"]) * 1e6 for r in load])
+
+    fig, (ax_f, ax_u) = plt.subplots(1, 2, figsize=(11, 4))
+    for run, (t, force, disp) in curves.items():
+        label = f"{run} (t0 = {next(r[3] for r in rows if r[0] == run) * 1e6:.4g} us)"
+        ax_f.plot(t, force, label=label)
+        ax_u.plot(t, disp, label=label)
+    ax_f.set_xlabel("time [us]")
+    ax_f.set_ylabel("force on the top boundary [N]")
+    ax_f.set_title("applied load (traction x area)")
+    ax_u.set_xlabel("time [us]")
+    ax_u.set_ylabel("mean displacement of the top boundary [um]")
+    ax_u.set_title("response")
+    for ax in (ax_f, ax_u):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    curve_png = os.path.join(args.figures, "loading_curves.png")
+    fig.savefig(curve_png + ".tmp.png", dpi=110)
+    os.replace(curve_png + ".tmp.png", curve_png)
+
+    pictures = sorted(glob.glob(os.path.join(args.out, args.base, "post", "figures", "*.png")))
+    copied = []
+    for p in pictures:
+        target = os.path.join(args.figures, "base_" + os.path.basename(p))
+        shutil.copyfile(p, target + ".tmp")
+        os.replace(target + ".tmp", target)
+        copied.append(os.path.basename(target))
+
+    base = rows[0]
+    lines = ["# Crack branching (CASES.md case 2): results", "",
+             "Written by `make report` from the run outputs under `out/` (nothing typed in). Plate 100 x 40 mm, "
+             "200 x 80 points (dx = 0.5 mm), horizon factor 4.05, pre-crack from the left edge to the centre, "
+             "traction 8 MPa on top and bottom ramped over t0; see README.md for the set-up and the methods.", "",
+             "| run | solid fraction | t0 [us] | crack start [us] | branching [us] | end [us] | end reason | "
+             "largest tip speed [m/s] | Rayleigh speed [m/s] | crack length [mm] | max balance error | steps | threads | wall time [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for run, s, info, ramp, balance, c_r in rows:
+        speed = s.get("crack_tip_speed_max_m_per_s")
+        length = s.get("crack_length_m")
+        lines.append(f"| {run} | {s['material']['solid_fraction']:g} | {ramp * 1e6:.4g} | {us(s.get('crack_start_time_s'))} | "
+                     f"{us(s.get('crack_branch_time_s'))} | {us(s.get('crack_end_time_s'))} | {s.get('crack_end_reason') or '-'} | "
+                     f"{'-' if speed is None else f'{speed:.0f}'} | {c_r:.0f} | {'-' if length is None else f'{length * 1e3:.1f}'} | "
+                     f"{balance:.2g} | {info['steps']} | {info['threads']} | {info['wall_seconds']:.1f} |")
+    lines += ["", f"Wall time of the base run: **{base[2]['wall_seconds']:.1f} s** with {base[2]['threads']} threads "
+              f"({base[2]['steps']} steps, {base[2]['points']} points, {base[2]['bonds']} bonds), on the machine that ran "
+              "`make`.", "",
+              "## Loading curves", "", "![loading curves](figures/loading_curves.png)", ""]
+    damage = [c for c in copied if "damage" in c]
+    rotation = [c for c in copied if "rotation" in c]
+    if damage:
+        lines += ["## Damage on the deformed plate (base run; crack path = damage >= 0.35)", ""]
+        lines += [f"![{c}](figures/{c})" for c in damage] + [""]
+    if rotation:
+        lines += ["## Micro-rotation (base run)", ""]
+        lines += [f"![{c}](figures/{c})" for c in rotation] + [""]
+    write_atomically(args.results, "\n".join(lines))
+    print(f"report: {os.path.abspath(args.results)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
