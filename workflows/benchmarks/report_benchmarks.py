@@ -115,6 +115,20 @@ def main(argv):
                            f"{r['wall_seconds'] / without['wall_seconds']:.2f} |")
     out.append("")
 
+    region = [r for r in plate if "(region)" in r["effects"]]
+    if region:
+        out.append("## An effect limited to a region\n")
+        out.append("Damage only in the box [[45, 8], [101, 32]] mm around the crack path (`material.damage.region`; "
+                   "a third of the plate) against damage everywhere. Outside the box bonds never break and book no work.\n")
+        out.append("| run | threads | loop s | loop s, damage everywhere | ratio |")
+        out.append("|---|---|---|---|---|")
+        for r in region:
+            everywhere = find(plate, "plate", "micropolar+damage", r["threads"])
+            if everywhere:
+                out.append(f"| {r['effects']} | {r['threads']} | {r['wall_seconds']:.2f} | {everywhere['wall_seconds']:.2f} | "
+                           f"{r['wall_seconds'] / everywhere['wall_seconds']:.2f} |")
+        out.append("")
+
     out.append("## Targets of issue 9 (measured in this run)\n")
     out.append("| target | measured | |")
     out.append("|---|---|---|")
