@@ -25,7 +25,7 @@ const std::vector<std::string> kEffectNames{"micropolar", "viscoplasticity", "da
 // Fields a snapshot can hold, and the effect each one needs (empty: always available).
 const std::vector<std::pair<std::string, std::string>> kOutputFields{
     {"displacement", ""},      {"velocity", ""},          {"rotation", "micropolar"},
-    {"angular_velocity", "micropolar"}, {"strain", ""},   {"stress", ""},
+    {"rotation_rate", "micropolar"}, {"strain", ""},      {"stress", ""},
     {"wryness", "micropolar"}, {"couple_stress", "micropolar"}, {"porosity", ""},
     {"damage", "damage"},      {"plastic_strain", "viscoplasticity"},
     {"plastic_shear_strain", "viscoplasticity"}, {"equivalent_plastic_strain", "viscoplasticity"},

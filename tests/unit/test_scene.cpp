@@ -199,6 +199,16 @@ TEST(Scene, EffectRegions) {
   EXPECT_NE(e.find("material.damage.region: expected {box:"), std::string::npos) << e;
 }
 
+// The spin is written as `rotation_rate` (the name of the boundary conditions' key and of the
+// solver's field); the scene accepts that name for output.fields.
+TEST(Scene, RotationRateIsAnOutputField) {
+  const Scene s = parse_scene(replace(kExample, "fields: [displacement, rotation, damage]", "fields: [rotation_rate]"), kPath);
+  ASSERT_EQ(s.output.fields.size(), 1u);
+  EXPECT_EQ(s.output.fields[0], "rotation_rate");
+  const std::string e = error_of(replace(kExample, "fields: [displacement, rotation, damage]", "fields: [angular_velocity]"));
+  EXPECT_NE(e.find("output.fields"), std::string::npos) << e;
+}
+
 TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
   const std::string text = replace(kExample, "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
       "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0.5,\n"

@@ -60,7 +60,7 @@ BarCase bar(std::array<int, 3> n, double horizon_factor) {
       kinematic_condition("right", BoundaryType::velocity, {0.0, 20e-6}, {{0.0, 0.0}, {0.5, 0.0}})};
   c.scene.time.end = 40e-6;
   c.scene.output.interval = 10e-6;
-  c.scene.output.fields = {"displacement", "rotation", "stress", "porosity", "damage"};
+  c.scene.output.fields = {"displacement", "rotation", "rotation_rate", "stress", "porosity", "damage"};
   return c;
 }
 
@@ -97,6 +97,7 @@ TEST(SolverRun, WritesTheRunDirectory) {
     ++snapshots;
     EXPECT_NE(s.find("displacement"), nullptr);
     EXPECT_NE(s.find("rotation"), nullptr);
+    EXPECT_NE(s.find("rotation_rate"), nullptr);
     EXPECT_NE(s.find("stress"), nullptr);
     EXPECT_NE(s.find("porosity"), nullptr);
     EXPECT_EQ(s.find("damage"), nullptr);
