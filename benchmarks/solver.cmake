@@ -8,3 +8,6 @@ if(NOT TARGET mppm_verification_problems)
 endif()
 add_executable(mppm-damage-calibration ${CMAKE_CURRENT_LIST_DIR}/damage_calibration.cpp)
 target_link_libraries(mppm-damage-calibration PRIVATE mppm_verification_problems mppm_solver mppm_warnings)
+# mppm-bench-checkpoint: bytes and seconds of one checkpoint of a 1-million-point 3-D model.
+add_executable(mppm-bench-checkpoint ${CMAKE_CURRENT_LIST_DIR}/bench_checkpoint.cpp)
+target_link_libraries(mppm-bench-checkpoint PRIVATE mppm_solver mppm_warnings)

@@ -10,7 +10,7 @@
 //            balance_error = (kinetic + elastic + stabilization + dissipations - external
 //            work - initial total) / max(|external work|, total energy, tiny): relative.
 // run_info.json (rewritten atomically at each snapshot and at the end):
-//   {"status": "running" | "completed" | "numerical_failure" | "interrupted",
+//   {"status": "running" | "completed" | "numerical_failure" | "interrupted" | "write_error",
 //    "message": "...", "points": N, "bonds": N, "steps": N, "time_s": t,
 //    "wall_seconds": s, "threads": n, "effects": ["micropolar", ...],
 //    "dimension": d, "time_step_s": dt, "critical_time_step_s": dt_c,

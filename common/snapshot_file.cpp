@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/atomic_file.hpp"
+#include "common/checksummed_binary.hpp"
 #include "common/input_error.hpp"
 
 namespace mppm {
@@ -15,64 +16,6 @@ namespace {
 constexpr char kMagic[8] = {'M', 'P', 'P', 'M', 'S', 'N', 'A', 'P'};
 constexpr char kEnd[8] = {'M', 'P', 'P', 'M', 'E', 'N', 'D', '!'};
 constexpr std::uint32_t kVersion = 1;
-
-// FNV-1a 64-bit: cheap, detects truncation and corruption (not a cryptographic hash).
-struct Fnv1a {
-  std::uint64_t h = 1469598103934665603ull;
-  void add(const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) {
-      h ^= p[i];
-      h *= 1099511628211ull;
-    }
-  }
-};
-
-class Writer {
- public:
-  explicit Writer(std::ostream& out) : out_(out) {}
-  void bytes(const void* data, std::size_t n) {
-    out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
-    hash_.add(data, n);
-  }
-  template <class T>
-  void value(T v) {
-    bytes(&v, sizeof v);
-  }
-  std::uint64_t checksum() const { return hash_.h; }
-
- private:
-  std::ostream& out_;
-  Fnv1a hash_;
-};
-
-class Reader {
- public:
-  Reader(const std::string& path, std::string data) : path_(path), data_(std::move(data)) {}
-  void bytes(void* out, std::size_t n, const char* what) {
-    if (pos_ + n > data_.size()) {
-      throw InputError(path_ + ": truncated snapshot (ends inside " + std::string(what) + "; was the run killed while writing?)");
-    }
-    if (n == 0) return;  // an empty field's data() may be null: memcpy(nullptr, ..., 0) is UB
-    std::memcpy(out, data_.data() + pos_, n);
-    hash_.add(data_.data() + pos_, n);
-    pos_ += n;
-  }
-  template <class T>
-  T value(const char* what) {
-    T v;
-    bytes(&v, sizeof v, what);
-    return v;
-  }
-  std::uint64_t checksum() const { return hash_.h; }
-  std::size_t remaining() const { return data_.size() - pos_; }
-
- private:
-  std::string path_;
-  std::string data_;
-  std::size_t pos_ = 0;
-  Fnv1a hash_;
-};
 
 }  // namespace
 
@@ -91,7 +34,7 @@ void write_snapshot(const Snapshot& s, const std::string& path) {
     }
   }
   write_file_atomically(path, [&](std::ostream& out) {
-    Writer w(out);
+    ChecksummedWriter w(out);
     w.bytes(kMagic, sizeof kMagic);
     w.value<std::uint32_t>(kVersion);
     w.value<std::uint32_t>(static_cast<std::uint32_t>(s.dimension));
@@ -105,9 +48,7 @@ void write_snapshot(const Snapshot& s, const std::string& path) {
       w.value<std::uint32_t>(static_cast<std::uint32_t>(f.components));
       w.bytes(f.data.data(), f.data.size() * sizeof(double));
     }
-    const std::uint64_t sum = w.checksum();
-    out.write(reinterpret_cast<const char*>(&sum), sizeof sum);
-    out.write(kEnd, sizeof kEnd);
+    w.finish(kEnd);
   });
 }
 
@@ -116,7 +57,8 @@ Snapshot read_snapshot(const std::string& path) {
   if (!in) throw InputError(path + ": snapshot not found or not readable");
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  Reader r(path, buffer.str());
+  const std::string data = buffer.str();
+  ChecksummedReader r(path, data, "snapshot");
   char magic[8];
   r.bytes(magic, sizeof magic, "the header");
   if (std::memcmp(magic, kMagic, sizeof magic) != 0) throw InputError(path + ": not an mppm snapshot (bad magic bytes)");
@@ -151,14 +93,7 @@ Snapshot read_snapshot(const std::string& path) {
     r.bytes(f.data.data(), count * sizeof(double), "field data");
     s.fields.push_back(std::move(f));
   }
-  const std::uint64_t expected = r.checksum();
-  const auto stored = r.value<std::uint64_t>("the checksum");
-  char end[8];
-  r.bytes(end, sizeof end, "the end marker");
-  if (stored != expected || std::memcmp(end, kEnd, sizeof end) != 0) {
-    throw InputError(path + ": corrupted snapshot (checksum mismatch)");
-  }
-  if (r.remaining() != 0) throw InputError(path + ": corrupted snapshot (trailing bytes after the end marker)");
+  r.finish(kEnd);
   return s;
 }
 

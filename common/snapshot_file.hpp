@@ -41,6 +41,7 @@ Snapshot read_snapshot(const std::string& path);
 //   scene.resolved.yaml, log.txt, load.csv, energy.csv, run_info.json,
 //   reference.snap   (fields: position(3), volume, region, boundary_id: the points as run)
 //   snapshots/snapshot_000000.snap, ...   (step number in the name, 6+ digits)
+//   checkpoint/state.ckpt   (with output.checkpoint_interval; common/checkpoint_file.hpp)
 namespace run_layout {
 inline constexpr const char* resolved_scene = "scene.resolved.yaml";
 inline constexpr const char* log = "log.txt";
@@ -49,6 +50,8 @@ inline constexpr const char* energy = "energy.csv";
 inline constexpr const char* run_info = "run_info.json";
 inline constexpr const char* reference = "reference.snap";
 inline constexpr const char* snapshot_dir = "snapshots";
+inline constexpr const char* checkpoint_dir = "checkpoint";
+inline constexpr const char* checkpoint = "checkpoint/state.ckpt";
 std::string snapshot_name(std::int64_t index);  // "snapshot_000012.snap"
 }  // namespace run_layout
 

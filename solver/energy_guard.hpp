@@ -35,6 +35,21 @@ class EnergyGuard {
   double created_by_plasticity() const { return created_plastic_; }
   double created_by_breakage() const { return created_fracture_; }
 
+  // What the check carries from row to row (a checkpoint stores it, a restart puts it back).
+  struct History {
+    double scale = 0.0;
+    double last_plastic = 0.0, last_fracture = 0.0;
+    double created_plastic = 0.0, created_fracture = 0.0;
+  };
+  History history() const { return {scale_, last_plastic_, last_fracture_, created_plastic_, created_fracture_}; }
+  void restore(const History& h) {
+    scale_ = h.scale;
+    last_plastic_ = h.last_plastic;
+    last_fracture_ = h.last_fracture;
+    created_plastic_ = h.created_plastic;
+    created_fracture_ = h.created_fracture;
+  }
+
  private:
   double tolerance_;
   std::int64_t start_step_;

@@ -97,6 +97,15 @@ void ExplicitDynamics::initialize() {
   initial_total_ = energy_.total();
 }
 
+void ExplicitDynamics::restore(const Carried& carried, const std::vector<double>& body_force) {
+  time_ = carried.time;
+  steps_ = carried.steps;
+  energy_ = carried.energy;
+  initial_total_ = carried.initial_total;
+  finite_ = true;  // a checkpoint is written only after the step's non-finite guard passed
+  body_force_ = body_force;
+}
+
 void ExplicitDynamics::step(bool with_energy) {
   PointData& p = model_.points;
   const int D = p.dimension;

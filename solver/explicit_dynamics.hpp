@@ -98,6 +98,22 @@ class ExplicitDynamics {
   Model& model() { return model_; }
   const Model& model() const { return model_; }
 
+  // What the integrator carries from one step to the next besides the model's arrays (the
+  // forces of the last evaluation are the model's): a checkpoint stores it, a restart puts it
+  // back (solver/checkpoint.hpp). The start-of-step copies (force_prev_, displacement_prev_, ...)
+  // are rebuilt by every step and are not part of it.
+  struct Carried {
+    double time = 0.0;
+    std::int64_t steps = 0;
+    EnergyState energy;
+    double initial_total = 0.0;
+  };
+  Carried carried() const { return {time_, steps_, energy_, initial_total_}; }
+  // The external force density of the last evaluation (the first half kick of the next step uses it).
+  const std::vector<double>& body_force() const { return body_force_; }
+  // After initialize(): continues from a checkpointed state (body_force must have the run's size).
+  void restore(const Carried& carried, const std::vector<double>& body_force);
+
  private:
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);

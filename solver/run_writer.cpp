@@ -64,9 +64,18 @@ RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(d
   if (ec) throw InputError(directory_ + ": cannot create the run directory (" + ec.message() + ")");
 }
 
-void RunWriter::write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
-  const std::string text = resolved_scene_yaml(scene, derived);
+RunWriter::RunWriter(std::string directory, ContinueExisting) : directory_(std::move(directory)) {
+  std::error_code ec;
+  if (!fs::is_directory(directory_, ec))
+    throw InputError(directory_ + ": not a run directory (it does not exist)");
+  fs::create_directories(fs::path(directory_) / run_layout::snapshot_dir, ec);
+  if (ec) throw InputError(directory_ + ": cannot open the run directory for writing (" + ec.message() + ")");
+}
+
+std::string RunWriter::write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
+  std::string text = resolved_scene_yaml(scene, derived);
   write_file_atomically(path(run_layout::resolved_scene), [&](std::ostream& out) { out << text; });
+  return text;
 }
 
 void RunWriter::write_reference(const PointData& p) {

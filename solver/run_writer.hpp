@@ -14,7 +14,7 @@
 namespace mppm::solver {
 
 struct RunInfo {
-  std::string status = "running";  // running | completed | numerical_failure | interrupted
+  std::string status = "running";  // running | completed | numerical_failure | interrupted | write_error
   std::string message;
   std::uint64_t points = 0, bonds = 0;
   std::int64_t steps = 0;
@@ -36,12 +36,17 @@ class RunWriter {
   // InputError naming it and --force unless `force`, which replaces an earlier run directory as
   // a whole (common/output_directory.hpp): no snapshot of the older run survives.
   RunWriter(std::string directory, bool force);
+  // A restart (mppm-solve --restart): opens the existing run directory as it is; the tables, log
+  // and snapshot list are put back with restore_* before anything is written.
+  struct ContinueExisting {};
+  RunWriter(std::string directory, ContinueExisting);
 
   const std::string& directory() const { return directory_; }
   std::string path(const std::string& name) const { return directory_ + "/" + name; }
 
   // `derived`: values the solver derived (written under `derived:`), e.g. the time step.
-  void write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
+  // Returns the text written (its fingerprint identifies the scene of a checkpoint).
+  std::string write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
   void write_reference(const PointData& points);
   void write_snapshot(const Snapshot& snapshot);  // named by its step; recorded in run_info
 
@@ -53,15 +58,27 @@ class RunWriter {
   // Rewrites load.csv, energy.csv, log.txt and run_info.json.
   void flush(const RunInfo& info);
 
- private:
-  std::string directory_;
-  std::string load_csv_, energy_csv_, log_;
-  struct SnapshotEntry {
-    std::string file;
+  // The tables and the snapshot list so far (what a checkpoint records of them) and their
+  // restoration on a restart.
+  struct SnapshotRecord {
+    std::string file;  // relative to the run directory
     std::int64_t step;
     double time;
   };
-  std::vector<SnapshotEntry> snapshots_;
+  const std::vector<SnapshotRecord>& snapshots() const { return snapshots_; }
+  const std::string& load_table() const { return load_csv_; }
+  const std::string& energy_table() const { return energy_csv_; }
+  void restore_tables(std::string load_csv, std::string energy_csv) {
+    load_csv_ = std::move(load_csv);
+    energy_csv_ = std::move(energy_csv);
+  }
+  void restore_log(std::string log) { log_ = std::move(log); }
+  void restore_snapshots(std::vector<SnapshotRecord> snapshots) { snapshots_ = std::move(snapshots); }
+
+ private:
+  std::string directory_;
+  std::string load_csv_, energy_csv_, log_;
+  std::vector<SnapshotRecord> snapshots_;
 };
 
 // Formats a number for the tables (shortest text that reads back to the same double).

@@ -7,6 +7,7 @@
 #include "common/input_error.hpp"
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "common/checkpoint_file.hpp"
 #include "solver/solve_run.hpp"
 
 namespace mppm::solver {
@@ -16,6 +17,7 @@ int solve_command(int argc, char** argv) {
   spec.program = "mppm-solve";
   spec.usage =
       "usage: mppm-solve SCENE.yaml --points POINTS.vtp -o RUN_DIR [options]\n"
+      "       mppm-solve --restart RUN_DIR [--points POINTS.vtp] [--threads N] [--quiet]\n"
       "\n"
       "Runs the explicit micro-polar periporomechanics solver on the points made by\n"
       "mppm-preprocess and writes the run directory (resolved scene, snapshots, load.csv,\n"
@@ -28,16 +30,56 @@ int solve_command(int argc, char** argv) {
       "  --threads N         OpenMP threads (results are identical for any N)\n"
       "  --force             overwrite an earlier run in RUN_DIR\n"
       "  --quiet             no progress display\n"
+      "  --restart RUN_DIR   continue the run in RUN_DIR from its checkpoint (RUN_DIR/checkpoint/,\n"
+      "                      written every output.checkpoint_interval of simulated time and on\n"
+      "                      Ctrl-C / SIGTERM) to time.end, with the run's scene.resolved.yaml and\n"
+      "                      the points it was started with (or --points, which must be the same);\n"
+      "                      the result is bit for bit that of the uninterrupted run. Refused\n"
+      "                      (exit 2): no checkpoint, a corrupted one, the scene or the points\n"
+      "                      changed since\n"
       "  --help, --version\n"
       "\n"
-      "exit codes: 0 success, 2 bad input, 3 numerical failure (run directory kept up to the\n"
-      "last good snapshot), 1 other errors or interrupted (Ctrl-C: the run stops cleanly after\n"
-      "its step with a last snapshot and status \"interrupted\")\n";
-  // --inject-nan STEP:POINT[:FIELD[:COMPONENT]] is a test hook (solver/README.md "Test hooks"), not
-  // listed in the usage: it makes the run fail on purpose.
-  spec.value_options = {"-o", "--points", "--inject-nan"};
+      "exit codes: 0 success, 2 bad input or a write error (disk full: the previous files and\n"
+      "checkpoint stay intact), 3 numerical failure (run directory kept up to the last good\n"
+      "snapshot), 1 other errors or interrupted (Ctrl-C / SIGTERM: the run stops cleanly after\n"
+      "its step with a last snapshot, a checkpoint when checkpoints are on, and status\n"
+      "\"interrupted\")\n";
+  // --inject-nan STEP:POINT[:FIELD[:COMPONENT]] and --fail-checkpoint-write K are test hooks
+  // (solver/README.md "Test hooks"), not listed in the usage: they make the run fail on purpose.
+  spec.value_options = {"-o", "--points", "--inject-nan", "--restart", "--fail-checkpoint-write"};
   spec.flag_options = {"--force"};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) {
+    int fail_checkpoint_write = 0;
+    if (const auto hook = cl.option("--fail-checkpoint-write")) {
+      try {
+        std::size_t used = 0;
+        fail_checkpoint_write = std::stoi(*hook, &used);
+        if (used != hook->size() || fail_checkpoint_write < 1) throw std::invalid_argument(*hook);
+      } catch (const std::exception&) {
+        throw mppm::InputError("mppm-solve: --fail-checkpoint-write " + *hook +
+                               ": expected K >= 1 (the K-th checkpoint write fails)");
+      }
+    }
+    if (const auto run_directory = cl.option("--restart")) {
+      if (!cl.positional.empty() || cl.option("-o") || !cl.overrides.empty() || cl.has_flag("--force"))
+        throw mppm::InputError("mppm-solve: --restart " + *run_directory +
+                               " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
+                               "or --force with it (see --help)");
+      if (cl.option("--inject-nan")) throw mppm::InputError("mppm-solve: --inject-nan cannot be combined with --restart");
+      const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(mppm::solver::checkpoint_path(*run_directory));
+      mppm::solver::SolveOptions options;
+      options.run_directory = *run_directory;
+      options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
+      options.quiet = cl.quiet;
+      options.fail_checkpoint_write = fail_checkpoint_write;
+      const mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
+      const mppm::solver::SolveResult result = mppm::solver::restart(cloud, checkpoint, options);
+      if (result.interrupted) {
+        std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";
+        return mppm::kExitOther;
+      }
+      return mppm::kExitSuccess;
+    }
     if (cl.positional.size() != 1)
       throw mppm::InputError("mppm-solve: expected exactly one scene file (see --help)");
     const auto points = cl.option("--points");
@@ -54,6 +96,7 @@ int solve_command(int argc, char** argv) {
     options.force = cl.has_flag("--force");
     options.quiet = cl.quiet;
     options.inject_nan = inject_nan;
+    options.fail_checkpoint_write = fail_checkpoint_write;
     const mppm::solver::SolveResult result = mppm::solver::solve(scene, cloud, options);
     if (result.interrupted) {
       std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";

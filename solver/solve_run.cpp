@@ -10,14 +10,18 @@
 #include <optional>
 #include <cmath>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "common/checksummed_binary.hpp"
 #include "common/input_error.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
 #include "solver/boundary_conditions.hpp"
+#include "solver/checkpoint.hpp"
 #include "common/memory_estimate.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/energy_guard.hpp"
@@ -72,6 +76,9 @@ class Schedule {
     }
     return false;
   }
+  // The next multiple of the interval (a checkpoint stores it; a restart puts it back).
+  double next() const { return next_; }
+  void restore(double next) { next_ = next; }
 
  private:
   double interval_, dt_;
@@ -163,7 +170,78 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
   if (available) require_memory_fits(estimate_run_memory(in), *available, scene.path);
 }
 
-SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options) {
+namespace {
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": not found or not readable");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The first `bytes` of a table the run flushed before its checkpoint, checked against the
+// checkpoint's fingerprint: the rows a run wrote after its checkpoint are dropped.
+std::string table_up_to_checkpoint(const std::string& path, std::uint64_t bytes, std::uint64_t fingerprint,
+                                   std::int64_t step) {
+  std::string text = file_text(path);
+  if (text.size() < bytes || fnv1a(text.substr(0, bytes)) != fingerprint)
+    throw InputError(path + ": does not hold the rows the run had written at its checkpoint (step " +
+                     std::to_string(step) + "): the table was changed or replaced since; cannot restart");
+  text.resize(bytes);
+  return text;
+}
+
+// A restart puts the run directory back to its checkpoint: snapshots the run wrote after it (and
+// the snapshot of an interruption) are removed, as are the temporaries of a run killed while
+// writing. The continued run writes the scheduled snapshots again, with the same bytes.
+void remove_output_after_checkpoint(const std::string& directory, const std::vector<RunWriter::SnapshotRecord>& kept) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> keep;
+  for (const auto& k : kept) keep.push_back(fs::path(k.file).filename().string());
+  for (const char* sub : {".", run_layout::snapshot_dir, run_layout::checkpoint_dir}) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(fs::path(directory) / sub, ec)) {
+      const std::string name = entry.path().filename().string();
+      const bool temporary = name.find(".tmp-") != std::string::npos;
+      const bool later_snapshot = std::string(sub) == run_layout::snapshot_dir && name.rfind("snapshot_", 0) == 0 &&
+                                  std::find(keep.begin(), keep.end(), name) == keep.end();
+      if (temporary || later_snapshot) fs::remove(entry.path(), ec);
+    }
+  }
+}
+
+SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
+                const CheckpointFile* resume);
+
+}  // namespace
+
+std::string checkpoint_path(const std::string& run_directory) {
+  return run_directory + "/" + run_layout::checkpoint;
+}
+
+SolveResult solve(const Scene& scene, const PointCloud& cloud, const SolveOptions& options) {
+  return run(scene, cloud, options, nullptr);
+}
+
+SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+  const std::string scene_file = options.run_directory + "/" + run_layout::resolved_scene;
+  if (fnv1a(file_text(scene_file)) != checkpoint.header.scene_fingerprint)
+    throw InputError(scene_file + ": changed since the checkpoint " + checkpoint.path +
+                     " was written; a restart continues the run with the scene it was started with "
+                     "(for another scene start a new run: mppm-solve SCENE.yaml --points POINTS -o NEW_RUN_DIR)");
+  if (point_cloud_fingerprint(cloud) != checkpoint.header.points_fingerprint)
+    throw InputError(options.points_file + ": not the points the run in " + options.run_directory +
+                     " was started with (the points file changed since the checkpoint " + checkpoint.path +
+                     "; a restart needs the same points)");
+  if (options.inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
+  return run(load_scene(scene_file), cloud, options, &checkpoint);
+}
+
+namespace {
+
+SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
+                const CheckpointFile* resume) {
   const auto wall_start = std::chrono::steady_clock::now();
   Scene scene = scene_in;
   check_points_match_scene(scene, cloud, options.points_file);
@@ -218,11 +296,27 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
                      std::to_string(steps) + ")");
   model.set_breakage_time_step(dt);
 
-  RunWriter writer(options.run_directory, options.force);
-  std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", critical.step}};
-  if (scene.effects.damage) derived.emplace_back("critical_bond_work_J_per_m6", model.constants.critical_bond_work);
-  writer.write_resolved_scene(scene, derived);
-  writer.write_reference(model.points);
+  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
+  // run's inputs by the resolved scene as written and the points.
+  const bool checkpointing = scene.output.checkpoint_interval > 0.0;
+  RunIdentity identity;
+  if (resume) {
+    identity.scene_fingerprint = resume->header.scene_fingerprint;  // checked by restart()
+    identity.points_fingerprint = resume->header.points_fingerprint;
+  } else if (checkpointing) {
+    identity.points_fingerprint = point_cloud_fingerprint(cloud);
+  }
+  std::optional<RunWriter> writer_storage;
+  if (resume) writer_storage.emplace(options.run_directory, RunWriter::ContinueExisting{});
+  else writer_storage.emplace(options.run_directory, options.force);
+  RunWriter& writer = *writer_storage;
+  if (!resume) {
+    std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", critical.step}};
+    if (scene.effects.damage) derived.emplace_back("critical_bond_work_J_per_m6", model.constants.critical_bond_work);
+    const std::string resolved = writer.write_resolved_scene(scene, derived);
+    if (checkpointing) identity.scene_fingerprint = fnv1a(resolved);
+    writer.write_reference(model.points);
+  }
 
   RunInfo info;
   info.points = model.points.owned;
@@ -236,42 +330,51 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   info.limiting_mode = critical.limiting_mode;
   info.detached_points = model.detached_points;
 
-  writer.log("mppm-solve " MPPM_VERSION ": scene " + scene.path + ", points " + options.points_file);
-  writer.log("points " + std::to_string(info.points) + ", bonds " + std::to_string(info.bonds) +
-             " (stored from both ends), pre-crack cuts " + std::to_string(model.precrack_cut_bonds) +
-             " bonds, detached points " + std::to_string(model.detached_points));
-  writer.log("critical time step " + text(critical.step) + " s (translational " + text(critical.translational) +
-             " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
-             "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " + critical.limiting_mode +
-             ", driven by " + critical.driver);
-  writer.log("time step " + text(dt) + " s (" + (scene_in.time.step ? "given" : "auto, safety " + text(scene.time.safety)) +
-             "), " + std::to_string(steps) + " steps, threads " + std::to_string(info.threads));
-  if (scene.effects.damage)
-    writer.log("damage: critical bond work w_cr " + text(model.constants.critical_bond_work) + " J/m^6 (G_cr " +
-               text(scene.material.damage->critical_energy_release_rate) + " J/m^2, " +
-               scene.material.damage->calibration + " calibration), no-fail depth " +
-               text(scene.material.damage->no_fail_depth) + " m; largest step of a damage run " + text(damage_step) +
-               " s (" + text(damage_step / critical.step) +
-               " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
-               " s is detached (stiffness block limit " + text(model.block_eigenvalue_limit) + " 1/s^2)");
-  if (model.viscoplastic_model)
-    writer.log("viscoplastic model " + model.viscoplastic_model->name() +
-               " (return map once per step; the critical step above is the elastic bound, which "
-               "plastic flow does not lower)");
-  for (const auto& w : scene.warnings) writer.log("warning: " + w);
-  if (const auto& k = options.inject_nan)
-    writer.log("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
-               " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
-               std::to_string(k->step));
-  const auto available = available_fields(model);
-  for (const auto& f : scene.output.fields)
-    if (std::find(available.begin(), available.end(), f) == available.end())
-      writer.log("note: output field '" + f + "' is not produced by this run (effects: " +
-                 [&] {
-                   std::string e;
-                   for (const auto& n : info.effects) e += (e.empty() ? "" : ", ") + n;
-                   return e.empty() ? std::string("none") : e;
-                 }() + ")");
+  if (resume) writer.restore_log(file_text(writer.path(run_layout::log)));
+  else writer.log("mppm-solve " MPPM_VERSION ": scene " + scene.path + ", points " + options.points_file);
+  if (resume)
+    writer.log("mppm-solve " MPPM_VERSION " --restart: continues from " + resume->path + " (step " +
+               std::to_string(resume->header.step) + ", t = " + text(resume->header.time) + " s), points " +
+               options.points_file + ", threads " + std::to_string(info.threads) +
+               "; rows and snapshots after the checkpoint are dropped and written again");
+  // The run's start-up report (a restart has it already in its log).
+  if (!resume) {
+    writer.log("points " + std::to_string(info.points) + ", bonds " + std::to_string(info.bonds) +
+               " (stored from both ends), pre-crack cuts " + std::to_string(model.precrack_cut_bonds) +
+               " bonds, detached points " + std::to_string(model.detached_points));
+    writer.log("critical time step " + text(critical.step) + " s (translational " + text(critical.translational) +
+               " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
+               "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " + critical.limiting_mode +
+               ", driven by " + critical.driver);
+    writer.log("time step " + text(dt) + " s (" + (scene_in.time.step ? "given" : "auto, safety " + text(scene.time.safety)) +
+               "), " + std::to_string(steps) + " steps, threads " + std::to_string(info.threads));
+    if (scene.effects.damage)
+      writer.log("damage: critical bond work w_cr " + text(model.constants.critical_bond_work) + " J/m^6 (G_cr " +
+                 text(scene.material.damage->critical_energy_release_rate) + " J/m^2, " +
+                 scene.material.damage->calibration + " calibration), no-fail depth " +
+                 text(scene.material.damage->no_fail_depth) + " m; largest step of a damage run " + text(damage_step) +
+                 " s (" + text(damage_step / critical.step) +
+                 " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
+                 " s is detached (stiffness block limit " + text(model.block_eigenvalue_limit) + " 1/s^2)");
+    if (model.viscoplastic_model)
+      writer.log("viscoplastic model " + model.viscoplastic_model->name() +
+                 " (return map once per step; the critical step above is the elastic bound, which "
+                 "plastic flow does not lower)");
+    for (const auto& w : scene.warnings) writer.log("warning: " + w);
+    if (const auto& k = options.inject_nan)
+        writer.log("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
+                 " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
+                 std::to_string(k->step));
+    const auto available = available_fields(model);
+    for (const auto& f : scene.output.fields)
+      if (std::find(available.begin(), available.end(), f) == available.end())
+        writer.log("note: output field '" + f + "' is not produced by this run (effects: " +
+                   [&] {
+                     std::string e;
+                     for (const auto& n : info.effects) e += (e.empty() ? "" : ", ") + n;
+                     return e.empty() ? std::string("none") : e;
+                   }() + ")");
+  }  // start-up report
 
   std::vector<std::string> load_header{"time_s"};
   for (const auto& bc : scene.boundary_conditions)
@@ -327,21 +430,96 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
     throw NumericalFailure(options.run_directory + ": " + message);
   };
 
-  record_rows();
-  snapshot();
   Schedule rows(scene.output.load_interval, dt, true);
   Schedule snapshots(scene.output.interval, dt, false);
-  Progress progress("mppm-solve", steps, options.quiet);
+  Schedule checkpoints(scene.output.checkpoint_interval, dt, false);
   constexpr std::int64_t kGuardStartStep = 50;
   EnergyGuard guard(scene.numerics.energy_check_tolerance, kGuardStartStep);
   // The energy check stops growth; energy that disappears without a dissipation that accounts for
   // it is not an instability but a wrong answer all the same: reported at the end.
   double worst_balance = 0.0;
+  const std::string points_file = std::filesystem::absolute(options.points_file).string();
+
+  std::int64_t first_step = 1;
+  if (resume) {
+    RunLoopState loop = restore_checkpoint(*resume, identity, model, dynamics);
+    if (loop.time_step != dt)
+      throw InputError(resume->path + ": the checkpoint's time step " + text(loop.time_step) +
+                       " s is not the one this run arrives at (" + text(dt) + " s); cannot continue it bit for bit");
+    rows.restore(loop.next_row);
+    snapshots.restore(loop.next_snapshot);
+    checkpoints.restore(loop.next_checkpoint);
+    guard.restore(loop.guard);
+    worst_balance = loop.worst_balance;
+    writer.restore_tables(table_up_to_checkpoint(writer.path(run_layout::load), loop.load_table_bytes,
+                                                 loop.load_table_fingerprint, resume->header.step),
+                          table_up_to_checkpoint(writer.path(run_layout::energy), loop.energy_table_bytes,
+                                                 loop.energy_table_fingerprint, resume->header.step));
+    remove_output_after_checkpoint(writer.directory(), loop.snapshots);
+    writer.restore_snapshots(std::move(loop.snapshots));
+    first_step = dynamics.steps() + 1;
+    update_info("running", "");
+    writer.flush(info);
+  } else {
+    record_rows();
+    snapshot();
+  }
+
+  // A checkpoint after step s: the tables are flushed first (unless a snapshot just did), so that
+  // load.csv and energy.csv on disk hold every row the checkpoint counts. A write error stops the
+  // run (exit 2) with the previous checkpoint intact.
+  int checkpoints_written = 0;
+  std::int64_t last_checkpoint_step = resume ? resume->header.step : -1;
+  auto checkpoint = [&](bool tables_flushed) {
+    if (!tables_flushed) {
+      update_info("running", "");
+      writer.flush(info);
+    }
+    RunLoopState loop;
+    loop.next_row = rows.next();
+    loop.next_snapshot = snapshots.next();
+    loop.next_checkpoint = checkpoints.next();
+    loop.worst_balance = worst_balance;
+    loop.guard = guard.history();
+    loop.snapshots = writer.snapshots();
+    loop.load_table_bytes = writer.load_table().size();
+    loop.load_table_fingerprint = fnv1a(writer.load_table());
+    loop.energy_table_bytes = writer.energy_table().size();
+    loop.energy_table_fingerprint = fnv1a(writer.energy_table());
+    loop.points_file = points_file;
+    loop.time_step = dt;
+    ++checkpoints_written;
+    try {
+      write_checkpoint(checkpoint_path(writer.directory()), identity, model, dynamics, loop,
+                       options.fail_checkpoint_write == checkpoints_written);
+    } catch (const InputError& e) {
+      const std::string message =
+          std::string(e.what()) + "; the run stopped at step " + std::to_string(dynamics.steps()) +
+          (last_checkpoint_step >= 0 ? "; the previous checkpoint (step " + std::to_string(last_checkpoint_step) +
+                                           ") is intact: free space, then mppm-solve --restart " + writer.directory() +
+                                           " continues from it"
+                                     : std::string("; no checkpoint was written before"));
+      writer.log(message);
+      update_info("write_error", message);
+      try {
+        writer.flush(info);
+      } catch (const InputError&) {
+        // The disk that refused the checkpoint may refuse the tables too: the message above is
+        // what matters, and the tables of the last flush are intact.
+      }
+      throw InputError(message);
+    }
+    last_checkpoint_step = dynamics.steps();
+  };
+
+  Progress progress("mppm-solve", steps, options.quiet);
   const InterruptionHandlers handlers;
   SolveResult r;
-  for (std::int64_t s = 1; s <= steps; ++s) {
+  for (std::int64_t s = first_step; s <= steps; ++s) {
     const bool row = rows.due(s) || s == steps;
     const bool snap = snapshots.due(s) || s == steps;
+    // A finished run needs no checkpoint to continue from.
+    const bool checkpoint_due = checkpoints.due(s) && s < steps;
     dynamics.step(row);
     if (!dynamics.finite()) fail(non_finite_reason(dynamics));
     if (row) {
@@ -350,11 +528,19 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
       if (s >= kGuardStartStep && std::abs(dynamics.balance_error()) > std::abs(worst_balance))
         worst_balance = dynamics.balance_error();
     }
-    if (interruption_requested()) {
+    if (snap) snapshot();
+    const bool interrupted = interruption_requested() || options.interrupt_after_step == s;
+    // With checkpoints on, an interruption (SIGINT, SIGTERM) writes one too, before the snapshot of
+    // the interruption (which the checkpoint does not count, so that a restart removes it).
+    if (checkpointing && (checkpoint_due || interrupted)) checkpoint(snap);
+    if (interrupted) {
       clear_interruption();
-      writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+      if (!snap) writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
       const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(steps) +
-                                  ", t = " + text(dynamics.time()) + " s; the state there is the last snapshot";
+                                  ", t = " + text(dynamics.time()) + " s; the state there is the last snapshot" +
+                                  (checkpointing ? "; mppm-solve --restart " + writer.directory() +
+                                                       " continues from the checkpoint written there"
+                                                 : std::string());
       writer.log(message);
       update_info("interrupted", message);
       writer.flush(info);
@@ -362,7 +548,6 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
       r.message = message;
       break;
     }
-    if (snap) snapshot();
     progress.update(s, "t = " + text(dynamics.time()) + " s");
   }
   if (!r.interrupted) {
@@ -393,5 +578,7 @@ SolveResult solve(const Scene& scene_in, const PointCloud& cloud, const SolveOpt
   r.final_balance_error = dynamics.balance_error();
   return r;
 }
+
+}  // namespace
 
 }  // namespace mppm::solver

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "common/checkpoint_file.hpp"
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
 #include "solver/explicit_dynamics.hpp"
@@ -19,6 +20,11 @@ struct SolveOptions {
   // Test hook (mppm-solve --inject-nan STEP:POINT[:FIELD[:COMPONENT]], solver/README.md "Test
   // hooks"): a NaN appears in one point during one step, to test the guard end to end.
   std::optional<NanInjection> inject_nan;
+  // Test hooks of checkpoints (README "Checkpoints and restart"; not on the command line's --help):
+  // the run stops after this step as if SIGTERM had arrived during it (0 = never) ...
+  std::int64_t interrupt_after_step = 0;
+  // ... and the k-th checkpoint this process writes fails halfway as on a full disk (0 = none).
+  int fail_checkpoint_write = 0;
 };
 
 // Parses the value of --inject-nan: STEP:POINT[:FIELD[:COMPONENT]] with STEP >= 1, POINT the
@@ -37,5 +43,16 @@ struct SolveResult {
 };
 
 SolveResult solve(const Scene& scene, const PointCloud& cloud, const SolveOptions& options);
+
+// RUN_DIR/checkpoint/state.ckpt; read_checkpoint_file of it says "no checkpoint" when it is missing.
+std::string checkpoint_path(const std::string& run_directory);
+
+// Continues the run in options.run_directory from `checkpoint` (read from checkpoint_path of it)
+// to time.end: the scene is the run's scene.resolved.yaml, the points must be those the run was
+// started with. The tables are cut back to the checkpoint's step and the snapshots written after
+// it are removed, so that the run directory at the end is the one an uninterrupted run leaves
+// (bit for bit: snapshots, load.csv, energy.csv). Throws InputError (exit 2) when the scene or
+// the points changed since the checkpoint, or when the tables do not hold the checkpoint's rows.
+SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options);
 
 }  // namespace mppm::solver

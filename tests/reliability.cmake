@@ -50,3 +50,11 @@ mppm_add_gtest(test_output_safety unit unit/test_output_safety.cpp)
 set(MPPM_TEST_LIBS mppm_common VTK::IOXML VTK::CommonDataModel VTK::CommonCore)
 mppm_add_gtest(test_vtk_xml_reader unit unit/test_vtk_xml_reader.cpp)
 set(MPPM_TEST_LIBS mppm_common)
+# Checkpoint and restart (issue 10): a stopped run continued with restart() / mppm-solve --restart
+# gives the bytes of the uninterrupted run (elastic, damage, viscoplastic; after SIGTERM and
+# kill -9 of the real executable), a failed checkpoint write keeps the previous checkpoint, and a
+# corrupted checkpoint, a changed scene, points or tables are refused.
+set(MPPM_TEST_LIBS mppm_solver)
+mppm_add_gtest(test_checkpoint_restart unit unit/test_checkpoint_restart.cpp)
+set(MPPM_TEST_LIBS mppm_common)
+mppm_add_gtest(test_restart_process unit unit/test_restart_process.cpp)

@@ -1,0 +1,223 @@
+// Checkpoint contents (the list in checkpoint.hpp) and their restoration.
+#include "solver/checkpoint.hpp"
+
+#include <filesystem>
+#include <sstream>
+
+#include "common/checksummed_binary.hpp"
+#include "common/input_error.hpp"
+
+namespace mppm::solver {
+
+namespace {
+
+// Every per-point and per-bond array a run carries from one step to the next, by name, for the
+// model's effects (ModelRef is Model or const Model: one list for writing and for restoring).
+template <class ModelRef, class Visit>
+void visit_carried_arrays(ModelRef& model, Visit&& visit) {
+  auto& p = model.points;
+  visit("displacement", p.displacement);
+  visit("velocity", p.velocity);
+  visit("force", p.force);
+  if (model.effects.micropolar) {
+    visit("rotation", p.rotation);
+    visit("rotation_rate", p.spin);
+    visit("moment", p.moment);
+  }
+  if (model.effects.viscoplasticity) {
+    // The return map starts the step from the previous evaluation's strain and wryness.
+    visit("strain", p.strain);
+    visit("plastic_strain", p.plastic_strain);
+    visit("equivalent_plastic_strain", p.equivalent_plastic_strain);
+    visit("plastic_cohesion", p.plastic_cohesion);
+    visit("plastic_dissipation", p.plastic_dissipation);
+    if (model.effects.micropolar) {
+      visit("wryness", p.wryness);
+      visit("plastic_wryness", p.plastic_wryness);
+    }
+  }
+  if (model.effects.damage) {
+    auto& f = model.bonds;
+    visit("bond_intact", f.intact);
+    visit("bond_work", f.work);
+    visit("shape_inverse", p.shape_inverse);
+    visit("stabilization_ck", p.stabilization_ck);
+    visit("detached", p.detached);
+    visit("no_fail", p.no_fail);
+    visit("bonds_broken", p.bonds_broken);
+    // The bond-work increment of the next step starts from the last evaluation: its displacement
+    // and rotation, and its force / moment tensors, which the next evaluation swaps into the
+    // previous_* arrays (the previous_* tensors held now are overwritten before being read).
+    visit("previous_displacement", p.previous_displacement);
+    visit("force_tensor", p.force_tensor);
+    if (model.effects.micropolar) {
+      visit("stabilization_rot", p.stabilization_rot);
+      visit("previous_rotation", p.previous_rotation);
+      visit("moment_tensor", p.moment_tensor);
+    }
+  }
+}
+
+std::vector<double> energy_values(const EnergyState& e) {
+  return {e.kinetic,        e.rotational_kinetic,  e.elastic,
+          e.stabilization,  e.external_work,       e.plastic_dissipation,
+          e.fracture_dissipation, e.kinetic_terms};
+}
+
+EnergyState energy_from(const std::vector<double>& v) {
+  EnergyState e;
+  e.kinetic = v[0];
+  e.rotational_kinetic = v[1];
+  e.elastic = v[2];
+  e.stabilization = v[3];
+  e.external_work = v[4];
+  e.plastic_dissipation = v[5];
+  e.fracture_dissipation = v[6];
+  e.kinetic_terms = v[7];
+  return e;
+}
+
+// A fixed-length array of scalars, refused when it has another length.
+template <class T>
+std::vector<T> scalars(const CheckpointFile& file, const std::string& name, std::size_t count) {
+  std::vector<T> v(count);
+  file.restore(name, v);
+  return v;
+}
+
+template <class T>
+void add_vector(Fnv1a& h, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  h.add(&n, sizeof n);
+  if (!v.empty()) h.add(v.data(), v.size() * sizeof(T));
+}
+
+}  // namespace
+
+std::uint64_t point_cloud_fingerprint(const PointCloud& c) {
+  Fnv1a h;
+  const std::int64_t dimension = c.dimension;
+  h.add(&dimension, sizeof dimension);
+  for (double v : {c.spacing, c.horizon, c.thickness}) h.add(&v, sizeof v);
+  for (const auto* v : {&c.x, &c.y, &c.z, &c.volume, &c.normal_x, &c.normal_y, &c.normal_z, &c.precrack_vertices})
+    add_vector(h, *v);
+  add_vector(h, c.region);
+  add_vector(h, c.boundary_id);
+  for (const auto& b : c.boundaries) {
+    h.add(b.name + '\n' + b.type + '\n');
+    h.add(&b.area, sizeof b.area);
+    h.add(&b.point_count, sizeof b.point_count);
+  }
+  return h.h;
+}
+
+void write_checkpoint(const std::string& path, const RunIdentity& identity, const Model& model,
+                      const ExplicitDynamics& dynamics, const RunLoopState& loop, bool simulate_write_failure) {
+  CheckpointHeader header;
+  header.dimension = model.dimension();
+  header.point_count = model.points.owned;
+  header.effects = checkpoint_effect_bits(model.effects);
+  header.scene_fingerprint = identity.scene_fingerprint;
+  header.points_fingerprint = identity.points_fingerprint;
+  const ExplicitDynamics::Carried carried = dynamics.carried();
+  header.step = carried.steps;
+  header.time = carried.time;
+
+  std::vector<CheckpointArrayView> arrays;
+  visit_carried_arrays(model, [&](const char* name, const auto& values) { arrays.push_back(checkpoint_array(name, values)); });
+  arrays.push_back(checkpoint_array("body_force", dynamics.body_force()));
+  // Small arrays: built here, alive until the file is written.
+  const std::vector<double> energy = energy_values(carried.energy);
+  const std::vector<double> integrator{carried.time, carried.initial_total, loop.time_step};
+  const std::vector<std::uint64_t> model_counters{model.broken_bonds, model.detached_points,
+                                                  model.unstable_detached_points, model.energy_detached_points};
+  const std::vector<double> model_scalars{model.last_fracture_dissipation};
+  const std::vector<double> schedule{loop.next_row, loop.next_snapshot, loop.next_checkpoint, loop.worst_balance};
+  const std::vector<double> guard{loop.guard.scale, loop.guard.last_plastic, loop.guard.last_fracture,
+                                  loop.guard.created_plastic, loop.guard.created_fracture};
+  const std::vector<std::uint64_t> tables{loop.load_table_bytes, loop.load_table_fingerprint,
+                                          loop.energy_table_bytes, loop.energy_table_fingerprint};
+  std::string snapshot_files;
+  std::vector<std::int64_t> snapshot_steps;
+  std::vector<double> snapshot_times;
+  for (const auto& s : loop.snapshots) {
+    snapshot_files += s.file + '\n';
+    snapshot_steps.push_back(s.step);
+    snapshot_times.push_back(s.time);
+  }
+  arrays.push_back(checkpoint_array("energy", energy));
+  arrays.push_back(checkpoint_array("integrator", integrator));
+  arrays.push_back(checkpoint_array("model_counters", model_counters));
+  arrays.push_back(checkpoint_array("model_scalars", model_scalars));
+  arrays.push_back(checkpoint_array("schedule", schedule));
+  arrays.push_back(checkpoint_array("energy_guard", guard));
+  arrays.push_back(checkpoint_array("tables", tables));
+  arrays.push_back(checkpoint_text("snapshot_files", snapshot_files));
+  arrays.push_back(checkpoint_array("snapshot_steps", snapshot_steps));
+  arrays.push_back(checkpoint_array("snapshot_times", snapshot_times));
+  arrays.push_back(checkpoint_text("points_file", loop.points_file));
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+  if (ec) throw InputError(path + ": cannot create the checkpoint directory (" + ec.message() + ")");
+  write_checkpoint_file(path, header, arrays, simulate_write_failure);
+}
+
+RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& identity, Model& model,
+                                ExplicitDynamics& dynamics) {
+  const CheckpointHeader& h = file.header;
+  if (h.scene_fingerprint != identity.scene_fingerprint)
+    throw InputError(file.path + ": the checkpoint was written for another scene (scene.resolved.yaml changed since)");
+  if (h.points_fingerprint != identity.points_fingerprint)
+    throw InputError(file.path + ": the checkpoint was written for other points (the points file changed since)");
+  if (h.dimension != model.dimension() || h.point_count != model.points.owned ||
+      h.effects != checkpoint_effect_bits(model.effects))
+    throw InputError(file.path + ": the checkpoint is of a " + std::to_string(h.dimension) + "-D run with " +
+                     std::to_string(h.point_count) + " points and other effects than this one");
+
+  visit_carried_arrays(model, [&](const char* name, auto& values) { file.restore(name, values); });
+  std::vector<double> body_force(dynamics.body_force().size());
+  file.restore("body_force", body_force);
+  const auto energy = scalars<double>(file, "energy", 8);
+  const auto integrator = scalars<double>(file, "integrator", 3);
+  ExplicitDynamics::Carried carried;
+  carried.steps = h.step;
+  carried.time = integrator[0];
+  carried.initial_total = integrator[1];
+  carried.energy = energy_from(energy);
+  dynamics.restore(carried, body_force);
+
+  const auto counters = scalars<std::uint64_t>(file, "model_counters", 4);
+  model.broken_bonds = counters[0];
+  model.detached_points = counters[1];
+  model.unstable_detached_points = counters[2];
+  model.energy_detached_points = counters[3];
+  model.last_fracture_dissipation = scalars<double>(file, "model_scalars", 1)[0];
+
+  RunLoopState loop;
+  loop.time_step = integrator[2];
+  const auto schedule = scalars<double>(file, "schedule", 4);
+  loop.next_row = schedule[0];
+  loop.next_snapshot = schedule[1];
+  loop.next_checkpoint = schedule[2];
+  loop.worst_balance = schedule[3];
+  const auto guard = scalars<double>(file, "energy_guard", 5);
+  loop.guard = {guard[0], guard[1], guard[2], guard[3], guard[4]};
+  const auto tables = scalars<std::uint64_t>(file, "tables", 4);
+  loop.load_table_bytes = tables[0];
+  loop.load_table_fingerprint = tables[1];
+  loop.energy_table_bytes = tables[2];
+  loop.energy_table_fingerprint = tables[3];
+  const auto steps = file.array<std::int64_t>("snapshot_steps");
+  const auto times = file.array<double>("snapshot_times");
+  std::istringstream names(file.text("snapshot_files"));
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    std::string name;
+    if (!std::getline(names, name) || k >= times.size())
+      throw InputError(file.path + ": corrupted checkpoint (the snapshot list is incomplete)");
+    loop.snapshots.push_back({name, steps[k], times[k]});
+  }
+  loop.points_file = file.text("points_file");
+  return loop;
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,328 @@
+// Checkpoint and restart in-process (README "Checkpoints and restart"): a run stopped after a
+// checkpoint and continued with restart() ends with the same bytes (every snapshot, load.csv,
+// energy.csv) as the run that was never stopped, for an elastic micropolar case, a damage case
+// with bonds breaking and a softening viscoplastic case, on 2 threads after 1; a failed checkpoint
+// write leaves the previous checkpoint intact and readable; a corrupted checkpoint, a changed scene,
+// changed points or changed tables are refused.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/checkpoint_file.hpp"
+#include "common/input_error.hpp"
+#include "common/run_directory.hpp"
+#include "common/snapshot_file.hpp"
+#include "solver/checkpoint.hpp"
+#include "solver/parallel_policy.hpp"
+#include "solver/solve_run.hpp"
+#include "tests/verification/solver_viscoplastic_cases.hpp"
+
+namespace mppm::solver {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::add_end_layers;
+using testing::kinematic_condition;
+using testing::make_lattice;
+using testing::make_scene;
+using testing::read_csv_rows;
+using testing::read_text;
+
+constexpr double kDx = 1e-3;
+
+std::string directory_of(const std::string& name) {
+  return (fs::path(MPPM_BINARY_DIR) / "checkpoint-test-runs" / name).string();
+}
+
+std::string fresh_directory(const std::string& name) {
+  fs::remove_all(directory_of(name));
+  return directory_of(name);
+}
+
+struct Case {
+  Scene scene;
+  PointCloud cloud;
+};
+
+// The bar of test_solver_run: held on the left, pulled on the right, micropolar, 2-D.
+Case elastic_bar() {
+  Case c;
+  constexpr std::array<int, 3> n{24, 6, 1};
+  constexpr double horizon_factor = 3.05;
+  c.scene = make_scene(2, true, kDx, horizon_factor);
+  c.cloud = make_lattice(2, n, kDx, c.scene.thickness);
+  c.cloud.horizon = horizon_factor * kDx;
+  add_end_layers(c.cloud, n[0], 4, "displacement", "velocity");
+  c.scene.boundary_conditions = {
+      kinematic_condition("left", BoundaryType::displacement, {0.0}, {{0.0, 0.0}}),
+      kinematic_condition("right", BoundaryType::velocity, {0.0, 20e-6}, {{0.0, 0.0}, {0.5, 0.0}})};
+  c.scene.time.end = 40e-6;
+  c.scene.output.interval = 10e-6;
+  c.scene.output.fields = {"displacement", "velocity", "rotation", "stress", "damage"};
+  return c;
+}
+
+// The bar torn apart: bonds break from step 13 to the end (351 pairs), so across both restart points.
+Case damage_bar() {
+  Case c = elastic_bar();
+  c.scene.effects.damage = true;
+  c.scene.material.damage = DamageParameters{20.0, 0.0, "lattice", std::nullopt};
+  c.scene.boundary_conditions[1] =
+      kinematic_condition("right", BoundaryType::velocity, {0.0, 40e-6}, {{0.0, 0.0}, {6.0, 0.0}});
+  c.scene.output.fields = {"displacement", "rotation", "damage", "detached"};
+  return c;
+}
+
+// The short, softening plane-strain compression of test_solver_viscoplastic_run.
+Case softening_compression() {
+  testing::CompressionCase k = testing::compression_case(10, 10, 1e-4, 100.0, 1e3);
+  k.scene.output.interval = 2.5e-5;
+  k.scene.material.viscoplasticity->hardening = -20e6;
+  return {k.scene, k.cloud};
+}
+
+// A restart reads the scene back from scene.resolved.yaml, which must be a valid scene file: the
+// scenes built in code get a real geometry file and their conditions a physical group by name
+// (the solver reads neither: the points carry the boundaries).
+Case with_geometry_file(Case c) {
+  c.scene.geometry.file = std::string(MPPM_SOURCE_DIR) + "/geometry/branching_plate.geo";
+  for (auto& bc : c.scene.boundary_conditions) bc.selector.physical_group = bc.name;
+  return c;
+}
+
+SolveOptions options_for(const std::string& dir) {
+  SolveOptions o;
+  o.run_directory = dir;
+  o.points_file = "case.vtp";
+  return o;
+}
+
+// Same snapshot files (names and bytes), load.csv and energy.csv.
+void expect_same_results(const std::string& reference, const std::string& run) {
+  EXPECT_EQ(read_text(reference + "/" + run_layout::load), read_text(run + "/" + run_layout::load));
+  EXPECT_EQ(read_text(reference + "/" + run_layout::energy), read_text(run + "/" + run_layout::energy));
+  auto names = [](const std::string& dir) {
+    std::set<std::string> out;
+    for (const auto& e : fs::directory_iterator(fs::path(dir) / run_layout::snapshot_dir))
+      out.insert(e.path().filename().string());
+    return out;
+  };
+  const auto expected = names(reference);
+  EXPECT_EQ(expected, names(run));
+  EXPECT_GE(expected.size(), 3u);
+  for (const auto& name : expected) {
+    const std::string sub = std::string("/") + run_layout::snapshot_dir + "/" + name;
+    EXPECT_EQ(read_text(reference + sub), read_text(run + sub)) << name;
+  }
+}
+
+SolveResult restart_run(const Case& c, const std::string& dir, int threads = 2) {
+  const ParallelThresholds saved_thresholds = parallel_thresholds();
+  parallel_thresholds() = ParallelThresholds{1, 1};  // every loop threaded, even on these lattices
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  SolveResult r;
+  try {
+    r = restart(c.cloud, read_checkpoint_file(checkpoint_path(dir)), options_for(dir));
+  } catch (...) {
+    omp_set_num_threads(saved);
+    parallel_thresholds() = saved_thresholds;
+    throw;
+  }
+  omp_set_num_threads(saved);
+  parallel_thresholds() = saved_thresholds;
+  return r;
+}
+
+// The uninterrupted run (no checkpoints at all) against: a run stopped by the interruption hook
+// near the middle (its checkpoint is the one written on the signal) and continued; and a run that
+// completed with checkpoints and is continued from its last one, as after a kill after that
+// checkpoint (the rows and snapshots after it are on disk and must be dropped, then written again).
+void check_restart_is_bit_for_bit(const Case& c_in, const std::string& name) {
+  const Case c = with_geometry_file(c_in);
+  omp_set_num_threads(1);
+  const std::string reference = fresh_directory(name + "_reference");
+  const SolveResult whole = solve(c.scene, c.cloud, options_for(reference));
+  ASSERT_GT(whole.steps, 20);
+
+  Case checkpointed = c;
+  checkpointed.scene.output.checkpoint_interval = 0.3 * c.scene.time.end;
+  const std::string stopped = fresh_directory(name + "_stopped");
+  SolveOptions stop = options_for(stopped);
+  stop.interrupt_after_step = whole.steps / 2 + 1;
+  const SolveResult first = solve(checkpointed.scene, checkpointed.cloud, stop);
+  ASSERT_TRUE(first.interrupted);
+  EXPECT_EQ(read_checkpoint_file(checkpoint_path(stopped)).header.step, stop.interrupt_after_step);
+  const SolveResult rest = restart_run(checkpointed, stopped);
+  EXPECT_FALSE(rest.interrupted);
+  EXPECT_EQ(rest.steps, whole.steps);
+  expect_same_results(reference, stopped);
+  EXPECT_NE(read_text(stopped + "/" + run_layout::run_info).find("\"status\": \"completed\""), std::string::npos);
+
+  const std::string completed = fresh_directory(name + "_completed");
+  solve(checkpointed.scene, checkpointed.cloud, options_for(completed));
+  const std::int64_t last = read_checkpoint_file(checkpoint_path(completed)).header.step;
+  EXPECT_GT(last, whole.steps / 2);
+  EXPECT_LT(last, whole.steps);
+  restart_run(checkpointed, completed);
+  expect_same_results(reference, completed);
+}
+
+TEST(CheckpointRestart, ElasticMicropolarRunContinuesBitForBit) { check_restart_is_bit_for_bit(elastic_bar(), "elastic"); }
+
+TEST(CheckpointRestart, DamageRunContinuesBitForBit) {
+  const Case c = damage_bar();
+  check_restart_is_bit_for_bit(c, "damage");
+  // The comparison is on a run that did break bonds.
+  const auto energy = read_csv_rows(directory_of("damage_reference") + "/" + run_layout::energy);
+  ASSERT_FALSE(energy.empty());
+  EXPECT_GT(energy.back()[6], 0.0);  // fracture_dissipation_J
+}
+
+TEST(CheckpointRestart, ViscoplasticRunContinuesBitForBit) {
+  check_restart_is_bit_for_bit(softening_compression(), "viscoplastic");
+  const auto energy = read_csv_rows(directory_of("viscoplastic_reference") + "/" + run_layout::energy);
+  ASSERT_FALSE(energy.empty());
+  EXPECT_GT(energy.back()[5], 0.0);  // plastic_dissipation_J
+}
+
+// Without output.checkpoint_interval nothing is written (and an interruption writes none either).
+TEST(CheckpointRestart, NoCheckpointWithoutTheInterval) {
+  const Case c = elastic_bar();
+  const std::string dir = fresh_directory("none");
+  SolveOptions o = options_for(dir);
+  o.interrupt_after_step = 5;
+  EXPECT_TRUE(solve(c.scene, c.cloud, o).interrupted);
+  EXPECT_FALSE(fs::exists(fs::path(dir) / run_layout::checkpoint_dir));
+  try {
+    read_checkpoint_file(checkpoint_path(dir));
+    FAIL() << "no checkpoint was expected";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no checkpoint"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("output.checkpoint_interval"), std::string::npos) << e.what();
+  }
+}
+
+// The second checkpoint fails halfway (as on a full disk): the run stops with an InputError (exit
+// 2) naming the file, the OS error and the intact previous checkpoint; that checkpoint is still
+// readable, no temporary is left, and the run continues from it to the uninterrupted result.
+TEST(CheckpointRestart, FailedCheckpointWriteKeepsThePreviousOne) {
+  Case c = with_geometry_file(elastic_bar());
+  omp_set_num_threads(1);
+  const std::string reference = fresh_directory("write_failure_reference");
+  solve(c.scene, c.cloud, options_for(reference));
+  c.scene.output.checkpoint_interval = 0.2 * c.scene.time.end;
+  const std::string dir = fresh_directory("write_failure");
+  SolveOptions o = options_for(dir);
+  o.fail_checkpoint_write = 2;
+  try {
+    solve(c.scene, c.cloud, o);
+    FAIL() << "the run should stop on the failed checkpoint write";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(checkpoint_path(dir)), std::string::npos) << m;
+    EXPECT_NE(m.find("No space left on device"), std::string::npos) << m;
+    EXPECT_NE(m.find("the previous checkpoint (step"), std::string::npos) << m;
+  }
+  const CheckpointFile kept = read_checkpoint_file(checkpoint_path(dir));
+  EXPECT_GT(kept.header.step, 0);
+  EXPECT_LE(kept.header.time, 0.2 * c.scene.time.end * 1.5);
+  for (const auto& e : fs::directory_iterator(fs::path(dir) / run_layout::checkpoint_dir))
+    EXPECT_EQ(e.path().filename().string(), "state.ckpt") << "left behind: " << e.path();
+  EXPECT_NE(read_text(dir + "/" + run_layout::run_info).find("\"status\": \"write_error\""), std::string::npos);
+  restart_run(c, dir);
+  expect_same_results(reference, dir);
+}
+
+// A run stopped midway with a checkpoint, for the refusals below.
+std::string stopped_run(const Case& c, const std::string& name) {
+  Case k = with_geometry_file(c);
+  k.scene.output.checkpoint_interval = 0.25 * c.scene.time.end;
+  const std::string dir = fresh_directory(name);
+  SolveOptions o = options_for(dir);
+  o.interrupt_after_step = 10;
+  EXPECT_TRUE(solve(k.scene, k.cloud, o).interrupted);
+  return dir;
+}
+
+void expect_refused(const Case& c, const std::string& dir, const std::string& expected) {
+  try {
+    restart_run(c, dir, 1);
+    FAIL() << "restart should be refused with '" << expected << "'";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
+}
+
+TEST(CheckpointRestart, CorruptedOrTruncatedCheckpointIsRefused) {
+  const Case c = elastic_bar();
+  const std::string dir = stopped_run(c, "corrupted");
+  const std::string file = checkpoint_path(dir);
+  std::string bytes = read_text(file);
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] ^= 0x40;
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << flipped;
+  expect_refused(c, dir, "corrupted checkpoint (checksum mismatch)");
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() / 3);
+  expect_refused(c, dir, "truncated checkpoint");
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_NO_THROW(restart_run(c, dir, 1));
+}
+
+TEST(CheckpointRestart, ChangedSceneIsRefused) {
+  const Case c = elastic_bar();
+  const std::string dir = stopped_run(c, "changed_scene");
+  const std::string scene = dir + "/" + run_layout::resolved_scene;
+  std::string text = read_text(scene);
+  const auto at = text.find("interval: ");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 10, "2");  // another snapshot interval
+  std::ofstream(scene, std::ios::binary | std::ios::trunc) << text;
+  expect_refused(c, dir, "changed since the checkpoint");
+}
+
+TEST(CheckpointRestart, ChangedPointsAreRefused) {
+  const Case c = elastic_bar();
+  const std::string dir = stopped_run(c, "changed_points");
+  Case other = c;
+  other.cloud.volume[3] *= 1.01;
+  expect_refused(other, dir, "not the points the run");
+}
+
+TEST(CheckpointRestart, TablesWithoutTheCheckpointRowsAreRefused) {
+  const Case c = elastic_bar();
+  const std::string dir = stopped_run(c, "changed_table");
+  const std::string load = dir + "/" + run_layout::load;
+  const std::string text = read_text(load);
+  std::ofstream(load, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() / 2);
+  expect_refused(c, dir, "does not hold the rows the run had written at its checkpoint");
+}
+
+// What a checkpoint holds follows the effects: the damage arrays only with damage, the plastic ones
+// only with viscoplasticity, and the elastic case stores only what the integrator carries.
+TEST(CheckpointRestart, CheckpointHoldsTheStateOfTheEffectsOnly) {
+  const CheckpointFile elastic = read_checkpoint_file(checkpoint_path(stopped_run(elastic_bar(), "contents_elastic")));
+  for (const char* name : {"displacement", "velocity", "rotation", "rotation_rate", "force", "moment", "body_force",
+                           "energy", "schedule", "energy_guard", "tables", "points_file"})
+    EXPECT_TRUE(elastic.has(name)) << name;
+  for (const char* name : {"bond_intact", "bond_work", "plastic_strain", "strain", "shape_inverse"})
+    EXPECT_FALSE(elastic.has(name)) << name;
+  EXPECT_EQ(elastic.header.effects, checkpoint_effect_bits(elastic_bar().scene.effects));
+  EXPECT_EQ(elastic.header.step, 10);
+  const CheckpointFile damage = read_checkpoint_file(checkpoint_path(stopped_run(damage_bar(), "contents_damage")));
+  for (const char* name : {"bond_intact", "bond_work", "shape_inverse", "detached", "previous_displacement"})
+    EXPECT_TRUE(damage.has(name)) << name;
+  const CheckpointFile plastic =
+      read_checkpoint_file(checkpoint_path(stopped_run(softening_compression(), "contents_plastic")));
+  for (const char* name : {"plastic_strain", "plastic_wryness", "equivalent_plastic_strain", "plastic_cohesion", "strain"})
+    EXPECT_TRUE(plastic.has(name)) << name;
+}
+
+}  // namespace
+}  // namespace mppm::solver
