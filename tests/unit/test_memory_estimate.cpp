@@ -110,6 +110,11 @@ std::uint64_t json_integer(const std::string& json, const std::string& key) {
 }
 
 TEST(MemoryEstimate, AgreesWithThePeakMemoryOfARealRun) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer's shadow memory and redzones multiply the resident size by design: the peak
+  // says nothing about the estimate there (the release build runs this check).
+  GTEST_SKIP() << "peak memory is not comparable under AddressSanitizer";
+#endif
   // The quickstart plate at 0.25 mm: ~65,000 points and ~1.8 million bond entries, so that the
   // run's arrays, not the program, dominate its memory. Few steps: memory does not grow with time.
   const std::string dir = scratch("real_run");
