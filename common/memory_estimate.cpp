@@ -76,8 +76,9 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   e.bytes_per_point = p;
 
   // Per bond entry: the neighbour index (the bond vector comes from the positions); with damage
-  // also the intact flag and the bond work (solver/model.cpp allocates those only then).
-  e.bytes_per_bond = 4 + (damage ? 1 + 8 : 0);
+  // also the intact flag, the bond work and the mirror slot (solver/model.cpp allocates those only
+  // then).
+  e.bytes_per_bond = 4 + (damage ? 1 + 8 + 4 : 0);
 
   std::uint64_t components = 0;
   for (const std::string& f : in.snapshot_fields) components += field_components(f, D, R);

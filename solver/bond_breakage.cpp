@@ -124,13 +124,21 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
   p.refreshed_points.clear();
   std::vector<std::size_t>& changed = w.changed;
   changed.clear();
-  std::size_t broken_ends = 0;
+  // The kernel counts a break at one end of the bond and marks both 2: the points with a count,
+  // and the other ends of their marked bonds, are the points whose families change.
   for (std::size_t i = 0; i < p.owned; ++i)
     if (p.bonds_broken[i] > 0) {
       changed.push_back(i);
-      broken_ends += static_cast<std::size_t>(p.bonds_broken[i]);
+      for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+        if (f.intact[b] == 2 && static_cast<std::size_t>(f.neighbor[b]) < p.owned)
+          changed.push_back(static_cast<std::size_t>(f.neighbor[b]));
     }
   if (changed.empty()) return u;
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  std::size_t broken_ends = 0;
+  for (const std::size_t i : changed)
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) broken_ends += f.intact[b] == 2 ? 1 : 0;
   if (w.affected_index.size() != p.owned) w.affected_index.assign(p.owned, -1);
 
   // The points whose families change in this update, in the order first met, with the energy they

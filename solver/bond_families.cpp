@@ -153,4 +153,30 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   return f;
 }
 
+void index_mirror_bonds(BondFamilies& f) {
+  const auto n = static_cast<std::int64_t>(f.offset.size()) - 1;
+  f.mirror_slot.assign(f.bond_count(), -1);
+  bool asymmetric = false;
+#pragma omp parallel for schedule(static) reduction(|| : asymmetric) if (thread_bond_loop(f.bond_count()))
+  for (std::int64_t i = 0; i < n; ++i) {
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+      const std::int64_t j = f.neighbor[b];
+      if (j >= n) {
+        asymmetric = true;
+        continue;
+      }
+      // Neighbours are sorted by index, so (j, i) is found by bisection in j's list.
+      const auto* first = f.neighbor.data() + f.offset[j];
+      const auto* last = f.neighbor.data() + f.offset[j + 1];
+      const auto* it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
+      if (it == last || *it != static_cast<std::int32_t>(i)) {
+        asymmetric = true;
+        continue;
+      }
+      f.mirror_slot[b] = static_cast<std::int32_t>(it - first);
+    }
+  }
+  if (asymmetric) throw std::logic_error("index_mirror_bonds: a bond is not stored at both of its (owned) ends");
+}
+
 }  // namespace mppm::solver

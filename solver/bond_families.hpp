@@ -23,6 +23,9 @@ struct BondFamilies {
   // Damage effect only (empty otherwise):
   std::vector<std::uint8_t> intact;    // 1 = the bond acts; 0 = broken (for good)
   std::vector<double> work;            // W_ij [J/m^6], the same bits at both ends of a bond
+  // Where bond b = (i, j) sits in j's list: (j, i) is bond offset[j] + mirror_slot[b]. The force
+  // pass computes a bond's work once, at its lower-index end, and writes it to both ends.
+  std::vector<std::int32_t> mirror_slot;
 
   std::size_t bond_count() const { return neighbor.size(); }
 };
@@ -54,6 +57,10 @@ struct FamilyOptions {
 // are sorted by index, so the storage does not depend on the search order or thread count.
 BondFamilies build_families(const PointData& points, const FamilyOptions& options);
 
+// Fills mirror_slot (damage): every bond's position in its neighbour's list. Families must be
+// symmetric (every bond stored from both ends) with owned neighbours; throws std::logic_error if not.
+void index_mirror_bonds(BondFamilies& families);
+
 // Removes the bonds for which cut(bond) is true from both ends; `cut` must be symmetric.
 template <class Predicate>
 void remove_bonds(BondFamilies& families, Predicate&& cut) {
@@ -76,6 +83,7 @@ void remove_bonds(BondFamilies& families, Predicate&& cut) {
   if (!families.xi.empty()) families.xi.resize(kept * D);
   if (!families.intact.empty()) families.intact.assign(kept, 1);
   if (!families.work.empty()) families.work.assign(kept, 0.0);
+  if (!families.mirror_slot.empty()) index_mirror_bonds(families);
 }
 
 }  // namespace mppm::solver

@@ -16,11 +16,13 @@
 // when W_ij >= w_cr. The old pair force is rebuilt from the previous evaluation's per-point arrays
 // (previous_*: a few numbers per point instead of D + R per bond). Seen from j, every term of the
 // increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
-// IEEE addition commutes), so both ends hold the same bits of W_ij and break it in the same step,
-// for any thread count, without talking to each other.
+// IEEE addition commutes), so the increment is computed once, by the lower-index end, which
+// writes W_ij to both ends (BondFamilies::mirror_slot) and marks both when it breaks. Both ends
+// hold the same bits of W_ij and break it in the same step, for any thread count.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <vector>
 
 #include "solver/bond_families.hpp"
@@ -78,32 +80,47 @@ MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, dou
   }
 }
 
-// z_u . (G_s C:K_i^-1) z_u + g_i |z_w|^2 of one bond, z_u = U - eps_i xi, z_w = (w_j - w_i) - kap_i
-// xi: twice the bond's stabilization energy density (SPEC section 3).
+// Twice the stabilization energy density of a point (SPEC section 3), sum_j V_j [z_u . (G_s C:K_i^-1)
+// z_u + g_i |z_w|^2] with z_u = U - eps_i xi and z_w = (w_j - w_i) - kap_i xi, gathered bond by bond
+// as the symmetric sum_j V_j z_u (x) z_u (upper triangle) and sum_j V_j |z_w|^2, and contracted with
+// the point's constants once (C:K^-1 is symmetric): fewer operations per bond than z.Ck.z per bond.
 template <int D, int R, bool Polar>
-MPPM_INLINE double bond_stabilization_energy(const double* U, const double* xi, const double* eps_i,
-                                             const double* cki,
-                                             [[maybe_unused]] const double* kap_i,
-                                             [[maybe_unused]] double gi,
-                                             [[maybe_unused]] const double* wi,
-                                             [[maybe_unused]] const double* wj) {
-  double z[D];
-  for (int r = 0; r < D; ++r) {
-    z[r] = U[r];
-    for (int col = 0; col < D; ++col) z[r] -= eps_i[r * D + col] * xi[col];
-  }
-  double e = 0.0;
-  for (int r = 0; r < D; ++r)
-    for (int col = 0; col < D; ++col) e += z[r] * cki[r * D + col] * z[col];
-  if constexpr (Polar) {
-    for (int r = 0; r < R; ++r) {
-      double zw = wj[r] - wi[r];
-      for (int col = 0; col < D; ++col) zw -= kap_i[r * D + col] * xi[col];
-      e += gi * zw * zw;
+struct StabilizationEnergySum {
+  double zz[D * (D + 1) / 2] = {};
+  double zw2 = 0.0;
+
+  MPPM_INLINE void add(const double* U, const double* xi, const double* eps_i,
+                       [[maybe_unused]] const double* kap_i, [[maybe_unused]] const double* wi,
+                       [[maybe_unused]] const double* wj, double vj) {
+    double z[D], vz[D];
+    for (int r = 0; r < D; ++r) {
+      z[r] = U[r];
+      for (int col = 0; col < D; ++col) z[r] -= eps_i[r * D + col] * xi[col];
+      vz[r] = vj * z[r];
+    }
+    int k = 0;
+    for (int r = 0; r < D; ++r)
+      for (int col = r; col < D; ++col) zz[k++] += vz[r] * z[col];
+    if constexpr (Polar) {
+      double w2 = 0.0;
+      for (int r = 0; r < R; ++r) {
+        double zw = wj[r] - wi[r];
+        for (int col = 0; col < D; ++col) zw -= kap_i[r * D + col] * xi[col];
+        w2 += zw * zw;
+      }
+      zw2 += vj * w2;
     }
   }
-  return e;
-}
+  // sum_j V_j [z_u . Ck z_u + g |z_w|^2]
+  double contract(const double* cki, [[maybe_unused]] double gi) const {
+    double e = 0.0;
+    int k = 0;
+    for (int r = 0; r < D; ++r)
+      for (int col = r; col < D; ++col) e += (col == r ? 1.0 : 2.0) * cki[r * D + col] * zz[k++];
+    if constexpr (Polar) e += gi * zw2;
+    return e;
+  }
+};
 
 // eps_i = [sum_j b V_j U_ij (x) xi] K_i^-1 and kap_i = [sum_j b V_j (w_j - w_i) (x) xi] K_i^-1 over
 // the bonds that act (intact != 0 with damage; a bond marked 2, breaking in this step, still acts).
@@ -187,7 +204,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   const double* wi = polar ? &p.rotation[i * R] : zero_rotation;
   const double* cki = &p.stabilization_ck[i * DD];
   [[maybe_unused]] const double gi = polar ? p.stabilization_rot[i] : 0.0;
-  double stab = 0.0;
+  StabilizationEnergySum<D, R, polar> stab;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if constexpr (Effects::damage)
       if (!f.intact[b]) continue;
@@ -197,10 +214,9 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
     const double* wj = polar ? &p.rotation[j * R] : zero_rotation;
     double U[D];
     composite_state<D, R, polar>(ui, &p.displacement[j * D], wi, wj, xi, U);
-    stab += p.volume[j] * bond_stabilization_energy<D, R, polar>(
-                              U, xi, eps.data(), cki, polar ? kap.data() : nullptr, gi, wi, wj);
+    stab.add(U, xi, eps.data(), polar ? kap.data() : nullptr, wi, wj, p.volume[j]);
   }
-  e.stabilization = 0.5 * vi * stab;
+  e.stabilization = 0.5 * vi * stab.contract(cki, gi);
   return e;
 }
 
@@ -275,6 +291,13 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   }
 }
 
+// The first bond of point i to a neighbour of higher index (neighbours are sorted).
+inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i) {
+  const std::int32_t* first = f.neighbor.data() + f.offset[i];
+  const std::int32_t* last = f.neighbor.data() + f.offset[i + 1];
+  return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - f.neighbor.data();
+}
+
 // Pass 2 at point i: force and moment from the tensors of both ends of every bond; with
 // accumulate_work (damage) the bond work and the breaking marks; with WithEnergy the point's
 // stabilization energy.
@@ -294,6 +317,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   const std::int64_t* __restrict off = f.offset.data();
   [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
   [[maybe_unused]] double* bond_work = Effects::damage ? f.work.data() : nullptr;
+  [[maybe_unused]] const std::int32_t* mirror_slot = Effects::damage ? f.mirror_slot.data() : nullptr;
   [[maybe_unused]] const double critical_work = c.critical_bond_work;
   [[maybe_unused]] const double* u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
   [[maybe_unused]] const double* w_old =
@@ -321,7 +345,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   [[maybe_unused]] const double gi = polar ? g_all[i] : 0.0;
   // Damage: A_i + A_i0 and Q_i + Q_i0 of this and the previous evaluation (the bond work uses
   // the sum of the two pair forces).
-  [[maybe_unused]] double ui0[D], wi0[3] = {0.0, 0.0, 0.0}, ai_both[DD], qi_both[RD];
+  [[maybe_unused]] double ui0[D] = {}, wi0[3] = {0.0, 0.0, 0.0}, ai_both[DD] = {}, qi_both[RD] = {};
   // A bond with a no-fail end never breaks, so its work is not needed: a no-fail point (near a
   // boundary condition, or outside material.damage.region) skips the bookkeeping of all its bonds.
   [[maybe_unused]] const bool work_here = Effects::damage && accumulate_work && !p.no_fail[i];
@@ -340,11 +364,15 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   [[maybe_unused]] const double* kap_i = WithEnergy && polar ? &p.wryness[i * RD] : nullptr;
   double force[D] = {};
   double moment[R] = {};
-  double stab_energy = 0.0;
+  [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   [[maybe_unused]] std::int32_t broken = 0;
-  for (std::int64_t b = off[i]; b < off[i + 1]; ++b) {
+  // One bond; with Work (damage, a bond to a higher index from a point that books work) also
+  // its work increment and breaking mark.
+  auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
+    // Atomic (relaxed: a plain load): the lower end of a bond to a lower index may mark it 2 while
+    // this loop reads it, and 1 and 2 both mean acting.
     if constexpr (Effects::damage)
-      if (!intact[b]) continue;
+      if (!std::atomic_ref<std::uint8_t>(intact[b]).load(std::memory_order_relaxed)) return;
     const auto j = static_cast<std::size_t>(nb[b]);
     double xi[D];
     for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
@@ -375,8 +403,8 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
       }
       add_cross<D>(xi, t, 0.5 * vj, moment);
     }
-    if constexpr (Effects::damage) {
-      if (work_here && !no_fail[j]) {
+    if constexpr (Work) {
+      if (!no_fail[j]) {
         // dW = 1/2 (t0 + t) . (U - U0) + 1/2 (m0 + m) . (Om - Om0), with t0 + t summed before it is
         // formed: the stabilization tensors are those of the previous evaluation (they change
         // only where bonds broke, and refresh_after_breakage then starts the next increment from
@@ -405,23 +433,35 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
             dw += both * (om - om0);
           }
         }
-        bond_work[b] += 0.5 * dw;
-        // Marked 2 (breaking): this step's force had the bond, and update_after_breakage still
-        // needs it acting to measure the energy the break releases before it sets 0 (broken).
-        if (bond_work[b] >= critical_work) {
+        const double work = bond_work[b] + 0.5 * dw;
+        const std::int64_t mirror = off[j] + mirror_slot[b];
+        bond_work[b] = work;
+        bond_work[mirror] = work;  // j's pass 2 does not read its work on bonds to lower indices
+        // Marked 2 (breaking) at both ends: this step's force had the bond, and
+        // update_after_breakage still needs it acting to measure the energy the break releases
+        // before it sets 0 (broken). Counted here only (update_after_breakage finds j).
+        if (work >= critical_work) {
           intact[b] = 2;
+          std::atomic_ref<std::uint8_t>(intact[mirror]).store(2, std::memory_order_relaxed);
           ++broken;
         }
       }
     }
-    if constexpr (WithEnergy)
-      stab_energy +=
-          vj * bond_stabilization_energy<D, R, polar>(U, xi, eps_i, cki, kap_i, gi, wi, wj);
+    if constexpr (WithEnergy) stab_energy.add(U, xi, eps_i, kap_i, wi, wj, vj);
+  };
+  if constexpr (Effects::damage) {
+    // A bond's work is the same bits from both ends (see the top of this file), so it is computed
+    // once, at the lower-index end; the bonds to lower indices come first (sorted neighbours).
+    const std::int64_t split = work_here ? first_bond_above(f, i) : off[i + 1];
+    for (std::int64_t b = off[i]; b < split; ++b) visit_bond.template operator()<false>(b);
+    for (std::int64_t b = split; b < off[i + 1]; ++b) visit_bond.template operator()<true>(b);
+  } else {
+    for (std::int64_t b = off[i]; b < off[i + 1]; ++b) visit_bond.template operator()<false>(b);
   }
   for (int r = 0; r < D; ++r) p.force[i * D + r] = force[r];
   if constexpr (polar)
     for (int r = 0; r < R; ++r) p.moment[i * R + r] = moment[r];
-  if constexpr (WithEnergy) p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy;
+  if constexpr (WithEnergy) p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy.contract(cki, gi);
   if constexpr (Effects::damage) {
     if (accumulate_work) p.bonds_broken[i] = broken;
   }

@@ -62,7 +62,8 @@ struct PointData {
   // Damage state (allocated only when the effect is on, SPEC section 7).
   std::vector<double> family_volume;         // sum V_j over the family before pre-crack cuts
   std::vector<std::uint8_t> no_fail;         // 1: the bonds of this point never break
-  std::vector<std::int32_t> bonds_broken;    // bonds of this point broken in the last step
+  // Bonds that broke in the last step, counted at their lower-index end (both ends are marked 2).
+  std::vector<std::int32_t> bonds_broken;
   // The state of the previous force evaluation, for the trapezoid rule on the bond work (the
   // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond).
   std::vector<double> previous_displacement, previous_rotation;
