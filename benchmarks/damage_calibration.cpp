@@ -55,17 +55,7 @@ Scene calibration_scene(int dimension, double horizon_factor, double stabilizati
   s.thickness = dimension == 2 ? 1e-3 : 1.0;
   s.geometry.spacing = 0.5e-3;
   s.geometry.horizon_factor = horizon_factor;
-  s.material.density = 2650.0;
-  s.material.solid_fraction = 0.95;
-  s.material.lambda = 14e9;
-  s.material.mu = 14e9;
-  s.material.mu_c = 14e9 / 3;
-  s.material.length_scale = 2e-3;
-  s.material.couple_moduli = dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
-                                            : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
-  s.effects.micropolar = true;
-  s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
+  verification::set_crack_branching_material(s);
   s.numerics.stabilization = stabilization;
   return s;
 }

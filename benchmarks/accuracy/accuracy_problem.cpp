@@ -144,16 +144,7 @@ StudyResult run_crack(const StudyParameters& p) {
   constexpr double kStripHeight = 0.01;  // [m]
   const double dx = kStripHeight / p.resolution;
   Scene s = study_scene(p, dx, true);
-  s.material.density = 2650.0;
-  s.material.solid_fraction = 0.95;
-  s.material.lambda = 14e9;
-  s.material.mu = 14e9;
-  s.material.mu_c = 14e9 / 3;
-  s.material.length_scale = 2e-3;
-  s.material.couple_moduli = p.dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
-                                              : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
-  s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
+  verification::set_crack_branching_material(s);
   verification::CrackStrip strip;
   strip.height = p.resolution + p.resolution % 2;
   strip.length = 4 * strip.height;

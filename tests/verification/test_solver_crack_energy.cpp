@@ -30,16 +30,7 @@ namespace {
 // The material of the crack-branching plate (CASES.md case 2) with a chosen horizon factor.
 Scene crack_scene(int dimension, double horizon_factor) {
   Scene s = testing::make_scene(dimension, true, 0.5e-3, horizon_factor);
-  s.material.density = 2650.0;
-  s.material.solid_fraction = 0.95;
-  s.material.lambda = 14e9;
-  s.material.mu = 14e9;
-  s.material.mu_c = 14e9 / 3;
-  s.material.length_scale = 2e-3;
-  s.material.couple_moduli = dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
-                                            : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
-  s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
+  verification::set_crack_branching_material(s);
   return s;
 }
 

@@ -21,6 +21,20 @@ constexpr int kCheckEvery = 25;        // steps between separation checks (and e
 
 }  // namespace
 
+void set_crack_branching_material(Scene& s) {
+  s.material.density = 2650.0;
+  s.material.solid_fraction = 0.95;
+  s.material.lambda = 14e9;
+  s.material.mu = 14e9;
+  s.material.mu_c = 14e9 / 3;
+  s.material.length_scale = 2e-3;
+  s.material.couple_moduli = s.dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
+                                              : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
+  s.effects.micropolar = true;
+  s.effects.damage = true;
+  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
+}
+
 CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   if (!scene_in.effects.damage || !scene_in.material.damage)
     throw std::invalid_argument("drive_crack: the scene needs the damage effect and its parameters");

@@ -17,6 +17,13 @@
 
 namespace mppm::verification {
 
+// The material of the crack-branching plate (CASES.md case 2: lambda = mu = 14 GPa, mu_c = mu / 3,
+// a3 = 56 kN, l = 2 mm, 2650 kg/m^3 at solid fraction 0.95; in 3-D a1 = 0.2 a3, a2 = a3 (a2 > a3
+// keeps the couple-stress energy positive), a3 = 0.3 of it), micropolar and damage with G_cr =
+// 160 N/m and the lattice calibration: the crack problems of the tests, the accuracy study and the
+// calibration benchmark share it.
+void set_crack_branching_material(Scene& scene);
+
 struct CrackStrip {
   int length = 80;          // body points along x
   int height = 20;          // body points along y (even: the crack plane lies between two rows)
