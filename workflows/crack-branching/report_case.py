@@ -26,6 +26,13 @@ def us(value):
     return "-" if value is None else f"{value * 1e6:.4g}"
 
 
+def snapshot_interval(summary):
+    """Mean spacing of the run's snapshots [us] (the resolution of the crack event times)."""
+    if summary["snapshots"] < 2:
+        return "-"
+    return f"{(summary['last_time_s'] - summary['first_time_s']) / (summary['snapshots'] - 1) * 1e6:.3g}"
+
+
 def write_atomically(path, text):
     tmp = path + ".tmp"
     with open(tmp, "w") as f:
@@ -89,15 +96,15 @@ def main():
              "200 x 80 points (dx = 0.5 mm), horizon factor 4.05, pre-crack from the left edge to the centre, "
              "traction 8 MPa on top and bottom ramped over t0; see README.md for the set-up and the methods.", "",
              "| run | solid fraction | t0 [us] | crack start [us] | branching [us] | end [us] | end reason | "
-             "largest tip speed [m/s] | Rayleigh speed [m/s] | crack length [mm] | max balance error | steps | threads | wall time [s] |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "largest tip speed [m/s] | Rayleigh speed [m/s] | crack length [mm] | max balance error | snapshot interval [us] | steps | threads | wall time [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for run, s, info, ramp, balance, c_r in rows:
         speed = s.get("crack_tip_speed_max_m_per_s")
         length = s.get("crack_length_m")
         lines.append(f"| {run} | {s['material']['solid_fraction']:g} | {ramp * 1e6:.4g} | {us(s.get('crack_start_time_s'))} | "
                      f"{us(s.get('crack_branch_time_s'))} | {us(s.get('crack_end_time_s'))} | {s.get('crack_end_reason') or '-'} | "
                      f"{'-' if speed is None else f'{speed:.0f}'} | {c_r:.0f} | {'-' if length is None else f'{length * 1e3:.1f}'} | "
-                     f"{balance:.2g} | {info['steps']} | {info['threads']} | {info['wall_seconds']:.1f} |")
+                     f"{balance:.2g} | {snapshot_interval(s)} | {info['steps']} | {info['threads']} | {info['wall_seconds']:.1f} |")
     lines += ["", f"Wall time of the base run: **{base[2]['wall_seconds']:.1f} s** with {base[2]['threads']} threads "
               f"({base[2]['steps']} steps, {base[2]['points']} points, {base[2]['bonds']} bonds), on the machine that ran "
               "`make`.", "",
