@@ -110,7 +110,7 @@ void whole_run(int threads) {
     if (cloud.y[i] > 79 * dx) { cloud.boundary_id[i] = 1; ++top; }
     if (cloud.y[i] < dx) { cloud.boundary_id[i] = 2; ++bottom; }
   }
-  cloud.boundaries = {BoundaryInfo{"top", "traction", 0.1 * 1e-3, top}, BoundaryInfo{"bottom", "traction", 0.1 * 1e-3, bottom}};
+  cloud.boundaries = {BoundaryInfo{"top", "traction", 0.1 * 1e-3, top, "", 0.0}, BoundaryInfo{"bottom", "traction", 0.1 * 1e-3, bottom, "", 0.0}};
   Scene s;
   s.path = "bench.yaml";
   s.dimension = 2;

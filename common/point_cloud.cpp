@@ -108,11 +108,17 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   areas->SetName("boundary_areas");
   vtkNew<vtkTypeInt64Array> counts;
   counts->SetName("boundary_point_counts");
+  vtkNew<vtkStringArray> selectors;
+  selectors->SetName("boundary_selectors");
+  vtkNew<vtkDoubleArray> depths;
+  depths->SetName("boundary_depths");
   for (const BoundaryInfo& b : cloud.boundaries) {
     names->InsertNextValue(b.name);
     types->InsertNextValue(b.type);
     areas->InsertNextValue(b.area);
     counts->InsertNextValue(b.point_count);
+    selectors->InsertNextValue(b.selector);
+    depths->InsertNextValue(b.depth);
   }
   vtkNew<vtkIntArray> boundary_count;
   boundary_count->SetName("boundary_count");
@@ -123,6 +129,8 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
     field->AddArray(types);
     field->AddArray(areas);
     field->AddArray(counts);
+    field->AddArray(selectors);
+    field->AddArray(depths);
   }
   vtkNew<vtkDoubleArray> precrack;
   precrack->SetName("precrack_vertices");
@@ -231,6 +239,13 @@ PointCloud read_point_cloud(const std::string& path) {
         required_array(file.field("boundary_areas"), "boundary_areas", boundary_count, 1, path, "field data");
     const VtkArray& counts = required_array(file.field("boundary_point_counts"), "boundary_point_counts",
                                             boundary_count, 1, path, "field data");
+    // Optional (files from before they were stored): what each layer was made from.
+    const bool has_origin = file.field("boundary_selectors") || file.field("boundary_depths");
+    const std::vector<std::string>* selectors =
+        has_origin ? &string_array(file, "boundary_selectors", boundary_count, "selection", path) : nullptr;
+    const VtkArray* depths = has_origin ? &required_array(file.field("boundary_depths"), "boundary_depths",
+                                                          boundary_count, 1, path, "field data")
+                                        : nullptr;
     for (std::int32_t k = 0; k < boundary_count; ++k) {
       BoundaryInfo info;
       info.name = names[static_cast<std::size_t>(k)];
@@ -243,6 +258,11 @@ PointCloud read_point_cloud(const std::string& path) {
       if (point_count < 0 || point_count > 9e15 || point_count != std::floor(point_count))
         fail(path, "boundary '" + info.name + "' has a bad point count");
       info.point_count = static_cast<std::int64_t>(point_count);
+      if (has_origin) {
+        info.selector = (*selectors)[static_cast<std::size_t>(k)];
+        info.depth = finite_value(*depths, k, 0, path);
+        if (info.depth < 0) fail(path, "boundary '" + info.name + "' has a negative depth");
+      }
       cloud.boundaries.push_back(info);
     }
   }

@@ -18,6 +18,12 @@ struct BoundaryInfo {
   std::string type;               // "velocity", "displacement", "traction", "pressure"
   double area = 0.0;              // loaded area [m^2] (2-D: length * thickness)
   std::int64_t point_count = 0;   // layer points (kinematic) or loaded body points (traction)
+  // What the layer was made from, so that the solver can refuse a scene that selects or sizes
+  // it differently (the layers are fixed in the points file): the scene's selection
+  // (Selector::fingerprint) and the layer depth [m] (horizon for kinematic layers, the loaded
+  // depth for tractions). Empty / 0 when unknown (points files made before they were stored).
+  std::string selector;
+  double depth = 0.0;
 };
 
 struct PointCloud {

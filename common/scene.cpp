@@ -807,18 +807,38 @@ std::vector<std::string> EffectSet::names() const {
   return out;
 }
 
+namespace {
+// "box [[x0, y0(, z0)], [x1, y1(, z1)]] m" with `digits` significant digits; a 2-D box spans
+// every z (|z| ~ 1e300), which is left out.
+std::string box_text(const std::array<std::array<double, 3>, 2>& box, int digits) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << "box [";
+  for (int k = 0; k < 2; ++k) {
+    out << (k ? ", [" : "[") << box[k][0] << ", " << box[k][1];
+    if (std::abs(box[k][2]) < 1e299) out << ", " << box[k][2];
+    out << "]";
+  }
+  out << "] m";
+  return out.str();
+}
+}  // namespace
+
 std::string Selector::describe() const {
   if (!physical_group.empty()) return "'" + physical_group + "'";
-  std::ostringstream out;
   if (!entities.empty()) {
+    std::ostringstream out;
     out << "entities [";
     for (std::size_t k = 0; k < entities.size(); ++k) out << (k ? ", " : "") << entities[k];
     out << "]";
-  } else if (box) {
-    out << "box [[" << (*box)[0][0] << ", " << (*box)[0][1] << ", " << (*box)[0][2] << "], [" << (*box)[1][0]
-        << ", " << (*box)[1][1] << ", " << (*box)[1][2] << "]] m";
+    return out.str();
   }
-  return out.str();
+  return box ? box_text(*box, 6) : std::string();
+}
+
+std::string Selector::fingerprint() const {
+  if (!physical_group.empty() || !entities.empty() || !box) return describe();
+  return box_text(*box, 17);
 }
 
 const char* to_string(BoundaryType type) {

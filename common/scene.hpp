@@ -29,6 +29,8 @@ struct Selector {
   std::optional<std::array<std::array<double, 3>, 2>> box;  // [[x0,y0,z0],[x1,y1,z1]]
 
   std::string describe() const;  // "top", "entities [12, 15]", "box [[..],[..]]"
+  // The same with every digit of the box corners (round trip): equal strings, equal selections.
+  std::string fingerprint() const;
 };
 
 // A piecewise-linear history of a vector value, held constant outside its table.

@@ -198,6 +198,8 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
     BoundaryInfo& info = cloud.boundaries[b];
     info.name = boundary_label(bc, b);
     info.type = to_string(bc.type);
+    info.selector = bc.selector.fingerprint();
+    info.depth = is_kinematic(bc.type) ? horizon : (bc.traction_depth > 0 ? bc.traction_depth : dx);
     double measure = 0.0;
     for (std::size_t f : selected[b]) measure += facet_measure(boundary, f);
     info.area = d == 2 ? measure * cloud.thickness : measure;

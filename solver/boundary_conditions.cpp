@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "common/input_error.hpp"
 
@@ -75,6 +76,19 @@ BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& clo
       throw InputError(points_file + ": boundary " + std::to_string(k + 1) + " ('" + info.name + "') is of type '" +
                        info.type + "' but scene boundary condition '" + bc.name + "' is '" +
                        to_string(bc.type) + "' (rerun mppm-preprocess with this scene)");
+    // The layers are fixed in the points file: a scene that selects or sizes them differently
+    // would run silently with the old ones (e.g. --set boundary_conditions[0].depth=3mm).
+    const std::string key = scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) + "]";
+    if (!info.selector.empty() && info.selector != bc.selector.fingerprint())
+      throw InputError(key + ": selects " + bc.selector.describe() + " but " + points_file + " was made with " +
+                       info.selector + " for this boundary (rerun mppm-preprocess with this scene)");
+    if (!is_kinematic(bc.type) && info.depth > 0.0 &&
+        std::abs(info.depth - bc.traction_depth) > 1e-9 * std::max(info.depth, bc.traction_depth)) {
+      std::ostringstream s;
+      s << key << ".depth: the loaded layer is " << bc.traction_depth << " m deep in the scene but " << points_file
+        << " was made with " << info.depth << " m (the loaded points are fixed there: rerun mppm-preprocess with this scene)";
+      throw InputError(s.str());
+    }
     if (is_kinematic(bc.type)) {
       if (layer_points[k + 1].empty())
         throw InputError(points_file + ": kinematic boundary condition '" + bc.name +

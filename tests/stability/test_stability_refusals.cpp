@@ -14,7 +14,9 @@
 //   are oriented by the preprocessor (same points as the intact geometry, all volumes > 0), the
 //   third is refused (exit 2 naming the file); a non-positive thickness (the one scene value in
 //   the 2-D volume besides dx) is refused naming `thickness`; a points file that carries a
-//   negative volume anyway is refused by mppm-solve (the broken-points-file case).
+//   negative volume anyway is refused by mppm-solve (the broken-points-file case);
+// - a scene whose boundary layers differ from those fixed in the points file (finding 7): a
+//   loaded depth or a selection changed after preprocessing.
 // Hazard: each of these either blows up after hours or produces a silent wrong answer.
 // Expected: exit code 2 before the first step, a message naming the file (and the key, the
 // mode and the parameter where it applies) and what was expected, and no output file: the run
@@ -241,6 +243,51 @@ TEST_F(StabilityRefusals, BrokenPointsFileIsRefusedNamingTheFile) {
   record_margin({"09-broken-points-file", "broken points file: missing, not VTK, truncated, negative / zero volume, NaN coordinate",
                  "exit 2 naming the file and the problem, nothing written", "exit codes: " + codes,
                  "contract check (no numeric margin)", all_refused});
+}
+
+// The loaded points and the layers are fixed by mppm-preprocess; before the points file stored
+// what they were made from, `--set boundary_conditions[0].depth=3mm` at solve time ran silently
+// with the one row loaded at preprocessing (results identical to 1 and 5 mm).
+TEST_F(StabilityRefusals, BoundaryChangedAfterPreprocessingIsRefused) {
+  const std::string scene = scene_path("fragmentation_block.yaml");
+  const std::string points = fresh_directory("boundary-origin-points") + ".vtp";
+  const CommandResult made = run_program(program("mppm-preprocess"), {scene, "-o", points, "--quiet"});
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  auto solve_with = [&](const std::string& name, std::vector<std::string> sets) {
+    const std::string run = fresh_directory(name);
+    std::vector<std::string> args{scene, "--points", points, "-o", run, "--quiet", "--set", "time.end=0.5us"};
+    args.insert(args.end(), sets.begin(), sets.end());
+    CommandResult r = run_program(program("mppm-solve"), args);
+    return std::pair{r, nothing_written(run)};
+  };
+  // The scene as preprocessed (its loaded depth is the default, dx = 1 mm) runs; so does the
+  // same depth written out, and a change that does not touch the layers (the traction value).
+  for (const std::vector<std::string>& same : {std::vector<std::string>{},
+                                               {"--set", "boundary_conditions[0].depth=1 mm"},
+                                               {"--set", "boundary_conditions[0].value=[0.5 GPa, 0]"}}) {
+    const auto [r, empty] = solve_with("boundary-origin-same", same);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  }
+  const auto [deeper, deeper_empty] = solve_with("boundary-origin-depth", {"--set", "boundary_conditions[0].depth=3 mm"});
+  EXPECT_EQ(deeper.exit_code, 2) << deeper.output;
+  for (const char* part : {"fragmentation_block.yaml", "boundary_conditions[0].depth", "0.003", "0.001", "rerun mppm-preprocess"})
+    EXPECT_TRUE(contains(deeper.output, part)) << part << " missing in: " << deeper.output;
+  EXPECT_TRUE(deeper_empty);
+  const auto [moved, moved_empty] =
+      solve_with("boundary-origin-selection", {"--set", "boundary_conditions[0]={box: [[0, 0], [1 mm, 20 mm]], "
+                                                        "type: traction, value: [1 GPa, 0]}"});
+  EXPECT_EQ(moved.exit_code, 2) << moved.output;
+  for (const char* part : {"boundary_conditions[0]", "selects box", "'left'", "rerun mppm-preprocess"})
+    EXPECT_TRUE(contains(moved.output, part)) << part << " missing in: " << moved.output;
+  EXPECT_TRUE(moved_empty);
+  const bool pass = deeper.exit_code == 2 && moved.exit_code == 2 && deeper_empty && moved_empty &&
+                    contains(deeper.output, "boundary_conditions[0].depth") && contains(moved.output, "selects box");
+  record_margin({"09c-boundary-changed-after-preprocessing",
+                 "a boundary's depth or selection changed after preprocessing (the layers are fixed in the points file)",
+                 "exit 2 naming the key and both values, nothing written; unchanged layers run",
+                 "depth 1 mm -> 3 mm: exit " + std::to_string(deeper.exit_code) + "; selection 'left' -> a box: exit " +
+                     std::to_string(moved.exit_code),
+                 "contract check (no numeric margin)", pass});
 }
 
 TEST_F(StabilityRefusals, GeometryWithoutPointsIsRefusedNamingTheGeometry) {

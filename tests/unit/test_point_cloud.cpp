@@ -41,7 +41,8 @@ PointCloud sample_cloud() {
     cloud.normal_y[i] = cloud.boundary_id[i] == 1 ? -0.8 : 0.0;
     cloud.normal_z[i] = 0.0;
   }
-  cloud.boundaries = {{"top", "traction", 1e-4, 2}, {"left", "velocity", 4e-5, 2}};
+  cloud.boundaries = {{"top", "traction", 1e-4, 2, "box [[0, 0.019999999999999997], [0.1, 0.02]] m", 5e-4},
+                      {"left", "velocity", 4e-5, 2, "'left'", 2.025e-3}};
   cloud.precrack_vertices = {0, 0.02, 0, 0.05, 0.02, 0};
   return cloud;
 }
@@ -82,6 +83,11 @@ TEST(PointCloudFile, RoundTripIsExact) {
   EXPECT_EQ(back.boundaries[1].type, "velocity");
   EXPECT_EQ(back.boundaries[0].area, 1e-4);
   EXPECT_EQ(back.boundaries[0].point_count, 2);
+  // What each layer was made from (the solver compares it with the scene).
+  EXPECT_EQ(back.boundaries[0].selector, cloud.boundaries[0].selector);
+  EXPECT_EQ(back.boundaries[1].selector, "'left'");
+  EXPECT_EQ(back.boundaries[0].depth, 5e-4);
+  EXPECT_EQ(back.boundaries[1].depth, 2.025e-3);
   // Binary appended and compressed, as SCENE.md promises ParaView.
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;

@@ -68,9 +68,9 @@ Block block() {
     }
   }
   const double t = b.scene.thickness;
-  b.cloud.boundaries = {BoundaryInfo{"top", "traction", 12 * kDx * t, top},
-                        BoundaryInfo{"right", "pressure", 8 * kDx * t, right},
-                        BoundaryInfo{"bottom", "displacement", 12 * kDx * t, layer}};
+  b.cloud.boundaries = {BoundaryInfo{"top", "traction", 12 * kDx * t, top, "", 0.0},
+                        BoundaryInfo{"right", "pressure", 8 * kDx * t, right, "", 0.0},
+                        BoundaryInfo{"bottom", "displacement", 12 * kDx * t, layer, "", 0.0}};
   BoundaryCondition traction;
   traction.name = "top";
   traction.type = BoundaryType::traction;

@@ -39,7 +39,7 @@ std::string block_points() {
       ++layer;
     }
   }
-  c.boundaries = {BoundaryInfo{"bottom", "velocity", 12 * dx * 0.01, layer}};
+  c.boundaries = {BoundaryInfo{"bottom", "velocity", 12 * dx * 0.01, layer, "", 0.0}};
   const std::string path = work_directory() + "/block.vtp";
   write_point_cloud(c, path);
   return path;

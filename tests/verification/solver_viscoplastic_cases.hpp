@@ -72,7 +72,7 @@ inline CompressionCase compression_case(int nx, int ny_body, double end_time, do
   for (int k = 0; k < 2 * depth; ++k) {
     const int row = k < depth ? k : rows - 2 * depth + k;
     const std::string name = (k < depth ? "bottom" : "top") + std::to_string(k % depth);
-    c.cloud.boundaries.push_back(BoundaryInfo{name, "velocity", c.width * c.scene.thickness, count[k]});
+    c.cloud.boundaries.push_back(BoundaryInfo{name, "velocity", c.width * c.scene.thickness, count[k], "", 0.0});
     // The speed ramps up over the first fifth of the run: a smooth start excites little vibration.
     const double speed = -strain_rate * ((row + 0.5) * dx - y_mid);
     BoundaryCondition bc = kinematic_condition(name, BoundaryType::velocity, {0.0, 0.2 * end_time},

@@ -59,7 +59,7 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   }
   const double thickness = D == 2 ? scene.thickness : depth * dx;  // of the crack front
   const double face = strip.length * dx * thickness;
-  cloud.boundaries = {BoundaryInfo{"below", "velocity", face, below}, BoundaryInfo{"above", "velocity", face, above}};
+  cloud.boundaries = {BoundaryInfo{"below", "velocity", face, below, "", 0.0}, BoundaryInfo{"above", "velocity", face, above, "", 0.0}};
 
   // The pre-crack on the mid-plane from outside the left edge to the notch tip (3-D: a rectangle
   // of two triangles through the whole periodic thickness, so that its wrapped bonds are cut too).
