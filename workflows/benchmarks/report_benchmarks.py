@@ -48,6 +48,46 @@ def find(rows, case, effects, threads):
     return None
 
 
+def read_instructions(path):
+    try:
+        with open(path, newline="") as stream:
+            rows = list(csv.DictReader(stream))
+    except FileNotFoundError:
+        raise InputError(f"{path}: not found (make instructions)")
+    for r in rows:
+        r["steps"], r["bonds"], r["instructions"] = int(r["steps"]), int(r["bonds"]), int(r["instructions"])
+        r["per_update"] = r["instructions"] / (r["bonds"] * r["steps"])
+    return rows
+
+
+def instruction_section(rows):
+    """The cost of each effect as callgrind instructions (not moved by the machine's load)."""
+    by_name = {r["effects"]: r for r in rows}
+    none, polar = by_name.get("none"), by_name.get("micropolar")
+    steps = rows[0]["steps"] if rows else 0
+    out = ["## The same costs as instructions (callgrind)\n",
+           f"Instructions executed inside the time step (ExplicitDynamics::step) per bond update, 1 thread, {steps} "
+           "steps of the plate before any bond breaks (count_instructions.py): the same for every run of the same "
+           "binary, so these ratios do not move with the machine's load as the wall times above do.\n",
+           "| effects | instructions per bond update | relative to none | relative to micropolar |",
+           "|---|---|---|---|"]
+    for r in rows:
+        rel_none = f"{r['per_update'] / none['per_update']:.3f}" if none else ""
+        rel_polar = f"{r['per_update'] / polar['per_update']:.3f}" if polar else ""
+        out.append(f"| {r['effects']} | {r['per_update']:.1f} | {rel_none} | {rel_polar} |")
+    out.append("")
+    if polar:
+        inactive = [r for r in rows if "(inactive)" in r["effects"]]
+        if inactive:
+            verdicts = ", ".join(f"{r['effects']} {r['per_update'] / polar['per_update']:.3f}x" for r in inactive)
+            cheaper = all(r["per_update"] > polar["per_update"] for r in inactive)
+            out.append(f"The run without the effect is the cheaper one in instructions: {verdicts} of `micropolar` "
+                       f"({'yes for both' if cheaper else '**not for all**'}). An inactive damage effect still books "
+                       "every bond's work each step (that is how it knows no bond reached w_cr); an inactive "
+                       "viscoplastic effect evaluates the yield function once per point.\n")
+    return out
+
+
 def verdict(ok):
     return "met" if ok else "**NOT met**"
 
@@ -59,6 +99,7 @@ def main(argv):
     parser.add_argument("--results", required=True, help="results.md to write")
     parser.add_argument("--figure", required=True, help="PNG of the throughputs")
     parser.add_argument("--machine", default="", help="one line describing the machine")
+    parser.add_argument("--instructions", help="instructions.csv of count_instructions.py (optional)")
     args = parser.parse_args(argv)
     mppm = read_rows(args.mppm, True)
     lammps = read_rows(args.lammps, False)
@@ -114,6 +155,9 @@ def main(argv):
                 out.append(f"| {r['effects']} | {r['threads']} | {r['wall_seconds']:.2f} | {without['wall_seconds']:.2f} | "
                            f"{r['wall_seconds'] / without['wall_seconds']:.2f} |")
     out.append("")
+
+    if args.instructions:
+        out += instruction_section(read_instructions(args.instructions))
 
     region = [r for r in plate if "(region)" in r["effects"]]
     if region:

@@ -111,6 +111,11 @@ def preprocess(args, scene, points, extra_sets):
     os.replace(points + ".tmp.vtp", points)
 
 
+def read_run_info(run_dir):
+    with open(os.path.join(run_dir, "run_info.json")) as stream:
+        return json.load(stream)
+
+
 def solve(args, scene, points, run_dir, effects, threads, extra_sets):
     """One mppm-solve run under GNU time; returns run_info.json and the peak RSS in bytes."""
     sets = ["effects=[" + ", ".join(effects) + "]"] + extra_sets
@@ -122,8 +127,7 @@ def solve(args, scene, points, run_dir, effects, threads, extra_sets):
     peak = [line for line in result.stderr.splitlines() if line.startswith("peak_rss_kib ")]
     if not peak:
         raise RunError(f"{run_dir}: GNU time printed no peak memory")
-    with open(os.path.join(run_dir, "run_info.json")) as stream:
-        info = json.load(stream)
+    info = read_run_info(run_dir)
     if info.get("status") != "completed":
         raise RunError(f"{run_dir}: status {info.get('status')}: {info.get('message')}")
     return info, int(peak[-1].split()[1]) * 1024

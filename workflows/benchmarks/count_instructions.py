@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Instructions per bond update of each plate effect set, counted by callgrind.
+
+usage: count_instructions.py OUT.csv --bin BIN --work DIR --scene plate.yaml [--steps 40]
+
+Wall times on a shared 2-core machine move by 10-40 % from run to run; an instruction count
+does not (it is the same for every run of the same binary, to a few parts in 1e4 from the
+allocator and the file system). So the cost of an effect, and whether an effect that is on but
+inactive costs more than the effect off, are also stated as instructions: valgrind
+--tool=callgrind, 1 thread, collecting inside ExplicitDynamics::step only (the time loop: no
+reading, no families, no critical step, no final files), over --steps steps of the plate
+(40 by default, which is before any bond breaks: the count is that of the force kernels,
+the bond-work bookkeeping and the integrator, not of breakage events). The energy rows come
+every 0.5 us (20 steps) as in the timed runs, so steps with and without energies are mixed in
+the same proportion.
+
+Writes OUT.csv with case,effects,steps,bonds,instructions,instructions_per_bond_update.
+Exit codes: 0 written; 2 bad input; 1 a run failed.
+"""
+
+import argparse
+import csv
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import run_mppm
+
+COLUMNS = ["case", "effects", "steps", "bonds", "instructions", "instructions_per_bond_update"]
+# The function whose calls are counted (demangled name, callgrind wildcard).
+TIME_STEP = "mppm::solver::ExplicitDynamics::step*"
+
+
+def count(args, points, effects, sets, run_dir):
+    """Instructions callgrind collected inside the time step of one run, and its run_info."""
+    shutil.rmtree(run_dir, ignore_errors=True)
+    os.makedirs(os.path.dirname(run_dir), exist_ok=True)
+    log = run_dir + ".callgrind.log"
+    dt = 0.025e-6  # set below, so that the step count is exact
+    end = args.steps * dt
+    command = ["valgrind", "--tool=callgrind", f"--toggle-collect={TIME_STEP}", "--callgrind-out-file=/dev/null",
+               f"--log-file={log}", os.path.join(args.bin, "mppm-solve"), args.scene, "--points", points,
+               "-o", run_dir, "--force", "--quiet", "--threads", "1",
+               "--set", "effects=[" + ", ".join(effects) + "]", "--set", f"time.step={dt!r}", "--set", f"time.end={end!r}",
+               "--set", f"output.interval={end!r}"]
+    for s in sets:
+        command += ["--set", s]
+    print("+ " + " ".join(command), flush=True)
+    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if result.returncode != 0:
+        raise run_mppm.RunError(f"{run_dir}: callgrind run failed with exit code {result.returncode}:\n"
+                                f"{result.stderr.strip()}")
+    with open(log) as stream:
+        text = stream.read()
+    collected = re.search(r"Collected\s*:\s*(\d+)", text)
+    if not collected:
+        raise run_mppm.RunError(f"{log}: callgrind reported no 'Collected' count")
+    info = run_mppm.read_run_info(run_dir)
+    if info["steps"] != args.steps:
+        raise run_mppm.RunError(f"{run_dir}: ran {info['steps']} steps, expected {args.steps}")
+    return int(collected.group(1)), info
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("csv")
+    parser.add_argument("--bin", required=True)
+    parser.add_argument("--work", required=True)
+    parser.add_argument("--scene", required=True, help="the plate scene (workflows/benchmarks/scenes/plate.yaml)")
+    parser.add_argument("--steps", type=int, default=40)
+    args = parser.parse_args(argv)
+    if args.steps < 1:
+        raise run_mppm.InputError("--steps: expected a positive integer")
+    if not shutil.which("valgrind"):
+        raise run_mppm.InputError("valgrind: not found (Debian package 'valgrind'; make installs it)")
+    points = os.path.join(args.work, "points.vtp")
+    run_mppm.preprocess(args, args.scene, points, [])
+    cases = dict((name, (effects, [])) for name, effects in run_mppm.PLATE_SETS.items())
+    cases.update(run_mppm.INACTIVE_SETS)
+    cases.update(run_mppm.REGION_SETS)
+    rows = []
+    for name, (effects, sets) in cases.items():
+        run_dir = os.path.join(args.work, name.replace("(", "-").replace(")", ""))
+        instructions, info = count(args, points, effects, sets, run_dir)
+        rows.append({"case": "plate", "effects": name, "steps": info["steps"], "bonds": info["bonds"],
+                     "instructions": instructions,
+                     "instructions_per_bond_update": f"{instructions / (info['bonds'] * info['steps']):.2f}"})
+    temporary = args.csv + ".tmp"
+    with open(temporary, "w", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+    os.replace(temporary, args.csv)
+    print(f"wrote {args.csv} ({len(rows)} rows)")
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except run_mppm.InputError as error:
+        print(f"count_instructions.py: {error}", file=sys.stderr)
+        sys.exit(2)
+    except run_mppm.RunError as error:
+        print(f"count_instructions.py: {error}", file=sys.stderr)
+        sys.exit(1)
