@@ -45,16 +45,17 @@ void record_family_volume(PointData& points, const BondFamilies& bonds);
 std::vector<double> damage_field(const PointData& points, const BondFamilies& bonds);
 
 // After a force evaluation that broke bonds (marked 2 by the kernel): breaks them for good,
-// recomputes the shape tensors of the points that lost bonds and the step's forces without them; a point left with a singular one is
-// detached and its remaining bonds break (it moves ballistically). The energy the breaks release
-// is measured, not assumed: the stored energy of the affected points before minus after, at the
-// same configuration (so the energy balance closes; the bond work W_ij is the breakage criterion,
-// not the measure of what a break dissipates). A point whose stored energy would rise by losing
-// bonds is detached (see the .cpp for why). A body point whose stiffness block exceeds
-// `block_eigenvalue_limit` (point_stability.hpp; 0: no such check) is detached as well: its
-// lopsided family would make the run's time step unstable. Returns the pairs broken in that
-// evaluation (cascade included), the points newly detached (of them for stability) and the
-// released energy [J].
+// recomputes the shape tensors of the points that lost bonds and the step's forces without them;
+// a point left with a singular one is detached and its remaining bonds break (it moves
+// ballistically). The energy the breaks release is measured, not assumed: the stored energy of the
+// affected points before minus after, at the same configuration (so the energy balance closes; the
+// bond work W_ij is the breakage criterion, not the measure of what a break dissipates). A point
+// whose stored energy would rise by losing bonds, by more than kEnergyRiseToDetach or at all when
+// it is overloaded (kOverloadedBreakingEnergyMultiple), is detached (see the .cpp for why). A body
+// point whose stiffness block exceeds `block_eigenvalue_limit` (point_stability.hpp; 0: no such
+// check) is detached as well: its lopsided family would make the run's time step unstable. Returns
+// the pairs broken in that evaluation (cascade included), the points newly detached (of them for
+// stability) and the released energy [J].
 struct BreakageUpdate {
   std::size_t broken_pairs = 0;
   std::size_t newly_detached = 0;
@@ -65,6 +66,17 @@ struct BreakageUpdate {
 // A point whose stored energy would rise by more than this share when it loses bonds is detached
 // (bond_breakage.cpp says why and what was measured).
 inline constexpr double kEnergyRiseToDetach = 0.5;
+// A point that stores more than this multiple of its family's breaking energy (below) is
+// overloaded: it is detached when losing bonds raises its stored energy at all, since no margin
+// is then small against the energy the breaks are meant to take out (bond_breakage.cpp says why
+// and what was measured).
+inline constexpr double kOverloadedBreakingEnergyMultiple = 1.5;
+
+// The energy it takes to break every bond of point i at the critical bond work, the point's half
+// share of each pair: 1/2 w_cr V_i sum_j V_j over its family, broken bonds included [J]. Summed
+// over the points it is the critical work of all the pairs.
+double family_breaking_energy(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
+                              std::size_t i);
 
 // Scratch arrays kept from one step to the next (no allocation in the time loop once warm).
 struct BreakageWorkspace {
