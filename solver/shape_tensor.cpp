@@ -8,6 +8,16 @@ namespace mppm::solver {
 
 namespace {
 
+// G_s (C : K^-1) of point i from its stored K^-1: (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu)
+// K^-1_ik + mu tr(K^-1) delta_ik (isotropic C). Zero for a detached point (K^-1 = 0).
+template <int D>
+void set_stabilization_tensor(PointData& p, const CosseratConstants& c, std::size_t i) {
+  using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
+  const Eigen::Map<const Mat> kinv(&p.shape_inverse[i * D * D]);
+  Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
+  ck = c.stabilization * ((c.lambda + c.mu) * kinv + c.mu * kinv.trace() * Mat::Identity());
+}
+
 // Recomputes K_i^-1 and the stabilization tensors of point i; returns true if it is detached.
 template <int D>
 bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
@@ -35,11 +45,9 @@ bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& 
   }
   p.detached[i] = 0;
   Eigen::Map<Mat> kinv(&p.shape_inverse[i * D * D]);
-  Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
   kinv = K.inverse();
   kinv = 0.5 * (kinv + kinv.transpose()).eval();  // exact symmetry of the stored inverse
-  // (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu) K^-1_ik + mu tr(K^-1) delta_ik (isotropic C)
-  ck = c.stabilization * ((c.lambda + c.mu) * kinv + c.mu * kinv.trace() * Mat::Identity());
+  set_stabilization_tensor<D>(p, c, i);
   if (has_rot) p.stabilization_rot[i] = c.stabilization * c.bending_modulus * kinv.trace() / D;
   return false;
 }
@@ -67,6 +75,13 @@ void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c
 }
 
 }  // namespace
+
+void update_stabilization_tensors(PointData& p, const CosseratConstants& c) {
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (p.dimension == 2) set_stabilization_tensor<2>(p, c, i);
+    else set_stabilization_tensor<3>(p, c, i);
+  }
+}
 
 void detach_point(PointData& p, std::size_t i) {
   const std::size_t dd = static_cast<std::size_t>(p.dimension * p.dimension);
