@@ -211,8 +211,10 @@ void remove_output_after_checkpoint(const std::string& directory, const std::vec
   }
 }
 
+// `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
+// boundary conditions are built from it; null to leave it as it is.
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
-                const CheckpointFile* resume);
+                const CheckpointFile* resume, PointCloud* release);
 
 }  // namespace
 
@@ -221,10 +223,17 @@ std::string checkpoint_path(const std::string& run_directory) {
 }
 
 SolveResult solve(const Scene& scene, const PointCloud& cloud, const SolveOptions& options) {
-  return run(scene, cloud, options, nullptr);
+  return run(scene, cloud, options, nullptr, nullptr);
 }
 
-SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+SolveResult solve(const Scene& scene, PointCloud&& cloud, const SolveOptions& options) {
+  return run(scene, cloud, options, nullptr, &cloud);
+}
+
+namespace {
+
+SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options,
+                        PointCloud* release) {
   const std::string scene_file = options.run_directory + "/" + run_layout::resolved_scene;
   if (fnv1a(file_text(scene_file)) != checkpoint.header.scene_fingerprint)
     throw InputError(scene_file + ": changed since the checkpoint " + checkpoint.path +
@@ -235,13 +244,23 @@ SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, c
                      " was started with (the points file changed since the checkpoint " + checkpoint.path +
                      "; a restart needs the same points)");
   if (options.inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-  return run(load_scene(scene_file), cloud, options, &checkpoint);
+  return run(load_scene(scene_file), cloud, options, &checkpoint, release);
+}
+
+}  // namespace
+
+SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+  return restart_run(cloud, checkpoint, options, nullptr);
+}
+
+SolveResult restart(PointCloud&& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+  return restart_run(cloud, checkpoint, options, &cloud);
 }
 
 namespace {
 
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
-                const CheckpointFile* resume) {
+                const CheckpointFile* resume, PointCloud* release) {
   const auto wall_start = std::chrono::steady_clock::now();
   Scene scene = scene_in;
   check_points_match_scene(scene, cloud, options.points_file);
@@ -251,6 +270,18 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   // Bad viscoplastic parameters are an InputError naming the key.
   Model model = build_model(cloud, model_options(scene));
   const BoundaryConditions conditions(scene, cloud, model.points, options.points_file);
+  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
+  // run's inputs by the resolved scene as written and the points.
+  const bool checkpointing = scene.output.checkpoint_interval > 0.0;
+  RunIdentity identity;
+  if (resume) {
+    identity.scene_fingerprint = resume->header.scene_fingerprint;  // checked by restart()
+    identity.points_fingerprint = resume->header.points_fingerprint;
+  } else if (checkpointing) {
+    identity.points_fingerprint = point_cloud_fingerprint(cloud);
+  }
+  // Nothing reads the points as read from here on: the model holds what it needs of them.
+  if (release) *release = PointCloud{};
 
   if (model.detached_points == model.points.owned)
     throw InputError(options.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
@@ -296,16 +327,6 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
                      std::to_string(steps) + ")");
   model.set_breakage_time_step(dt);
 
-  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
-  // run's inputs by the resolved scene as written and the points.
-  const bool checkpointing = scene.output.checkpoint_interval > 0.0;
-  RunIdentity identity;
-  if (resume) {
-    identity.scene_fingerprint = resume->header.scene_fingerprint;  // checked by restart()
-    identity.points_fingerprint = resume->header.points_fingerprint;
-  } else if (checkpointing) {
-    identity.points_fingerprint = point_cloud_fingerprint(cloud);
-  }
   std::optional<RunWriter> writer_storage;
   if (resume) writer_storage.emplace(options.run_directory, RunWriter::ContinueExisting{});
   else writer_storage.emplace(options.run_directory, options.force);
