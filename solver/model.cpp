@@ -94,8 +94,6 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   }
   if (o.effects.viscoplasticity && o.plastic_region)
     for (std::size_t i = 0; i < m.points.owned; ++i) m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
-  for (std::size_t i = 0; i < m.points.owned; ++i)
-    m.points.bond_count_at_start[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.offset[i]);
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)

@@ -40,7 +40,6 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
   p.shape_inverse.assign(n * DD, 0.0);
   p.stabilization_ck.assign(n * DD, 0.0);
   p.detached.assign(n, 0);
-  p.bond_count_at_start.assign(n, 0);
   p.strain.assign(n * DD, 0.0);
   p.force_tensor.assign(n * DD, 0.0);
   p.force_stress_energy.assign(n, 0.0);

@@ -41,7 +41,6 @@ struct PointData {
   std::vector<double> stabilization_ck;    // G_s (C : K^-1), D*D (zero for detached points)
   std::vector<double> stabilization_rot;   // G_s B_w tr(K^-1) / d (micropolar)
   std::vector<std::uint8_t> detached;
-  std::vector<std::int32_t> bond_count_at_start;
 
   // Products of the strain pass, read by the force pass for i and its neighbours.
   std::vector<double> strain;         // eps, D*D
