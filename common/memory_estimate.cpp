@@ -70,15 +70,15 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   p += 8;                                      // bond offsets (CSR)
   p += 8 * 8 + 2 * 4;                          // the points file as read (mppm-solve keeps it)
   // family volume, no-fail, broken count, and the previous evaluation's displacement, rotation and
-  // force / moment tensors (the bond work's trapezoid rule)
-  if (damage) p += 8 + 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D;
+  // force / moment tensors (the bond work's trapezoid rule), the offsets of the bond pairs
+  if (damage) p += 8 + 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 3 * 8;  // plastic strain and wryness, ebar, cohesion, dissipation
   e.bytes_per_point = p;
 
   // Per bond entry: the neighbour index (the bond vector comes from the positions); with damage
-  // also the intact flag, the bond work and the mirror slot (solver/model.cpp allocates those only
-  // then).
-  e.bytes_per_bond = 4 + (damage ? 1 + 8 + 4 : 0);
+  // also the intact flag and half the bond work, which is stored once per pair of entries
+  // (solver/model.cpp allocates those only then).
+  e.bytes_per_bond = 4 + (damage ? 1 + 4 : 0);
 
   std::uint64_t components = 0;
   for (const std::string& f : in.snapshot_fields) components += field_components(f, D, R);

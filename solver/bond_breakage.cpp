@@ -105,18 +105,6 @@ std::vector<double> damage_field(const PointData& p, const BondFamilies& f) {
   return d;
 }
 
-namespace {
-
-// The entry of bond (j, i) in j's list (neighbours are sorted by index).
-std::int64_t reverse_bond(const BondFamilies& f, std::size_t i, std::size_t j) {
-  const auto* first = f.neighbor.data() + f.offset[j];
-  const auto* last = f.neighbor.data() + f.offset[j + 1];
-  const auto* it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
-  return it != last && *it == static_cast<std::int32_t>(i) ? static_cast<std::int64_t>(it - f.neighbor.data()) : -1;
-}
-
-}  // namespace
-
 BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
                                      const InternalForceFunctions& kernel, double block_eigenvalue_limit,
                                      BreakageWorkspace& w) {
@@ -229,7 +217,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
         // force is then the no-fail point's alone).
         if (j < p.owned && p.no_fail[j]) continue;
         record(j);
-        const std::int64_t rb = reverse_bond(f, i, j);
+        const std::int64_t rb = mirror_bond(f, i, j);
         f.intact[b] = 0;
         if (rb >= 0) f.intact[rb] = 0;
         broken_ends += 2;

@@ -16,9 +16,10 @@
 // when W_ij >= w_cr. The old pair force is rebuilt from the previous evaluation's per-point arrays
 // (previous_*: a few numbers per point instead of D + R per bond). Seen from j, every term of the
 // increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
-// IEEE addition commutes), so the increment is computed once, by the lower-index end, which
-// writes W_ij to both ends (BondFamilies::mirror_slot) and marks both when it breaks. Both ends
-// hold the same bits of W_ij and break it in the same step, for any thread count.
+// IEEE addition commutes), so the increment is computed once, by the lower-index end, which holds
+// the bond pair's W_ij (BondFamilies::work) and marks both ends when it breaks (the other end found
+// by bisection in its sorted list, only then). Both ends break it in the same step, for any thread
+// count.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
@@ -291,13 +292,6 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   }
 }
 
-// The first bond of point i to a neighbour of higher index (neighbours are sorted).
-inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i) {
-  const std::int32_t* first = f.neighbor.data() + f.offset[i];
-  const std::int32_t* last = f.neighbor.data() + f.offset[i + 1];
-  return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - f.neighbor.data();
-}
-
 // Pass 2 at point i: force and moment from the tensors of both ends of every bond; with
 // accumulate_work (damage) the bond work and the breaking marks; with WithEnergy the point's
 // stabilization energy.
@@ -316,8 +310,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   const std::int32_t* __restrict nb = f.neighbor.data();
   const std::int64_t* __restrict off = f.offset.data();
   [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
-  [[maybe_unused]] double* bond_work = Effects::damage ? f.work.data() : nullptr;
-  [[maybe_unused]] const std::int32_t* mirror_slot = Effects::damage ? f.mirror_slot.data() : nullptr;
+  [[maybe_unused]] double* pair_work = Effects::damage ? f.work.data() : nullptr;
   [[maybe_unused]] const double critical_work = c.critical_bond_work;
   [[maybe_unused]] const double* u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
   [[maybe_unused]] const double* w_old =
@@ -366,6 +359,11 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   double moment[R] = {};
   [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   [[maybe_unused]] std::int32_t broken = 0;
+  // Damage: a bond's work is the same bits from both ends (see the top of this file), so it is
+  // computed once, at the lower-index end; the bonds to lower indices come first (sorted
+  // neighbours), and the k-th bond from `split` on is the point's k-th pair.
+  [[maybe_unused]] const std::int64_t split = Effects::damage && work_here ? first_bond_above(f, i) : off[i + 1];
+  [[maybe_unused]] const std::int64_t pair_base = Effects::damage && work_here ? f.pair_offset[i] - split : 0;
   // One bond; with Work (damage, a bond to a higher index from a point that books work) also
   // its work increment and breaking mark.
   auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
@@ -433,16 +431,15 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
             dw += both * (om - om0);
           }
         }
-        const double work = bond_work[b] + 0.5 * dw;
-        const std::int64_t mirror = off[j] + mirror_slot[b];
-        bond_work[b] = work;
-        bond_work[mirror] = work;  // j's pass 2 does not read its work on bonds to lower indices
+        double& pair = pair_work[pair_base + b];
+        const double work = pair + 0.5 * dw;
+        pair = work;
         // Marked 2 (breaking) at both ends: this step's force had the bond, and
         // update_after_breakage still needs it acting to measure the energy the break releases
         // before it sets 0 (broken). Counted here only (update_after_breakage finds j).
         if (work >= critical_work) {
           intact[b] = 2;
-          std::atomic_ref<std::uint8_t>(intact[mirror]).store(2, std::memory_order_relaxed);
+          std::atomic_ref<std::uint8_t>(intact[mirror_bond(f, i, j)]).store(2, std::memory_order_relaxed);
           ++broken;
         }
       }
@@ -450,9 +447,6 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     if constexpr (WithEnergy) stab_energy.add(U, xi, eps_i, kap_i, wi, wj, vj);
   };
   if constexpr (Effects::damage) {
-    // A bond's work is the same bits from both ends (see the top of this file), so it is computed
-    // once, at the lower-index end; the bonds to lower indices come first (sorted neighbours).
-    const std::int64_t split = work_here ? first_bond_above(f, i) : off[i + 1];
     for (std::int64_t b = off[i]; b < split; ++b) visit_bond.template operator()<false>(b);
     for (std::int64_t b = split; b < off[i + 1]; ++b) visit_bond.template operator()<true>(b);
   } else {

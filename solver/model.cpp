@@ -85,8 +85,7 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
   if (o.effects.damage) {
     m.bonds.intact.assign(m.bonds.bond_count(), 1);
-    m.bonds.work.assign(m.bonds.bond_count(), 0.0);
-    index_mirror_bonds(m.bonds);
+    index_bond_pairs(m.bonds);
     mark_no_fail_zone(m.points, o.no_fail_depth);
     if (o.damage_region)
       for (std::size_t i = 0; i < m.points.owned; ++i)
