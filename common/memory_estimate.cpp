@@ -62,7 +62,7 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   std::uint64_t p = 0;
   p += 8 + 8 * D + 8 + 4 + 4 + 8 * D;          // id, reference position, volume, region, boundary, normal
   p += 2 * 8 * D + 2 * 8 * R + 8 * D + 8 * R;  // displacement, velocity, rotation, spin, force, moment
-  p += 2 * 8 * D * D + 8 + 1;                  // K^-1, stabilization C:K^-1 and rotation term, detached
+  p += 2 * 8 * (D * (D + 1) / 2) + 8 + 1;      // K^-1, C:K^-1 (symmetric, packed), rotation term, detached
   p += 2 * 8 * D * D + 2 * 8 * R * D;          // strain, force tensor, wryness, moment tensor
   p += 8 * D + 8 * R + 2 * 8 * D * D + 8 * R * D + 8;  // previous step (energy balance)
   p += 3 * 8;                                  // energy densities

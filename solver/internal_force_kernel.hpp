@@ -33,6 +33,7 @@
 #include "solver/parallel_policy.hpp"
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
+#include "solver/symmetric_tensor.hpp"
 #include "solver/viscoplastic_point.hpp"
 
 namespace mppm::solver::kernel {
@@ -112,12 +113,13 @@ struct StabilizationEnergySum {
       zw2 += vj * w2;
     }
   }
-  // sum_j V_j [z_u . Ck z_u + g |z_w|^2]
+  // sum_j V_j [z_u . Ck z_u + g |z_w|^2], Ck packed (symmetric_tensor.hpp: the same upper
+  // triangle order as zz)
   double contract(const double* cki, [[maybe_unused]] double gi) const {
     double e = 0.0;
     int k = 0;
     for (int r = 0; r < D; ++r)
-      for (int col = r; col < D; ++col) e += (col == r ? 1.0 : 2.0) * cki[r * D + col] * zz[k++];
+      for (int col = r; col < D; ++col, ++k) e += (col == r ? 1.0 : 2.0) * cki[k] * zz[k];
     if constexpr (Polar) e += gi * zw2;
     return e;
   }
@@ -181,7 +183,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   PointEnergy e;
   if (p.detached[i]) return e;
   const double vi = p.volume[i];
-  const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
+  const Mat<D> kinv = unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
   if (f.xi.empty()) point_strains<D, Effects, false>(p, f, i, kinv, eps, kap);
@@ -203,7 +205,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
   const double* ui = &p.displacement[i * D];
   const double* wi = polar ? &p.rotation[i * R] : zero_rotation;
-  const double* cki = &p.stabilization_ck[i * DD];
+  const double* cki = &p.stabilization_ck[i * symmetric_components<D>];
   [[maybe_unused]] const double gi = polar ? p.stabilization_rot[i] : 0.0;
   StabilizationEnergySum<D, R, polar> stab;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
@@ -248,7 +250,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
       if (advance) p.plastic_dissipation[i] = 0.0;
     return;
   }
-  const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
+  const Mat<D> kinv = unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
   point_strains<D, Effects, StoredXi>(p, f, i, kinv, eps, kap);
@@ -277,7 +279,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     if constexpr (WithEnergy)
       p.force_stress_energy[i] = 0.5 * vol[i] * (eps.cwiseProduct(sigma)).sum();
   }
-  const Mat<D> ck = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * DD]);
+  const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
   a_out = sigma * kinv - ck * eps;
   if constexpr (polar) {
@@ -325,12 +327,13 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   [[maybe_unused]] const double* __restrict g_all = polar ? p.stabilization_rot.data() : nullptr;
   // Point i's values in locals: the loop stores (bond work, breaking marks) could alias the
   // arrays, which would make the compiler reload them for every bond.
-  double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0}, ai[DD], cki[DD];
+  constexpr int S = symmetric_components<D>;
+  double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0}, ai[DD], cki[S];
   [[maybe_unused]] double qi[RD];
   for (int k = 0; k < D; ++k) ui[k] = u[i * D + k];
   for (int k = 0; k < D; ++k) pos_i[k] = pos[i * D + k];
   for (int k = 0; k < DD; ++k) ai[k] = a_all[i * DD + k];
-  for (int k = 0; k < DD; ++k) cki[k] = ck_all[i * DD + k];
+  for (int k = 0; k < S; ++k) cki[k] = ck_all[i * S + k];
   if constexpr (polar) {
     for (int k = 0; k < R; ++k) wi[k] = w[i * R + k];
     for (int k = 0; k < RD; ++k) qi[k] = q_all[i * RD + k];
@@ -377,16 +380,16 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     const double vj = vol[j];
     const double* wj = polar ? w + j * R : zero_rotation;
     const double* aj = a_all + j * DD;
-    const double* ckj = ck_all + j * DD;
+    const double* ckj = ck_all + j * S;
     double U[D];
     composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-    double ck_sum[DD];
-    for (int k = 0; k < DD; ++k) ck_sum[k] = cki[k] + ckj[k];
+    double ck_sum[S];  // symmetric, packed
+    for (int k = 0; k < S; ++k) ck_sum[k] = cki[k] + ckj[k];
     double t[D];  // T_ij - T_ji
     for (int r = 0; r < D; ++r) {
       double sum = 0.0;
       for (int col = 0; col < D; ++col)
-        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] + ck_sum[r * D + col] * U[col];
+        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] + ck_sum[symmetric_index<D>(r, col)] * U[col];
       t[r] = sum;
       force[r] += vj * sum;
     }
@@ -417,7 +420,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
           double both = 0.0;
           for (int col = 0; col < D; ++col)
             both += (ai_both[r * D + col] + (aj[r * D + col] + aj0[r * D + col])) * xi[col] +
-                    ck_sum[r * D + col] * (U0[col] + U[col]);
+                    ck_sum[symmetric_index<D>(r, col)] * (U0[col] + U[col]);
           dw += both * (U[r] - U0[r]);
         }
         if constexpr (polar) {

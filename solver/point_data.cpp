@@ -37,8 +37,9 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
   p.displacement.assign(n * D, 0.0);
   p.velocity.assign(n * D, 0.0);
   p.force.assign(n * D, 0.0);
-  p.shape_inverse.assign(n * DD, 0.0);
-  p.stabilization_ck.assign(n * DD, 0.0);
+  const std::size_t symmetric = static_cast<std::size_t>(D) * (D + 1) / 2;
+  p.shape_inverse.assign(n * symmetric, 0.0);
+  p.stabilization_ck.assign(n * symmetric, 0.0);
   p.detached.assign(n, 0);
   p.strain.assign(n * DD, 0.0);
   p.force_tensor.assign(n * DD, 0.0);

@@ -37,8 +37,10 @@ struct PointData {
   std::vector<double> moment;  // R per point
 
   // Shape tensors (constant while bonds do not change).
-  std::vector<double> shape_inverse;       // K^-1, D*D
-  std::vector<double> stabilization_ck;    // G_s (C : K^-1), D*D (zero for detached points)
+  // K^-1 and G_s (C : K^-1) (zero for detached points), symmetric: D (D + 1) / 2 per point, the
+  // upper triangle row by row (solver/symmetric_tensor.hpp).
+  std::vector<double> shape_inverse;
+  std::vector<double> stabilization_ck;
   std::vector<double> stabilization_rot;   // G_s B_w tr(K^-1) / d (micropolar)
   std::vector<std::uint8_t> detached;
 

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "solver/bond_breakage.hpp"
+#include "solver/symmetric_tensor.hpp"
 #include "solver/plasticity/plastic_strain_measures.hpp"
 #include "solver/viscoplastic_point.hpp"
 
@@ -96,7 +97,7 @@ void porosity_field(const Model& m, std::vector<double>& out) {
       bond_vector<D>(f, p.position.data(), i, b, xi.data());
       S += p.volume[j] * du * xi.transpose();
     }
-    const Mat F = Mat::Identity() + S * Eigen::Map<const Mat>(&p.shape_inverse[i * D * D]);
+    const Mat F = Mat::Identity() + S * unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
     out[i] = 1.0 - m.constants.solid_fraction / F.determinant();
   }
 }
