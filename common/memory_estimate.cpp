@@ -60,7 +60,7 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
 
   // Bytes per point, array by array (8 per double, 4 per int32, 1 per flag).
   std::uint64_t p = 0;
-  p += 8 + 8 * D + 8 + 4 + 4 + 8 * D;          // id, reference position, volume, region, boundary, normal
+  p += 8 + 8 * D + 8 + 4 + 4;                  // id, reference position, volume, region, boundary id
   p += 2 * 8 * D + 2 * 8 * R + 8 * D + 8 * R;  // displacement, velocity, rotation, spin, force, moment
   p += 2 * 8 * (D * (D + 1) / 2) + 8 + 1;      // K^-1, C:K^-1 (symmetric, packed), rotation term, detached
   p += 2 * 8 * D * D + 2 * 8 * R * D;          // strain, force tensor, wryness, moment tensor

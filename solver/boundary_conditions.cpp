@@ -101,6 +101,13 @@ BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& clo
       s.name = bc.name;
       s.points = std::move(loaded_points[k + 1]);
       s.pressure = bc.type == BoundaryType::pressure;
+      if (s.pressure) {
+        s.normal.assign(s.points.size() * static_cast<std::size_t>(D), 0.0);
+        const std::vector<double>* components[3] = {&cloud.normal_x, &cloud.normal_y, &cloud.normal_z};
+        for (std::size_t k = 0; k < s.points.size(); ++k)
+          for (int c = 0; c < D; ++c)
+            if (!components[c]->empty()) s.normal[k * D + c] = (*components[c])[static_cast<std::size_t>(s.points[k])];
+      }
       s.value = bc.value;
       s.area = info.area;
       for (auto i : s.points) s.volume_sum += p.volume[i];
@@ -159,8 +166,10 @@ void BoundaryConditions::add_surface_loads(const PointData& p, double t, std::ve
     const double scale = s.area / s.volume_sum;
     if (s.pressure) {
       const double pressure = s.value.component_at(t, 0);
-      for (auto i : s.points)
-        for (int c = 0; c < D; ++c) b[i * D + c] -= pressure * scale * p.normal[i * D + c];
+      for (std::size_t k = 0; k < s.points.size(); ++k) {
+        const auto i = static_cast<std::size_t>(s.points[k]);
+        for (int c = 0; c < D; ++c) b[i * D + c] -= pressure * scale * s.normal[k * D + c];
+      }
     } else {
       double tbar[3] = {0, 0, 0};
       for (int c = 0; c < D; ++c) tbar[c] = s.value.component_at(t, c);
@@ -200,8 +209,10 @@ std::vector<BoundaryConditions::LoadValues> BoundaryConditions::load_values(cons
     const double scale = s.area / s.volume_sum;
     if (s.pressure) {
       const double pressure = s.value.component_at(t, 0);
-      for (auto i : s.points)
-        for (int c = 0; c < D; ++c) v.force[c] -= pressure * scale * p.normal[i * D + c] * p.volume[i];
+      for (std::size_t k = 0; k < s.points.size(); ++k) {
+        const auto i = static_cast<std::size_t>(s.points[k]);
+        for (int c = 0; c < D; ++c) v.force[c] -= pressure * scale * s.normal[k * D + c] * p.volume[i];
+      }
     } else {
       for (int c = 0; c < D; ++c) v.force[c] = s.value.component_at(t, c) * s.area;
     }

@@ -35,6 +35,10 @@ struct LoadedSurface {
   std::string name;
   std::vector<std::int32_t> points;
   bool pressure = false;
+  // Pressure only: the outward unit normal of each point of `points` (D per point, in that order),
+  // along whose negative the pressure acts. Kept here rather than per point of the model: only the
+  // loaded points have one.
+  std::vector<double> normal;
   History value;
   double area = 0.0;          // BoundaryInfo::area
   double volume_sum = 0.0;    // sum of V over the loaded points

@@ -27,7 +27,6 @@ struct PointData {
   std::vector<double> volume;
   std::vector<std::int32_t> region;
   std::vector<std::int32_t> boundary_id;
-  std::vector<double> normal;    // D per point (loaded body points)
 
   // Kinematic state. Rotation arrays stay empty when micropolar is off.
   std::vector<double> displacement, velocity;  // D per point
