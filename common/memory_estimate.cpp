@@ -66,7 +66,6 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   p += 2 * 8 * D * D + 2 * 8 * R * D;          // strain, force tensor, wryness, moment tensor
   p += 8 * D + 8 * R + 2 * 8 * D * D + 8 * R * D + 8;  // previous step (energy balance)
   p += 3 * 8;                                  // energy densities
-  p += 2 * 8 * D + 8 * D + 8 * R + 8 * D + 8 * R + 8;  // time integrator: body force, previous force...
   p += 8;                                      // bond offsets (CSR)
   p += 8 * 8 + 2 * 4;                          // the points file as read (mppm-solve keeps it)
   // family volume, no-fail, broken count, and the previous evaluation's displacement, rotation and
@@ -74,6 +73,13 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   if (damage) p += 8 + 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 3 * 8;  // plastic strain and wryness, ebar, cohesion, dissipation
   e.bytes_per_point = p;
+
+  // The integrator (solver/explicit_dynamics.hpp), per tracked point: body force and its previous
+  // value, force, moment, displacement and rotation at the step's start, the work increment; and
+  // when they are not all points, their indices and the rows of the loaded ones (4 B each).
+  const bool track_all = in.damping || has(in.effects, "gravity");
+  const std::uint64_t tracked = track_all ? in.points : std::min(in.boundary_points, in.points);
+  e.integrator_bytes = tracked * (8 * (4 * D + 2 * R + 1) + (track_all ? 0 : 4 + 4));
 
   // Per bond entry: the neighbour index (the bond vector comes from the positions); with damage
   // also the intact flag and half the bond work, which is stored once per pair of entries
@@ -87,7 +93,8 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   e.snapshot_bytes = std::max<std::uint64_t>(components, 6) * 8 * in.points;
 
   e.fixed_bytes = kProgramBytes;
-  e.total_bytes = e.fixed_bytes + in.points * e.bytes_per_point + e.bonds * e.bytes_per_bond + e.snapshot_bytes;
+  e.total_bytes = e.fixed_bytes + in.points * e.bytes_per_point + e.bonds * e.bytes_per_bond + e.integrator_bytes +
+                  e.snapshot_bytes;
   return e;
 }
 

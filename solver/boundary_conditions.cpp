@@ -160,21 +160,22 @@ void BoundaryConditions::prescribe(PointData& p, double t) const {
   }
 }
 
-void BoundaryConditions::add_surface_loads(const PointData& p, double t, std::vector<double>& b) const {
+void BoundaryConditions::add_surface_loads(const PointData&, double t, std::vector<double>& b,
+                                           const std::vector<std::int32_t>* rows) const {
   const int D = dimension_;
+  std::size_t loaded = 0;  // the loaded point's position in the points of all surfaces
   for (const LoadedSurface& s : surfaces_) {
     const double scale = s.area / s.volume_sum;
-    if (s.pressure) {
-      const double pressure = s.value.component_at(t, 0);
-      for (std::size_t k = 0; k < s.points.size(); ++k) {
-        const auto i = static_cast<std::size_t>(s.points[k]);
-        for (int c = 0; c < D; ++c) b[i * D + c] -= pressure * scale * s.normal[k * D + c];
-      }
-    } else {
-      double tbar[3] = {0, 0, 0};
+    double tbar[3] = {0, 0, 0};
+    const double pressure = s.pressure ? s.value.component_at(t, 0) : 0.0;
+    if (!s.pressure)
       for (int c = 0; c < D; ++c) tbar[c] = s.value.component_at(t, c);
-      for (auto i : s.points)
-        for (int c = 0; c < D; ++c) b[i * D + c] += tbar[c] * scale;
+    for (std::size_t k = 0; k < s.points.size(); ++k, ++loaded) {
+      const auto row = static_cast<std::size_t>(rows ? (*rows)[loaded] : s.points[k]);
+      if (s.pressure)
+        for (int c = 0; c < D; ++c) b[row * D + c] -= pressure * scale * s.normal[k * D + c];
+      else
+        for (int c = 0; c < D; ++c) b[row * D + c] += tbar[c] * scale;
     }
   }
 }

@@ -59,7 +59,10 @@ class BoundaryConditions {
   // Sets the prescribed components of u, v (and w, spin) at time t.
   void prescribe(PointData& points, double t) const;
   // Body force density [N/m^3] of tractions and pressures at time t, added to `b` (D per point).
-  void add_surface_loads(const PointData& points, double t, std::vector<double>& b) const;
+  // With `rows`, b has D values per row instead, and the k-th loaded point (the points of
+  // surfaces() in order) adds to row rows[k].
+  void add_surface_loads(const PointData& points, double t, std::vector<double>& b,
+                         const std::vector<std::int32_t>* rows = nullptr) const;
 
   // 1 where a displacement / rotation component is prescribed (D / R per point).
   const std::vector<std::uint8_t>& prescribed_displacement() const { return prescribed_u_; }

@@ -159,6 +159,9 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
   in.dimension = scene.dimension;
   in.effects = scene.effects.names();
   in.snapshot_fields = scene.output.fields;
+  in.damping = scene.numerics.damping != 0.0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    in.boundary_points += (!cloud.region.empty() && cloud.region[i] > 0) || (!cloud.boundary_id.empty() && cloud.boundary_id[i] > 0);
   std::optional<std::uint64_t> available = available_memory_bytes();
   if (const char* budget = std::getenv("MPPM_MEMORY_AVAILABLE")) {
     char* end = nullptr;
