@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/snapshot_file.hpp"
 
 namespace mppm {
 namespace {
@@ -86,11 +87,11 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   // (solver/model.cpp allocates those only then).
   e.bytes_per_bond = 4 + (damage ? 1 + 4 : 0);
 
-  std::uint64_t components = 0;
-  for (const std::string& f : in.snapshot_fields) components += field_components(f, D, R);
-  // The reference snapshot (position, volume, region, boundary id) is the largest when few
-  // fields are written; either is assembled in memory while it is written.
-  e.snapshot_bytes = std::max<std::uint64_t>(components, 6) * 8 * in.points;
+  // Snapshots are written a chunk of points at a time (common/snapshot_file.hpp), one field after
+  // the other: the buffer of the widest field (the reference snapshot's position has 3).
+  std::uint64_t components = 3;
+  for (const std::string& f : in.snapshot_fields) components = std::max(components, field_components(f, D, R));
+  e.snapshot_bytes = components * 8 * std::min<std::uint64_t>(in.points, kSnapshotPointsPerChunk);
 
   e.fixed_bytes = kProgramBytes;
   e.total_bytes = e.fixed_bytes + in.points * e.bytes_per_point + e.bonds * e.bytes_per_bond + e.integrator_bytes +

@@ -29,7 +29,7 @@ struct MemoryEstimate {
   std::uint64_t bytes_per_point = 0;  // the model's arrays and the points read from the file
   std::uint64_t bytes_per_bond = 0;
   std::uint64_t integrator_bytes = 0;  // the time integrator's start-of-step copies
-  std::uint64_t snapshot_bytes = 0;   // one snapshot assembled in memory while it is written
+  std::uint64_t snapshot_bytes = 0;   // the buffer a snapshot is written through
   std::uint64_t fixed_bytes = 0;      // program and libraries
   std::uint64_t total_bytes = 0;
 };

@@ -93,15 +93,17 @@ void record_family_volume(PointData& p, const BondFamilies& f) {
   }
 }
 
+double point_damage(const PointData& p, const BondFamilies& f, std::size_t i) {
+  if (!(p.family_volume[i] > 0.0)) return 0.0;
+  double acting = 0.0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+    if (f.intact[b]) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
+  return 1.0 - acting / p.family_volume[i];
+}
+
 std::vector<double> damage_field(const PointData& p, const BondFamilies& f) {
   std::vector<double> d(p.owned, 0.0);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    if (!(p.family_volume[i] > 0.0)) continue;
-    double acting = 0.0;
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-      if (f.intact[b]) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
-    d[i] = 1.0 - acting / p.family_volume[i];
-  }
+  for (std::size_t i = 0; i < p.owned; ++i) d[i] = point_damage(p, f, i);
   return d;
 }
 

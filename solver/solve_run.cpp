@@ -435,7 +435,8 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
     info.detached_points = model.detached_points;
   };
   auto snapshot = [&] {
-    writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+    writer.write_snapshot(model.dimension(), dynamics.steps(), dynamics.time(), model.points.owned,
+                          snapshot_sources(model, scene.output.fields));
     update_info("running", "");
     writer.flush(info);
   };
@@ -559,7 +560,9 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
     if (checkpointing && (checkpoint_due || interrupted)) checkpoint(snap);
     if (interrupted) {
       clear_interruption();
-      if (!snap) writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+      if (!snap)
+        writer.write_snapshot(model.dimension(), dynamics.steps(), dynamics.time(), model.points.owned,
+                              snapshot_sources(model, scene.output.fields));
       const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(steps) +
                                   ", t = " + text(dynamics.time()) + " s; the state there is the last snapshot" +
                                   (checkpointing ? "; mppm-solve --restart " + writer.directory() +
