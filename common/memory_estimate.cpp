@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/snapshot_file.hpp"
 
 namespace mppm {
 namespace {
@@ -60,34 +61,41 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
 
   // Bytes per point, array by array (8 per double, 4 per int32, 1 per flag).
   std::uint64_t p = 0;
-  p += 8 + 8 * D + 8 + 4 + 4 + 8 * D;          // id, reference position, volume, region, boundary, normal
+  p += 8 + 8 * D + 8 + 4 + 4;                  // id, reference position, volume, region, boundary id
   p += 2 * 8 * D + 2 * 8 * R + 8 * D + 8 * R;  // displacement, velocity, rotation, spin, force, moment
-  p += 2 * 8 * D * D + 8 + 1 + 4;              // K^-1, stabilization C:K^-1 and rotation term, flags
+  p += 2 * 8 * (D * (D + 1) / 2) + 8 + 1;      // K^-1, C:K^-1 (symmetric, packed), rotation term, detached
   p += 2 * 8 * D * D + 2 * 8 * R * D;          // strain, force tensor, wryness, moment tensor
   p += 8 * D + 8 * R + 2 * 8 * D * D + 8 * R * D + 8;  // previous step (energy balance)
   p += 3 * 8;                                  // energy densities
-  p += 2 * 8 * D + 8 * D + 8 * R + 8 * D + 8 * R + 8;  // time integrator: body force, previous force...
   p += 8;                                      // bond offsets (CSR)
   p += 8 * 8 + 2 * 4;                          // the points file as read (mppm-solve keeps it)
   // family volume, no-fail, broken count, and the previous evaluation's displacement, rotation and
-  // force / moment tensors (the bond work's trapezoid rule)
-  if (damage) p += 8 + 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D;
+  // force / moment tensors (the bond work's trapezoid rule), the offsets of the bond pairs
+  if (damage) p += 8 + 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 3 * 8;  // plastic strain and wryness, ebar, cohesion, dissipation
   e.bytes_per_point = p;
 
-  // Per bond entry: the neighbour index (the bond vector comes from the positions); with damage
-  // also the intact flag, the bond work and the mirror slot (solver/model.cpp allocates those only
-  // then).
-  e.bytes_per_bond = 4 + (damage ? 1 + 8 + 4 : 0);
+  // The integrator (solver/explicit_dynamics.hpp), per tracked point: body force and its previous
+  // value, force, moment, displacement and rotation at the step's start, the work increment; and
+  // when they are not all points, their indices and the rows of the loaded ones (4 B each).
+  const bool track_all = in.damping || has(in.effects, "gravity");
+  const std::uint64_t tracked = track_all ? in.points : std::min(in.boundary_points, in.points);
+  e.integrator_bytes = tracked * (8 * (4 * D + 2 * R + 1) + (track_all ? 0 : 4 + 4));
 
-  std::uint64_t components = 0;
-  for (const std::string& f : in.snapshot_fields) components += field_components(f, D, R);
-  // The reference snapshot (position, volume, region, boundary id) is the largest when few
-  // fields are written; either is assembled in memory while it is written.
-  e.snapshot_bytes = std::max<std::uint64_t>(components, 6) * 8 * in.points;
+  // Per bond entry: the neighbour index (the bond vector comes from the positions); with damage
+  // also the intact flag and half the bond work, which is stored once per pair of entries
+  // (solver/model.cpp allocates those only then).
+  e.bytes_per_bond = 4 + (damage ? 1 + 4 : 0);
+
+  // Snapshots are written a chunk of points at a time (common/snapshot_file.hpp), one field after
+  // the other: the buffer of the widest field (the reference snapshot's position has 3).
+  std::uint64_t components = 3;
+  for (const std::string& f : in.snapshot_fields) components = std::max(components, field_components(f, D, R));
+  e.snapshot_bytes = components * 8 * std::min<std::uint64_t>(in.points, kSnapshotPointsPerChunk);
 
   e.fixed_bytes = kProgramBytes;
-  e.total_bytes = e.fixed_bytes + in.points * e.bytes_per_point + e.bonds * e.bytes_per_bond + e.snapshot_bytes;
+  e.total_bytes = e.fixed_bytes + in.points * e.bytes_per_point + e.bonds * e.bytes_per_bond + e.integrator_bytes +
+                  e.snapshot_bytes;
   return e;
 }
 

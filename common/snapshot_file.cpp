@@ -1,6 +1,7 @@
 // Binary snapshot files (layout in snapshot_file.hpp): checksummed, written atomically.
 #include "common/snapshot_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -27,26 +28,45 @@ const SnapshotField* Snapshot::find(const std::string& name) const {
 }
 
 void write_snapshot(const Snapshot& s, const std::string& path) {
+  std::vector<SnapshotFieldSource> sources;
   for (const auto& f : s.fields) {
     if (f.components <= 0 || f.data.size() != s.point_count * static_cast<std::uint64_t>(f.components)) {
       throw std::logic_error("snapshot field '" + f.name + "' has " + std::to_string(f.data.size()) +
                              " values for " + std::to_string(s.point_count) + " points");
     }
+    sources.push_back({f.name, f.components, [&f](std::uint64_t first, std::uint64_t count, double* out) {
+                         const auto c = static_cast<std::uint64_t>(f.components);
+                         std::memcpy(out, f.data.data() + first * c, count * c * sizeof(double));
+                       }});
   }
+  write_snapshot(s.dimension, s.step, s.time, s.point_count, sources, path);
+}
+
+void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
+                    const std::vector<SnapshotFieldSource>& fields, const std::string& path) {
+  constexpr std::uint64_t kPointsPerChunk = kSnapshotPointsPerChunk;
+  std::vector<double> chunk;
   write_file_atomically(path, [&](std::ostream& out) {
     ChecksummedWriter w(out);
     w.bytes(kMagic, sizeof kMagic);
     w.value<std::uint32_t>(kVersion);
-    w.value<std::uint32_t>(static_cast<std::uint32_t>(s.dimension));
-    w.value<std::int64_t>(s.step);
-    w.value<double>(s.time);
-    w.value<std::uint64_t>(s.point_count);
-    w.value<std::uint32_t>(static_cast<std::uint32_t>(s.fields.size()));
-    for (const auto& f : s.fields) {
+    w.value<std::uint32_t>(static_cast<std::uint32_t>(dimension));
+    w.value<std::int64_t>(step);
+    w.value<double>(time);
+    w.value<std::uint64_t>(point_count);
+    w.value<std::uint32_t>(static_cast<std::uint32_t>(fields.size()));
+    for (const auto& f : fields) {
       w.value<std::uint32_t>(static_cast<std::uint32_t>(f.name.size()));
       w.bytes(f.name.data(), f.name.size());
       w.value<std::uint32_t>(static_cast<std::uint32_t>(f.components));
-      w.bytes(f.data.data(), f.data.size() * sizeof(double));
+      const auto c = static_cast<std::uint64_t>(f.components);
+      chunk.resize(std::min(point_count, kPointsPerChunk) * c);
+      // The checksum runs over the bytes in order, so writing them in chunks changes nothing.
+      for (std::uint64_t first = 0; first < point_count; first += kPointsPerChunk) {
+        const std::uint64_t count = std::min(kPointsPerChunk, point_count - first);
+        f.values(first, count, chunk.data());
+        w.bytes(chunk.data(), count * c * sizeof(double));
+      }
     }
     w.finish(kEnd);
   });

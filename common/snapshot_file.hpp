@@ -10,6 +10,7 @@
 // A truncated or corrupted file fails the checksum or the end marker and is reported.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,23 @@ struct Snapshot {
 
 // Throws InputError on write failure; never leaves a partial file under `path`.
 void write_snapshot(const Snapshot& snapshot, const std::string& path);
+
+// A field produced while it is written: values(first, count, out) writes the components of points
+// first .. first + count - 1 into out (count * components values, point-major).
+struct SnapshotFieldSource {
+  std::string name;
+  int components = 1;
+  std::function<void(std::uint64_t first, std::uint64_t count, double* out)> values;
+};
+
+// Points a streamed field is produced and written at a time.
+inline constexpr std::uint64_t kSnapshotPointsPerChunk = 4096;
+
+// The bytes write_snapshot writes for the snapshot of these fields, without the snapshot in memory:
+// the values are produced and written a few thousand points at a time, so that writing a snapshot
+// of a large run does not need a copy of its fields (which would add to the run's peak memory).
+void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
+                    const std::vector<SnapshotFieldSource>& fields, const std::string& path);
 
 // Throws InputError naming the file and what is wrong (missing, truncated, bad checksum).
 Snapshot read_snapshot(const std::string& path);

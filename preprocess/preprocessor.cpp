@@ -245,6 +245,8 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
   memory.dimension = d;
   memory.effects = scene.effects.names();
   memory.snapshot_fields = scene.output.fields;
+  memory.damping = scene.numerics.damping != 0.0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) memory.boundary_points += cloud.region[i] > 0 || cloud.boundary_id[i] > 0;
   report.estimated_memory_bytes = static_cast<double>(estimate_run_memory(memory).total_bytes);
   report.available_memory_bytes = available_memory_bytes();
   return result;

@@ -93,15 +93,17 @@ void record_family_volume(PointData& p, const BondFamilies& f) {
   }
 }
 
+double point_damage(const PointData& p, const BondFamilies& f, std::size_t i) {
+  if (!(p.family_volume[i] > 0.0)) return 0.0;
+  double acting = 0.0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+    if (f.intact[b]) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
+  return 1.0 - acting / p.family_volume[i];
+}
+
 std::vector<double> damage_field(const PointData& p, const BondFamilies& f) {
   std::vector<double> d(p.owned, 0.0);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    if (!(p.family_volume[i] > 0.0)) continue;
-    double acting = 0.0;
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-      if (f.intact[b]) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
-    d[i] = 1.0 - acting / p.family_volume[i];
-  }
+  for (std::size_t i = 0; i < p.owned; ++i) d[i] = point_damage(p, f, i);
   return d;
 }
 
@@ -110,18 +112,6 @@ double family_breaking_energy(const PointData& p, const BondFamilies& f, const C
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) family += p.volume[static_cast<std::size_t>(f.neighbor[b])];
   return 0.5 * c.critical_bond_work * p.volume[i] * family;
 }
-
-namespace {
-
-// The entry of bond (j, i) in j's list (neighbours are sorted by index).
-std::int64_t reverse_bond(const BondFamilies& f, std::size_t i, std::size_t j) {
-  const auto* first = f.neighbor.data() + f.offset[j];
-  const auto* last = f.neighbor.data() + f.offset[j + 1];
-  const auto* it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
-  return it != last && *it == static_cast<std::int32_t>(i) ? static_cast<std::int64_t>(it - f.neighbor.data()) : -1;
-}
-
-}  // namespace
 
 BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
                                      const InternalForceFunctions& kernel, double block_eigenvalue_limit,
@@ -252,7 +242,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
         // force is then the no-fail point's alone).
         if (j < p.owned && p.no_fail[j]) continue;
         record(j);
-        const std::int64_t rb = reverse_bond(f, i, j);
+        const std::int64_t rb = mirror_bond(f, i, j);
         f.intact[b] = 0;
         if (rb >= 0) f.intact[rb] = 0;
         broken_ends += 2;

@@ -42,6 +42,7 @@ void mark_no_fail_zone(PointData& points, double depth);
 void record_family_volume(PointData& points, const BondFamilies& bonds);
 
 // D_i = 1 - sum_j b_ij V_j / family_volume_i (0 for a point without a family).
+double point_damage(const PointData& points, const BondFamilies& bonds, std::size_t i);
 std::vector<double> damage_field(const PointData& points, const BondFamilies& bonds);
 
 // After a force evaluation that broke bonds (marked 2 by the kernel): breaks them for good,

@@ -153,30 +153,32 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   return f;
 }
 
-void index_mirror_bonds(BondFamilies& f) {
+void index_bond_pairs(BondFamilies& f) {
   const auto n = static_cast<std::int64_t>(f.offset.size()) - 1;
-  f.mirror_slot.assign(f.bond_count(), -1);
+  f.pair_offset.assign(static_cast<std::size_t>(n) + 1, 0);
   bool asymmetric = false;
 #pragma omp parallel for schedule(static) reduction(|| : asymmetric) if (thread_bond_loop(f.bond_count()))
   for (std::int64_t i = 0; i < n; ++i) {
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       const std::int64_t j = f.neighbor[b];
-      if (j >= n) {
-        asymmetric = true;
-        continue;
-      }
-      // Neighbours are sorted by index, so (j, i) is found by bisection in j's list.
-      const auto* first = f.neighbor.data() + f.offset[j];
-      const auto* last = f.neighbor.data() + f.offset[j + 1];
-      const auto* it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
-      if (it == last || *it != static_cast<std::int32_t>(i)) {
-        asymmetric = true;
-        continue;
-      }
-      f.mirror_slot[b] = static_cast<std::int32_t>(it - first);
+      if (j >= n || mirror_bond(f, static_cast<std::size_t>(i), static_cast<std::size_t>(j)) < 0) asymmetric = true;
     }
+    f.pair_offset[i + 1] = f.offset[i + 1] - first_bond_above(f, static_cast<std::size_t>(i));
   }
-  if (asymmetric) throw std::logic_error("index_mirror_bonds: a bond is not stored at both of its (owned) ends");
+  if (asymmetric) throw std::logic_error("index_bond_pairs: a bond is not stored at both of its (owned) ends");
+  std::partial_sum(f.pair_offset.begin(), f.pair_offset.end(), f.pair_offset.begin());
+  f.work.assign(static_cast<std::size_t>(f.pair_offset[n]), 0.0);
+}
+
+double bond_work(const BondFamilies& f, std::size_t i, std::int64_t b) {
+  std::size_t low = i;
+  std::int64_t entry = b;
+  const auto j = static_cast<std::size_t>(f.neighbor[b]);
+  if (j < i) {
+    low = j;
+    entry = mirror_bond(f, i, j);
+  }
+  return f.work[static_cast<std::size_t>(f.pair_offset[low] + (entry - first_bond_above(f, low)))];
 }
 
 }  // namespace mppm::solver

@@ -6,6 +6,7 @@
 // point owns its own bond list, so kernels write only the point they loop over (no atomics,
 // no races).
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -21,14 +22,35 @@ struct BondFamilies {
   std::vector<std::int32_t> neighbor;  // local index (owned or ghost)
   std::vector<double> xi;              // D per bond, periodic lattices only (else empty)
   // Damage effect only (empty otherwise):
-  std::vector<std::uint8_t> intact;    // 1 = the bond acts; 0 = broken (for good)
-  std::vector<double> work;            // W_ij [J/m^6], the same bits at both ends of a bond
-  // Where bond b = (i, j) sits in j's list: (j, i) is bond offset[j] + mirror_slot[b]. The force
-  // pass computes a bond's work once, at its lower-index end, and writes it to both ends.
-  std::vector<std::int32_t> mirror_slot;
+  std::vector<std::uint8_t> intact;    // per bond entry: 1 = the bond acts; 0 = broken (for good)
+  // W_ij [J/m^6] of every bond pair, stored once, at its lower-index end: the pairs of point i are
+  // its bonds to higher indices (the tail of its sorted list), the k-th of them at
+  // work[pair_offset[i] + k]. The force pass computes a bond's work at that end only (the other end
+  // would give the same bits), so a copy at the other end would cost 8 B per bond entry for nothing.
+  std::vector<double> work;
+  std::vector<std::int64_t> pair_offset;  // owned + 1 entries
 
   std::size_t bond_count() const { return neighbor.size(); }
+  std::size_t pair_count() const { return work.size(); }
 };
+
+// The first bond of point i to a neighbour of higher index (neighbours are sorted by index).
+inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i) {
+  const std::int32_t* first = f.neighbor.data() + f.offset[i];
+  const std::int32_t* last = f.neighbor.data() + f.offset[i + 1];
+  return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - f.neighbor.data();
+}
+
+// The entry of bond (j, i) in j's list (by bisection: neighbours are sorted), -1 if j has none.
+inline std::int64_t mirror_bond(const BondFamilies& f, std::size_t i, std::size_t j) {
+  const std::int32_t* first = f.neighbor.data() + f.offset[j];
+  const std::int32_t* last = f.neighbor.data() + f.offset[j + 1];
+  const std::int32_t* it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
+  return it != last && *it == static_cast<std::int32_t>(i) ? static_cast<std::int64_t>(it - f.neighbor.data()) : -1;
+}
+
+// W_ij of bond b of point i (damage), read from either end of the bond.
+double bond_work(const BondFamilies& f, std::size_t i, std::int64_t b);
 
 // xi of bond b of point i: x_j - x_i from the positions, or the stored minimum image.
 template <int D>
@@ -57,9 +79,9 @@ struct FamilyOptions {
 // are sorted by index, so the storage does not depend on the search order or thread count.
 BondFamilies build_families(const PointData& points, const FamilyOptions& options);
 
-// Fills mirror_slot (damage): every bond's position in its neighbour's list. Families must be
-// symmetric (every bond stored from both ends) with owned neighbours; throws std::logic_error if not.
-void index_mirror_bonds(BondFamilies& families);
+// Fills pair_offset and sizes work (zero) for the bond pairs (damage). Families must be symmetric
+// (every bond stored from both ends) with owned neighbours; throws std::logic_error if not.
+void index_bond_pairs(BondFamilies& families);
 
 // Removes the bonds for which cut(bond) is true from both ends; `cut` must be symmetric.
 template <class Predicate>
@@ -82,8 +104,7 @@ void remove_bonds(BondFamilies& families, Predicate&& cut) {
   families.neighbor.resize(kept);
   if (!families.xi.empty()) families.xi.resize(kept * D);
   if (!families.intact.empty()) families.intact.assign(kept, 1);
-  if (!families.work.empty()) families.work.assign(kept, 0.0);
-  if (!families.mirror_slot.empty()) index_mirror_bonds(families);
+  if (!families.pair_offset.empty()) index_bond_pairs(families);
 }
 
 }  // namespace mppm::solver

@@ -115,6 +115,13 @@ BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& clo
       s.name = bc.name;
       s.points = std::move(loaded_points[k + 1]);
       s.pressure = bc.type == BoundaryType::pressure;
+      if (s.pressure) {
+        s.normal.assign(s.points.size() * static_cast<std::size_t>(D), 0.0);
+        const std::vector<double>* components[3] = {&cloud.normal_x, &cloud.normal_y, &cloud.normal_z};
+        for (std::size_t k = 0; k < s.points.size(); ++k)
+          for (int c = 0; c < D; ++c)
+            if (!components[c]->empty()) s.normal[k * D + c] = (*components[c])[static_cast<std::size_t>(s.points[k])];
+      }
       s.value = bc.value;
       s.area = info.area;
       for (auto i : s.points) s.volume_sum += p.volume[i];
@@ -167,19 +174,22 @@ void BoundaryConditions::prescribe(PointData& p, double t) const {
   }
 }
 
-void BoundaryConditions::add_surface_loads(const PointData& p, double t, std::vector<double>& b) const {
+void BoundaryConditions::add_surface_loads(const PointData&, double t, std::vector<double>& b,
+                                           const std::vector<std::int32_t>* rows) const {
   const int D = dimension_;
+  std::size_t loaded = 0;  // the loaded point's position in the points of all surfaces
   for (const LoadedSurface& s : surfaces_) {
     const double scale = s.area / s.volume_sum;
-    if (s.pressure) {
-      const double pressure = s.value.component_at(t, 0);
-      for (auto i : s.points)
-        for (int c = 0; c < D; ++c) b[i * D + c] -= pressure * scale * p.normal[i * D + c];
-    } else {
-      double tbar[3] = {0, 0, 0};
+    double tbar[3] = {0, 0, 0};
+    const double pressure = s.pressure ? s.value.component_at(t, 0) : 0.0;
+    if (!s.pressure)
       for (int c = 0; c < D; ++c) tbar[c] = s.value.component_at(t, c);
-      for (auto i : s.points)
-        for (int c = 0; c < D; ++c) b[i * D + c] += tbar[c] * scale;
+    for (std::size_t k = 0; k < s.points.size(); ++k, ++loaded) {
+      const auto row = static_cast<std::size_t>(rows ? (*rows)[loaded] : s.points[k]);
+      if (s.pressure)
+        for (int c = 0; c < D; ++c) b[row * D + c] -= pressure * scale * s.normal[k * D + c];
+      else
+        for (int c = 0; c < D; ++c) b[row * D + c] += tbar[c] * scale;
     }
   }
 }
@@ -214,8 +224,10 @@ std::vector<BoundaryConditions::LoadValues> BoundaryConditions::load_values(cons
     const double scale = s.area / s.volume_sum;
     if (s.pressure) {
       const double pressure = s.value.component_at(t, 0);
-      for (auto i : s.points)
-        for (int c = 0; c < D; ++c) v.force[c] -= pressure * scale * p.normal[i * D + c] * p.volume[i];
+      for (std::size_t k = 0; k < s.points.size(); ++k) {
+        const auto i = static_cast<std::size_t>(s.points[k]);
+        for (int c = 0; c < D; ++c) v.force[c] -= pressure * scale * s.normal[k * D + c] * p.volume[i];
+      }
     } else {
       for (int c = 0; c < D; ++c) v.force[c] = s.value.component_at(t, c) * s.area;
     }

@@ -35,6 +35,10 @@ struct LoadedSurface {
   std::string name;
   std::vector<std::int32_t> points;
   bool pressure = false;
+  // Pressure only: the outward unit normal of each point of `points` (D per point, in that order),
+  // along whose negative the pressure acts. Kept here rather than per point of the model: only the
+  // loaded points have one.
+  std::vector<double> normal;
   History value;
   double area = 0.0;          // BoundaryInfo::area
   double volume_sum = 0.0;    // sum of V over the loaded points
@@ -55,7 +59,10 @@ class BoundaryConditions {
   // Sets the prescribed components of u, v (and w, spin) at time t.
   void prescribe(PointData& points, double t) const;
   // Body force density [N/m^3] of tractions and pressures at time t, added to `b` (D per point).
-  void add_surface_loads(const PointData& points, double t, std::vector<double>& b) const;
+  // With `rows`, b has D values per row instead, and the k-th loaded point (the points of
+  // surfaces() in order) adds to row rows[k].
+  void add_surface_loads(const PointData& points, double t, std::vector<double>& b,
+                         const std::vector<std::int32_t>* rows = nullptr) const;
 
   // 1 where a displacement / rotation component is prescribed (D / R per point).
   const std::vector<std::uint8_t>& prescribed_displacement() const { return prescribed_u_; }

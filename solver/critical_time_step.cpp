@@ -11,6 +11,7 @@
 
 #include "common/input_error.hpp"
 #include "solver/point_stability.hpp"
+#include "solver/shape_tensor.hpp"
 
 namespace mppm::solver {
 
@@ -37,7 +38,10 @@ struct OperatorEstimate {
 // in a few tens of operator applications even where the top of the spectrum is dense (a plain
 // power iteration stalls there and under-estimates omega_max). Only the three-term recurrence
 // is kept (no stored basis): loss of orthogonality creates duplicate Ritz values, not wrong
-// extreme ones.
+// extreme ones. The Lanczos vector q lives in the model's displacement and rotation (where the
+// kernel reads it) and w = M^-1 K q in its force and moment (where the kernel writes it), so that
+// the only vectors of the model's size allocated here are the previous ones: this runs before the
+// time loop, and its vectors would otherwise set the run's peak memory.
 OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance, int max_iterations) {
   PointData& p = model.points;
   const int D = p.dimension;
@@ -47,7 +51,11 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance,
   const double inertia = model.constants.micro_inertia;
   const bool use_u = block != Block::rotational;
   const bool use_w = block != Block::translational && R > 0;
-  std::vector<double> q_u(n * D, 0.0), q_w(n * R, 0.0), prev_u(n * D, 0.0), prev_w(n * R, 0.0);
+  std::vector<double>& q_u = p.displacement;
+  std::vector<double>& q_w = p.rotation;
+  std::vector<double>& w_u = p.force;
+  std::vector<double>& w_w = p.moment;
+  std::vector<double> prev_u(q_u.size(), 0.0), prev_w(q_w.size(), 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u ? start_value(p.global_id[i], c) : 0.0;
     for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w ? start_value(p.global_id[i], D + c) : 0.0;
@@ -64,19 +72,16 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance,
     return sum;
   };
   double norm = std::sqrt(mass_dot(q_u, q_w, q_u, q_w));
-  for (auto& v : q_u) v /= norm;
-  for (auto& v : q_w) v /= norm;
+  for (std::size_t k = 0; k < n * D; ++k) q_u[k] /= norm;
+  for (std::size_t k = 0; k < n * R; ++k) q_w[k] /= norm;
   std::vector<double> alpha, beta;
   OperatorEstimate r;
   std::vector<double> history;
-  std::vector<double> w_u(n * D), w_w(n * R);
   for (int it = 1; it <= max_iterations; ++it) {
     // w = M^-1 K q = -(internal force of the field q) / mass density
-    p.displacement = q_u;
-    if (R > 0) p.rotation = q_w;
     model.compute_internal_forces(false);
-    for (std::size_t k = 0; k < n * D; ++k) w_u[k] = use_u ? -p.force[k] / rho : 0.0;
-    for (std::size_t k = 0; k < n * R; ++k) w_w[k] = use_w ? -p.moment[k] / inertia : 0.0;
+    for (std::size_t k = 0; k < n * D; ++k) w_u[k] = use_u ? -w_u[k] / rho : 0.0;
+    for (std::size_t k = 0; k < n * R; ++k) w_w[k] = use_w ? -w_w[k] / inertia : 0.0;
     const double a = mass_dot(w_u, w_w, q_u, q_w);
     const double b_prev = beta.empty() ? 0.0 : beta.back();
     for (std::size_t k = 0; k < n * D; ++k) w_u[k] -= a * q_u[k] + b_prev * prev_u[k];
@@ -119,8 +124,17 @@ std::string number(double v) {
 
 CriticalTimeStep critical_time_step(Model& model) {
   PointData& p = model.points;
-  const auto saved_u = p.displacement;
-  const auto saved_w = p.rotation;
+  // The Lanczos vectors overwrite the state, which is put back at the end. Before a run it is the
+  // reference configuration (all +0.0, as allocated), which needs no copy of the model's size.
+  auto at_rest = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); });
+  };
+  const bool rest = at_rest(p.displacement) && at_rest(p.rotation);
+  std::vector<double> saved_u, saved_w;
+  if (!rest) {
+    saved_u = p.displacement;
+    saved_w = p.rotation;
+  }
   CriticalTimeStep out;
   // The coupled estimate sets the step (Ritz value converged to 1e-8, far finer than any safety
   // factor); the block estimates name the limiting mode.
@@ -141,13 +155,14 @@ CriticalTimeStep critical_time_step(Model& model) {
   // switching one off can only lower omega_max^2; the block is credited to the modulus without
   // which less than half of omega_max^2 is left. These extra estimates run only for the limiting
   // block, with a coarser tolerance (they name a parameter, they do not set the step).
+  // The stabilization tensors C:K^-1 that a switch may zero are rebuilt from K^-1 and the restored
+  // constants afterwards (the same bits), not copied: a copy would cost 9 doubles per point.
   auto estimate_without = [&](Block b, auto&& switch_off) {
     const CosseratConstants saved = c;
-    const std::vector<double> saved_ck = p.stabilization_ck;
     switch_off();
     const OperatorEstimate e = largest_eigenvalue(model, b, 1e-4, 60);
     c = saved;
-    p.stabilization_ck = saved_ck;
+    update_stabilization_tensors(p, c);
     return e.lambda;
   };
   const std::string inertia = " over the micro-inertia I = 1/2 pi rho l^2 = " + number(c.micro_inertia) +
@@ -190,8 +205,13 @@ CriticalTimeStep critical_time_step(Model& model) {
                  number(c.mu + c.mu_c) + " Pa against the P-wave modulus lambda + 2 mu = " +
                  number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
   }
-  p.displacement = saved_u;
-  p.rotation = saved_w;
+  if (rest) {
+    std::fill(p.displacement.begin(), p.displacement.end(), 0.0);
+    std::fill(p.rotation.begin(), p.rotation.end(), 0.0);
+  } else {
+    p.displacement = saved_u;
+    p.rotation = saved_w;
+  }
   model.compute_internal_forces(false);
   return out;
 }

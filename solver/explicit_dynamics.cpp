@@ -4,6 +4,8 @@
 #include "solver/parallel_policy.hpp"
 #include "solver/explicit_dynamics.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,12 +16,75 @@ ExplicitDynamics::ExplicitDynamics(Model& model, const BoundaryConditions& condi
                                    std::array<double, 3> gravity)
     : model_(model), conditions_(conditions), dt_(time_step), gravity_(gravity),
       use_gravity_(model.effects.gravity) {
+  lay_out_tracked_points();
+}
+
+void ExplicitDynamics::set_damping(double c) {
+  damping_ = c;
+  lay_out_tracked_points();
+}
+
+void ExplicitDynamics::lay_out_tracked_points() {
   const PointData& p = model_.points;
-  body_force_.assign(p.total() * p.dimension, 0.0);
-  body_force_prev_ = body_force_;
-  force_prev_.assign(p.force.size(), 0.0);
-  moment_prev_.assign(p.moment.size(), 0.0);
-  work_increment_.assign(p.owned, 0.0);
+  const int D = p.dimension;
+  const int R = p.rotation_components;
+  track_all_ = use_gravity_ || damping_ != 0.0;
+  tracked_.clear();
+  load_rows_.clear();
+  if (!track_all_) {
+    for (std::size_t i = 0; i < p.owned; ++i) {
+      bool prescribed = false;
+      for (int c = 0; c < D; ++c) prescribed |= conditions_.prescribed_displacement()[i * D + c] != 0;
+      for (int c = 0; c < R; ++c) prescribed |= conditions_.prescribed_rotation()[i * R + c] != 0;
+      if (prescribed) tracked_.push_back(static_cast<std::int32_t>(i));
+    }
+    for (const LoadedSurface& s : conditions_.surfaces()) tracked_.insert(tracked_.end(), s.points.begin(), s.points.end());
+    std::sort(tracked_.begin(), tracked_.end());
+    tracked_.erase(std::unique(tracked_.begin(), tracked_.end()), tracked_.end());
+    tracked_.shrink_to_fit();
+    for (const LoadedSurface& s : conditions_.surfaces())
+      for (const std::int32_t i : s.points) load_rows_.push_back(static_cast<std::int32_t>(tracked_row(static_cast<std::size_t>(i))));
+  }
+  const std::size_t n = tracked_count();
+  body_force_.assign(n * D, 0.0);
+  body_force_prev_.assign(n * D, 0.0);
+  force_prev_.assign(n * D, 0.0);
+  moment_prev_.assign(n * R, 0.0);
+  displacement_prev_.assign(n * D, 0.0);
+  rotation_prev_.assign(n * R, 0.0);
+  work_increment_.assign(n, 0.0);
+}
+
+std::size_t ExplicitDynamics::tracked_count() const { return track_all_ ? model_.points.owned : tracked_.size(); }
+
+std::ptrdiff_t ExplicitDynamics::tracked_row(std::size_t i) const {
+  if (track_all_) return static_cast<std::ptrdiff_t>(i);
+  const auto it = std::lower_bound(tracked_.begin(), tracked_.end(), static_cast<std::int32_t>(i));
+  return it != tracked_.end() && *it == static_cast<std::int32_t>(i) ? it - tracked_.begin() : -1;
+}
+
+template <class Visit>
+int ExplicitDynamics::for_each_point(bool threaded, Visit&& visit) const {
+  const std::size_t n = model_.points.owned;
+  int result = 0;
+#pragma omp parallel if (threaded) reduction(| : result)
+  {
+    const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t lo = n * thread / threads, hi = n * (thread + 1) / threads;
+    // The tracked points are sorted: one search for the range's first, then a walk along it.
+    std::size_t k = track_all_ ? lo
+                               : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(),
+                                                                           static_cast<std::int32_t>(lo)) -
+                                                          tracked_.begin());
+    for (std::size_t i = lo; i < hi; ++i) {
+      std::ptrdiff_t row = -1;
+      if (track_all_) row = static_cast<std::ptrdiff_t>(i);
+      else if (k < tracked_.size() && static_cast<std::size_t>(tracked_[k]) == i) row = static_cast<std::ptrdiff_t>(k++);
+      result |= visit(i, row);
+    }
+  }
+  return result;
 }
 
 void ExplicitDynamics::compute_loads_and_forces(bool with_energy, bool advance) {
@@ -31,12 +96,12 @@ void ExplicitDynamics::compute_loads_and_forces(bool with_energy, bool advance) 
     model_.compute_internal_forces(with_energy);
   }
   std::fill(body_force_.begin(), body_force_.end(), 0.0);
-  if (use_gravity_) {
+  if (use_gravity_) {  // every point is tracked then
     const double rho = model_.constants.density;
     for (std::size_t i = 0; i < p.owned; ++i)
       for (int c = 0; c < D; ++c) body_force_[i * D + c] = rho * gravity_[c];
   }
-  conditions_.add_surface_loads(p, time_, body_force_);
+  conditions_.add_surface_loads(p, time_, body_force_, track_all_ ? nullptr : &load_rows_);
 }
 
 void ExplicitDynamics::evaluate_energy() {
@@ -53,12 +118,17 @@ void ExplicitDynamics::evaluate_energy() {
   // differs from it by O((omega dt)^2) in the highest modes).
   const double h2 = 0.25 * dt_ * dt_;
   double kinetic = 0.0, rotational = 0.0, terms = 0.0;
+  std::size_t next_tracked = 0;
   for (std::size_t i = 0; i < p.owned; ++i) {
+    // A point that is not tracked has no body force.
+    const bool tracked = track_all_ || (next_tracked < tracked_.size() && static_cast<std::size_t>(tracked_[next_tracked]) == i);
+    const std::size_t row = track_all_ ? i : next_tracked;
+    if (tracked && !track_all_) ++next_tracked;
     double v2 = 0.0, t2 = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
       if (fixed_u[k]) continue;
-      const double a = (p.force[k] + body_force_[k]) / rho;
+      const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
       v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
       t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
     }
@@ -110,7 +180,6 @@ void ExplicitDynamics::step(bool with_energy) {
   PointData& p = model_.points;
   const int D = p.dimension;
   const int R = p.rotation_components;
-  const auto n = static_cast<std::int64_t>(p.owned);
   const double inv_rho = 1.0 / model_.constants.density;
   const double inv_inertia = R > 0 ? 1.0 / model_.constants.micro_inertia : 0.0;
   const double rho = model_.constants.density;
@@ -119,26 +188,34 @@ void ExplicitDynamics::step(bool with_energy) {
   const double dt = dt_;
   const bool threaded = thread_point_loop(p.owned);
 
-  // First half kick and drift; remember the start-of-step state for the work increments.
-  force_prev_.swap(p.force);
-  moment_prev_.swap(p.moment);
+  // First half kick and drift; remember the start-of-step state of the tracked points for the
+  // work increments (the force evaluation overwrites the force and the body force).
   body_force_prev_.swap(body_force_);
-  displacement_prev_ = p.displacement;
-  if (R > 0) rotation_prev_ = p.rotation;
   // Mass-proportional damping (numerics.damping, c): force density -c rho v (and -c I spin),
   // explicit in the first half kick, implicit in the second (so any c is stable); its work
   // (negative) is accumulated with the external work by the trapezoid rule.
   const double c_damp = damping_;
   const auto& fixed_u = conditions_.prescribed_displacement();
   const auto& fixed_w = conditions_.prescribed_rotation();
-#pragma omp parallel for schedule(static) if (threaded)
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
+  for_each_point(threaded, [&](std::size_t i, std::ptrdiff_t row) {
+    const bool tracked = row >= 0;
+    const auto t = static_cast<std::size_t>(row);
+    if (tracked) {
+      for (int c = 0; c < D; ++c) {
+        force_prev_[t * D + c] = p.force[i * D + c];
+        displacement_prev_[t * D + c] = p.displacement[i * D + c];
+      }
+      for (int c = 0; c < R; ++c) {
+        moment_prev_[t * R + c] = p.moment[i * R + c];
+        rotation_prev_[t * R + c] = p.rotation[i * R + c];
+      }
+    }
     double work = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
       const double damp = c_damp * p.velocity[k];  // per unit mass
-      p.velocity[k] += half * ((force_prev_[k] + body_force_prev_[k]) * inv_rho - damp);
+      const double body = tracked ? body_force_prev_[t * D + c] : 0.0;
+      p.velocity[k] += half * ((p.force[k] + body) * inv_rho - damp);
       p.displacement[k] += dt * p.velocity[k];
       if (!fixed_u[k]) work -= 0.5 * damp * dt * p.velocity[k];
     }
@@ -146,12 +223,13 @@ void ExplicitDynamics::step(bool with_energy) {
     for (int c = 0; c < R; ++c) {
       const std::size_t k = i * R + c;
       const double damp = c_damp * p.spin[k];
-      p.spin[k] += half * (moment_prev_[k] * inv_inertia - damp);
+      p.spin[k] += half * (p.moment[k] * inv_inertia - damp);
       p.rotation[k] += dt * p.spin[k];
       if (!fixed_w[k]) rot_work -= 0.5 * damp * dt * p.spin[k];
     }
-    work_increment_[i] = c_damp > 0.0 ? p.volume[i] * (rho * work + inertia * rot_work) : 0.0;
-  }
+    if (tracked) work_increment_[t] = c_damp > 0.0 ? p.volume[i] * (rho * work + inertia * rot_work) : 0.0;
+    return 0;
+  });
   // The clock is recomputed from the step count (no drift over many steps); with set_clock the
   // last step lands exactly on the end time.
   time_ = clock_steps_ > 0 ? static_cast<double>(steps_ + 1) / static_cast<double>(clock_steps_) * clock_end_
@@ -174,58 +252,74 @@ void ExplicitDynamics::step(bool with_energy) {
     const auto& refreshed = p.refreshed_points;
     for (std::size_t r = 0; r < refreshed.size(); ++r) {
       const std::size_t i = refreshed[r];
+      const std::ptrdiff_t row = tracked_row(i);  // every point with a prescribed component is tracked
+      const auto t = static_cast<std::size_t>(row);
       for (int c = 0; c < D; ++c) {
         const std::size_t k = i * D + c;
         const double change = p.force_before_refresh[r * D + c] - p.force[k];  // f_old - f_new
-        if (fixed_u[k]) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[k]) * p.volume[i];
+        if (fixed_u[k]) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
         else breakage_kick += half * p.velocity[k] * change * p.volume[i];
       }
       for (int c = 0; c < R; ++c) {
         const std::size_t k = i * R + c;
         const double change = p.moment_before_refresh[r * R + c] - p.moment[k];
-        if (fixed_w[k]) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[k]) * p.volume[i];
+        if (fixed_w[k]) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
         else breakage_kick += half * p.spin[k] * change * p.volume[i];
       }
     }
   }
 
   // Second half kick, work increments (trapezoid: mean of the start and end forces times the
-  // increment), non-finite guard.
+  // increment), non-finite guard. A point that is not tracked has no prescribed component, no
+  // body force and no damping: its work increment is zero and is not formed.
   const double damp_factor = 1.0 / (1.0 + half * c_damp);
-  int bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad) if (threaded)
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
+  const int bad = for_each_point(threaded, [&](std::size_t i, std::ptrdiff_t row) {
+    int bad_here = 0;
+    if (row < 0) {
+      for (int c = 0; c < D; ++c) {
+        const std::size_t k = i * D + c;
+        p.velocity[k] = (p.velocity[k] + half * (p.force[k] + 0.0) * inv_rho) * damp_factor;
+        bad_here |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
+      }
+      for (int c = 0; c < R; ++c) {
+        const std::size_t k = i * R + c;
+        p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;
+        bad_here |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
+      }
+      return bad_here;
+    }
+    const auto t = static_cast<std::size_t>(row);
     double work = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
-      const double du = p.displacement[k] - displacement_prev_[k];
+      const double du = p.displacement[k] - displacement_prev_[t * D + c];
       if (fixed_u[k]) {
         // The reaction -f V does the work of the prescribed motion (layer inertia excluded).
-        work -= 0.5 * (force_prev_[k] + p.force[k]) * du;
+        work -= 0.5 * (force_prev_[t * D + c] + p.force[k]) * du;
       } else {
-        p.velocity[k] = (p.velocity[k] + half * (p.force[k] + body_force_[k]) * inv_rho) * damp_factor;
-        work += 0.5 * (body_force_prev_[k] + body_force_[k]) * du;
+        p.velocity[k] = (p.velocity[k] + half * (p.force[k] + body_force_[t * D + c]) * inv_rho) * damp_factor;
+        work += 0.5 * (body_force_prev_[t * D + c] + body_force_[t * D + c]) * du;
         if (c_damp > 0.0) work -= 0.5 * c_damp * rho * p.velocity[k] * du;
       }
-      bad |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
+      bad_here |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
     }
     for (int c = 0; c < R; ++c) {
       const std::size_t k = i * R + c;
-      const double dw = p.rotation[k] - rotation_prev_[k];
+      const double dw = p.rotation[k] - rotation_prev_[t * R + c];
       if (fixed_w[k]) {
-        work -= 0.5 * (moment_prev_[k] + p.moment[k]) * dw;
+        work -= 0.5 * (moment_prev_[t * R + c] + p.moment[k]) * dw;
       } else {
         p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;
         if (c_damp > 0.0) work -= 0.5 * c_damp * inertia * p.spin[k] * dw;
       }
-      bad |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
+      bad_here |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
     }
-    work_increment_[i] += work * p.volume[i];
-  }
+    work_increment_[t] += work * p.volume[i];
+    return bad_here;
+  });
   if (bad) finite_ = false;
   double work = 0.0;
-  for (std::size_t i = 0; i < p.owned; ++i) work += work_increment_[i];
+  for (const double w : work_increment_) work += w;  // in point order
   energy_.external_work += work;
   if (!p.plastic_dissipation.empty()) {
     double dissipated = 0.0;

@@ -70,8 +70,9 @@ class ExplicitDynamics {
     clock_steps_ = steps;
   }
 
-  // Mass-proportional damping coefficient c [1/s] (numerics.damping; 0 = none).
-  void set_damping(double c) { damping_ = c; }
+  // Mass-proportional damping coefficient c [1/s] (numerics.damping; 0 = none). Call it before
+  // initialize(): damping needs the start-of-step state of every point.
+  void set_damping(double c);
 
   // Prescribes the state at t = 0 and computes the forces and energies there.
   void initialize();
@@ -109,7 +110,8 @@ class ExplicitDynamics {
     double initial_total = 0.0;
   };
   Carried carried() const { return {time_, steps_, energy_, initial_total_}; }
-  // The external force density of the last evaluation (the first half kick of the next step uses it).
+  // The external force density of the last evaluation (the first half kick of the next step uses
+  // it), D per tracked point (see tracked_ below): every other point has none.
   const std::vector<double>& body_force() const { return body_force_; }
   // After initialize(): continues from a checkpointed state (body_force must have the run's size).
   void restore(const Carried& carried, const std::vector<double>& body_force);
@@ -118,6 +120,15 @@ class ExplicitDynamics {
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
+  // Chooses the tracked points and sizes the per-tracked-point arrays.
+  void lay_out_tracked_points();
+  std::size_t tracked_count() const;
+  // The row of point i among the tracked points, -1 if it is not tracked.
+  std::ptrdiff_t tracked_row(std::size_t i) const;
+  // Calls visit(i, row) for every owned point i, row = tracked_row(i), in contiguous ranges of
+  // points per thread (threaded: in parallel); returns the OR of what visit returns.
+  template <class Visit>
+  int for_each_point(bool threaded, Visit&& visit) const;
 
   Model& model_;
   const BoundaryConditions& conditions_;
@@ -130,11 +141,22 @@ class ExplicitDynamics {
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   bool finite_ = true;
-  std::vector<double> body_force_;       // external force density b (D per point)
+  // The points whose start-of-step state a step still needs after its force evaluation: those with
+  // a prescribed component (the reaction's work takes the force and the displacement at both ends
+  // of the step) and those with a body force (its work takes the body force and the displacement at
+  // both ends): with gravity or damping every point, otherwise the fictitious layers and the loaded
+  // surfaces. Every other point has a zero external work increment (exactly: +0), so leaving it
+  // out of the work sum gives the same bits, and the start-of-step copies of the state, 5 to 8
+  // values per point, are kept for the few points that need them.
+  bool track_all_ = true;
+  std::vector<std::int32_t> tracked_;    // sorted point indices (empty when track_all_)
+  std::vector<std::int32_t> load_rows_;  // the tracked row of each loaded point (surfaces in order)
+  // Per tracked point:
+  std::vector<double> body_force_;       // external force density b (D)
   std::vector<double> body_force_prev_;
-  std::vector<double> force_prev_, moment_prev_;
-  std::vector<double> displacement_prev_, rotation_prev_;
-  std::vector<double> work_increment_;   // per point, summed serially
+  std::vector<double> force_prev_, moment_prev_;           // D, R
+  std::vector<double> displacement_prev_, rotation_prev_;  // D, R
+  std::vector<double> work_increment_;   // summed serially, in point order
   EnergyState energy_;
   double initial_total_ = 0.0;
   std::optional<NanInjection> injection_;

@@ -16,9 +16,10 @@
 // when W_ij >= w_cr. The old pair force is rebuilt from the previous evaluation's per-point arrays
 // (previous_*: a few numbers per point instead of D + R per bond). Seen from j, every term of the
 // increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
-// IEEE addition commutes), so the increment is computed once, by the lower-index end, which
-// writes W_ij to both ends (BondFamilies::mirror_slot) and marks both when it breaks. Both ends
-// hold the same bits of W_ij and break it in the same step, for any thread count.
+// IEEE addition commutes), so the increment is computed once, by the lower-index end, which holds
+// the bond pair's W_ij (BondFamilies::work) and marks both ends when it breaks (the other end found
+// by bisection in its sorted list, only then). Both ends break it in the same step, for any thread
+// count.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
@@ -32,6 +33,7 @@
 #include "solver/parallel_policy.hpp"
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
+#include "solver/symmetric_tensor.hpp"
 #include "solver/viscoplastic_point.hpp"
 
 namespace mppm::solver::kernel {
@@ -111,12 +113,13 @@ struct StabilizationEnergySum {
       zw2 += vj * w2;
     }
   }
-  // sum_j V_j [z_u . Ck z_u + g |z_w|^2]
+  // sum_j V_j [z_u . Ck z_u + g |z_w|^2], Ck packed (symmetric_tensor.hpp: the same upper
+  // triangle order as zz)
   double contract(const double* cki, [[maybe_unused]] double gi) const {
     double e = 0.0;
     int k = 0;
     for (int r = 0; r < D; ++r)
-      for (int col = r; col < D; ++col) e += (col == r ? 1.0 : 2.0) * cki[r * D + col] * zz[k++];
+      for (int col = r; col < D; ++col, ++k) e += (col == r ? 1.0 : 2.0) * cki[k] * zz[k];
     if constexpr (Polar) e += gi * zw2;
     return e;
   }
@@ -175,12 +178,11 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
                                    const CosseratConstants& c, std::size_t i) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
-  constexpr int DD = D * D;
   constexpr int RD = R * D;
   PointEnergy e;
   if (p.detached[i]) return e;
   const double vi = p.volume[i];
-  const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
+  const Mat<D> kinv = unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
   if (f.xi.empty()) point_strains<D, Effects, false>(p, f, i, kinv, eps, kap);
@@ -202,7 +204,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
   const double* ui = &p.displacement[i * D];
   const double* wi = polar ? &p.rotation[i * R] : zero_rotation;
-  const double* cki = &p.stabilization_ck[i * DD];
+  const double* cki = &p.stabilization_ck[i * symmetric_components<D>];
   [[maybe_unused]] const double gi = polar ? p.stabilization_rot[i] : 0.0;
   StabilizationEnergySum<D, R, polar> stab;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
@@ -247,7 +249,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
       if (advance) p.plastic_dissipation[i] = 0.0;
     return;
   }
-  const Mat<D> kinv = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * DD]);
+  const Mat<D> kinv = unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
   point_strains<D, Effects, StoredXi>(p, f, i, kinv, eps, kap);
@@ -276,7 +278,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     if constexpr (WithEnergy)
       p.force_stress_energy[i] = 0.5 * vol[i] * (eps.cwiseProduct(sigma)).sum();
   }
-  const Mat<D> ck = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * DD]);
+  const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
   a_out = sigma * kinv - ck * eps;
   if constexpr (polar) {
@@ -289,13 +291,6 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     if constexpr (WithEnergy)
       p.couple_stress_energy[i] = 0.5 * vol[i] * (kap_elastic.cwiseProduct(m)).sum();
   }
-}
-
-// The first bond of point i to a neighbour of higher index (neighbours are sorted).
-inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i) {
-  const std::int32_t* first = f.neighbor.data() + f.offset[i];
-  const std::int32_t* last = f.neighbor.data() + f.offset[i + 1];
-  return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - f.neighbor.data();
 }
 
 // Pass 2 at point i: force and moment from the tensors of both ends of every bond; with
@@ -316,8 +311,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   const std::int32_t* __restrict nb = f.neighbor.data();
   const std::int64_t* __restrict off = f.offset.data();
   [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
-  [[maybe_unused]] double* bond_work = Effects::damage ? f.work.data() : nullptr;
-  [[maybe_unused]] const std::int32_t* mirror_slot = Effects::damage ? f.mirror_slot.data() : nullptr;
+  [[maybe_unused]] double* pair_work = Effects::damage ? f.work.data() : nullptr;
   [[maybe_unused]] const double critical_work = c.critical_bond_work;
   [[maybe_unused]] const double* u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
   [[maybe_unused]] const double* w_old =
@@ -332,12 +326,13 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   [[maybe_unused]] const double* __restrict g_all = polar ? p.stabilization_rot.data() : nullptr;
   // Point i's values in locals: the loop stores (bond work, breaking marks) could alias the
   // arrays, which would make the compiler reload them for every bond.
-  double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0}, ai[DD], cki[DD];
+  constexpr int S = symmetric_components<D>;
+  double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0}, ai[DD], cki[S];
   [[maybe_unused]] double qi[RD];
   for (int k = 0; k < D; ++k) ui[k] = u[i * D + k];
   for (int k = 0; k < D; ++k) pos_i[k] = pos[i * D + k];
   for (int k = 0; k < DD; ++k) ai[k] = a_all[i * DD + k];
-  for (int k = 0; k < DD; ++k) cki[k] = ck_all[i * DD + k];
+  for (int k = 0; k < S; ++k) cki[k] = ck_all[i * S + k];
   if constexpr (polar) {
     for (int k = 0; k < R; ++k) wi[k] = w[i * R + k];
     for (int k = 0; k < RD; ++k) qi[k] = q_all[i * RD + k];
@@ -366,6 +361,11 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   double moment[R] = {};
   [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   [[maybe_unused]] std::int32_t broken = 0;
+  // Damage: a bond's work is the same bits from both ends (see the top of this file), so it is
+  // computed once, at the lower-index end; the bonds to lower indices come first (sorted
+  // neighbours), and the k-th bond from `split` on is the point's k-th pair.
+  [[maybe_unused]] const std::int64_t split = Effects::damage && work_here ? first_bond_above(f, i) : off[i + 1];
+  [[maybe_unused]] const std::int64_t pair_base = Effects::damage && work_here ? f.pair_offset[i] - split : 0;
   // One bond; with Work (damage, a bond to a higher index from a point that books work) also
   // its work increment and breaking mark.
   auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
@@ -379,16 +379,16 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     const double vj = vol[j];
     const double* wj = polar ? w + j * R : zero_rotation;
     const double* aj = a_all + j * DD;
-    const double* ckj = ck_all + j * DD;
+    const double* ckj = ck_all + j * S;
     double U[D];
     composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-    double ck_sum[DD];
-    for (int k = 0; k < DD; ++k) ck_sum[k] = cki[k] + ckj[k];
+    double ck_sum[S];  // symmetric, packed
+    for (int k = 0; k < S; ++k) ck_sum[k] = cki[k] + ckj[k];
     double t[D];  // T_ij - T_ji
     for (int r = 0; r < D; ++r) {
       double sum = 0.0;
       for (int col = 0; col < D; ++col)
-        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] + ck_sum[r * D + col] * U[col];
+        sum += (ai[r * D + col] + aj[r * D + col]) * xi[col] + ck_sum[symmetric_index<D>(r, col)] * U[col];
       t[r] = sum;
       force[r] += vj * sum;
     }
@@ -419,7 +419,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
           double both = 0.0;
           for (int col = 0; col < D; ++col)
             both += (ai_both[r * D + col] + (aj[r * D + col] + aj0[r * D + col])) * xi[col] +
-                    ck_sum[r * D + col] * (U0[col] + U[col]);
+                    ck_sum[symmetric_index<D>(r, col)] * (U0[col] + U[col]);
           dw += both * (U[r] - U0[r]);
         }
         if constexpr (polar) {
@@ -433,16 +433,15 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
             dw += both * (om - om0);
           }
         }
-        const double work = bond_work[b] + 0.5 * dw;
-        const std::int64_t mirror = off[j] + mirror_slot[b];
-        bond_work[b] = work;
-        bond_work[mirror] = work;  // j's pass 2 does not read its work on bonds to lower indices
+        double& pair = pair_work[pair_base + b];
+        const double work = pair + 0.5 * dw;
+        pair = work;
         // Marked 2 (breaking) at both ends: this step's force had the bond, and
         // update_after_breakage still needs it acting to measure the energy the break releases
         // before it sets 0 (broken). Counted here only (update_after_breakage finds j).
         if (work >= critical_work) {
           intact[b] = 2;
-          std::atomic_ref<std::uint8_t>(intact[mirror]).store(2, std::memory_order_relaxed);
+          std::atomic_ref<std::uint8_t>(intact[mirror_bond(f, i, j)]).store(2, std::memory_order_relaxed);
           ++broken;
         }
       }
@@ -450,9 +449,6 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     if constexpr (WithEnergy) stab_energy.add(U, xi, eps_i, kap_i, wi, wj, vj);
   };
   if constexpr (Effects::damage) {
-    // A bond's work is the same bits from both ends (see the top of this file), so it is computed
-    // once, at the lower-index end; the bonds to lower indices come first (sorted neighbours).
-    const std::int64_t split = work_here ? first_bond_above(f, i) : off[i + 1];
     for (std::int64_t b = off[i]; b < split; ++b) visit_bond.template operator()<false>(b);
     for (std::int64_t b = split; b < off[i + 1]; ++b) visit_bond.template operator()<true>(b);
   } else {

@@ -85,8 +85,7 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
   if (o.effects.damage) {
     m.bonds.intact.assign(m.bonds.bond_count(), 1);
-    m.bonds.work.assign(m.bonds.bond_count(), 0.0);
-    index_mirror_bonds(m.bonds);
+    index_bond_pairs(m.bonds);
     mark_no_fail_zone(m.points, o.no_fail_depth);
     if (o.damage_region)
       for (std::size_t i = 0; i < m.points.owned; ++i)
@@ -94,8 +93,6 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
   }
   if (o.effects.viscoplasticity && o.plastic_region)
     for (std::size_t i = 0; i < m.points.owned; ++i) m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
-  for (std::size_t i = 0; i < m.points.owned; ++i)
-    m.points.bond_count_at_start[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.offset[i]);
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)

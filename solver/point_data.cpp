@@ -17,17 +17,10 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
   p.ghost = 0;
   p.global_id.resize(n);
   p.position.resize(n * D);
-  p.normal.assign(n * D, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     p.global_id[i] = static_cast<std::int64_t>(i);
     const double xyz[3] = {cloud.x[i], cloud.y[i], cloud.z.empty() ? 0.0 : cloud.z[i]};
-    const double nrm[3] = {cloud.normal_x.empty() ? 0.0 : cloud.normal_x[i],
-                           cloud.normal_y.empty() ? 0.0 : cloud.normal_y[i],
-                           cloud.normal_z.empty() ? 0.0 : cloud.normal_z[i]};
-    for (int c = 0; c < D; ++c) {
-      p.position[i * D + c] = xyz[c];
-      p.normal[i * D + c] = nrm[c];
-    }
+    for (int c = 0; c < D; ++c) p.position[i * D + c] = xyz[c];
   }
   p.volume = cloud.volume;
   p.region = cloud.region.empty() ? std::vector<std::int32_t>(n, 0) : cloud.region;
@@ -37,10 +30,10 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
   p.displacement.assign(n * D, 0.0);
   p.velocity.assign(n * D, 0.0);
   p.force.assign(n * D, 0.0);
-  p.shape_inverse.assign(n * DD, 0.0);
-  p.stabilization_ck.assign(n * DD, 0.0);
+  const std::size_t symmetric = static_cast<std::size_t>(D) * (D + 1) / 2;
+  p.shape_inverse.assign(n * symmetric, 0.0);
+  p.stabilization_ck.assign(n * symmetric, 0.0);
   p.detached.assign(n, 0);
-  p.bond_count_at_start.assign(n, 0);
   p.strain.assign(n * DD, 0.0);
   p.force_tensor.assign(n * DD, 0.0);
   p.force_stress_energy.assign(n, 0.0);

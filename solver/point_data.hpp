@@ -27,7 +27,6 @@ struct PointData {
   std::vector<double> volume;
   std::vector<std::int32_t> region;
   std::vector<std::int32_t> boundary_id;
-  std::vector<double> normal;    // D per point (loaded body points)
 
   // Kinematic state. Rotation arrays stay empty when micropolar is off.
   std::vector<double> displacement, velocity;  // D per point
@@ -37,11 +36,12 @@ struct PointData {
   std::vector<double> moment;  // R per point
 
   // Shape tensors (constant while bonds do not change).
-  std::vector<double> shape_inverse;       // K^-1, D*D
-  std::vector<double> stabilization_ck;    // G_s (C : K^-1), D*D (zero for detached points)
+  // K^-1 and G_s (C : K^-1) (zero for detached points), symmetric: D (D + 1) / 2 per point, the
+  // upper triangle row by row (solver/symmetric_tensor.hpp).
+  std::vector<double> shape_inverse;
+  std::vector<double> stabilization_ck;
   std::vector<double> stabilization_rot;   // G_s B_w tr(K^-1) / d (micropolar)
   std::vector<std::uint8_t> detached;
-  std::vector<std::int32_t> bond_count_at_start;
 
   // Products of the strain pass, read by the force pass for i and its neighbours.
   std::vector<double> strain;         // eps, D*D

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "solver/compiled_effects.hpp"
+#include "solver/symmetric_tensor.hpp"
 
 namespace mppm::solver {
 
@@ -72,8 +73,9 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   if (p.detached[i]) return H;
   const bool damage = !f.intact.empty();
   const double vi = p.volume[i];
-  const Mat<D> kinv_i = Eigen::Map<const Mat<D>>(&p.shape_inverse[i * D * D]);
-  const Mat<D> ck_i = Eigen::Map<const Mat<D>>(&p.stabilization_ck[i * D * D]);
+  constexpr int S = symmetric_components<D>;
+  const Mat<D> kinv_i = unpack_symmetric<D>(&p.shape_inverse[i * S]);
+  const Mat<D> ck_i = unpack_symmetric<D>(&p.stabilization_ck[i * S]);
   Vec<D> s = Vec<D>::Zero();
   double family = 0.0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
@@ -119,7 +121,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     double xi_ik[D];
     bond_vector<D>(f, p.position.data(), i, b, xi_ik);
     const Vec<D> xi_ki = -Eigen::Map<const Vec<D>>(xi_ik);
-    const Mat<D> kinv_k = Eigen::Map<const Mat<D>>(&p.shape_inverse[k * D * D]);
+    const Mat<D> kinv_k = unpack_symmetric<D>(&p.shape_inverse[k * S]);
     const Vec<D> d = kinv_k * xi_ki;
     // U_ki = L q
     Eigen::Matrix<double, D, N> L = Eigen::Matrix<double, D, N>::Zero();
@@ -134,7 +136,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     }
     add_elastic<D, N>(c, vk, eps_k, Polar ? &kap_k : nullptr, H);
     const double r = std::min(1.0, vi * xi_ki.dot(d));
-    const Mat<D> ck_k = Eigen::Map<const Mat<D>>(&p.stabilization_ck[k * D * D]);
+    const Mat<D> ck_k = unpack_symmetric<D>(&p.stabilization_ck[k * S]);
     const double w = vk * vi * (1.0 - r);
     H += w * (L.transpose() * ck_k * L);
     if constexpr (Polar) H.template bottomRightCorner<R, R>().diagonal().array() += w * p.stabilization_rot[k];

@@ -79,26 +79,34 @@ std::string RunWriter::write_resolved_scene(const Scene& scene, const std::vecto
 }
 
 void RunWriter::write_reference(const PointData& p) {
-  Snapshot s;
-  s.dimension = p.dimension;
-  s.point_count = p.owned;
   const int D = p.dimension;
-  SnapshotField position{"position", 3, std::vector<double>(p.owned * 3, 0.0)};
-  SnapshotField volume{"volume", 1, {}}, region{"region", 1, {}}, boundary{"boundary_id", 1, {}};
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    for (int c = 0; c < D; ++c) position.data[i * 3 + c] = p.position[i * D + c];
-    volume.data.push_back(p.volume[i]);
-    region.data.push_back(p.region[i]);
-    boundary.data.push_back(p.boundary_id[i]);
-  }
-  s.fields = {std::move(position), std::move(volume), std::move(region), std::move(boundary)};
-  mppm::write_snapshot(s, path(run_layout::reference));
+  // Position always with 3 components (z = 0 in 2-D); region and boundary id as doubles.
+  const std::vector<SnapshotFieldSource> fields{
+      {"position", 3,
+       [&p, D](std::uint64_t first, std::uint64_t count, double* out) {
+         for (std::uint64_t k = 0; k < count; ++k)
+           for (int c = 0; c < 3; ++c) out[k * 3 + c] = c < D ? p.position[(first + k) * D + c] : 0.0;
+       }},
+      {"volume", 1,
+       [&p](std::uint64_t first, std::uint64_t count, double* out) {
+         for (std::uint64_t k = 0; k < count; ++k) out[k] = p.volume[first + k];
+       }},
+      {"region", 1,
+       [&p](std::uint64_t first, std::uint64_t count, double* out) {
+         for (std::uint64_t k = 0; k < count; ++k) out[k] = p.region[first + k];
+       }},
+      {"boundary_id", 1,
+       [&p](std::uint64_t first, std::uint64_t count, double* out) {
+         for (std::uint64_t k = 0; k < count; ++k) out[k] = p.boundary_id[first + k];
+       }}};
+  mppm::write_snapshot(p.dimension, 0, 0.0, p.owned, fields, path(run_layout::reference));
 }
 
-void RunWriter::write_snapshot(const Snapshot& snapshot) {
-  const std::string file = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(snapshot.step);
-  mppm::write_snapshot(snapshot, path(file));
-  snapshots_.push_back({file, snapshot.step, snapshot.time});
+void RunWriter::write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
+                               const std::vector<SnapshotFieldSource>& fields) {
+  const std::string file = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(step);
+  mppm::write_snapshot(dimension, step, time, point_count, fields, path(file));
+  snapshots_.push_back({file, step, time});
 }
 
 void RunWriter::set_load_header(const std::vector<std::string>& columns) {

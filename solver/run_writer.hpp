@@ -48,7 +48,10 @@ class RunWriter {
   // Returns the text written (its fingerprint identifies the scene of a checkpoint).
   std::string write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
   void write_reference(const PointData& points);
-  void write_snapshot(const Snapshot& snapshot);  // named by its step; recorded in run_info
+  // Named by its step; recorded in run_info. The fields are written as they are produced
+  // (common/snapshot_file.hpp), not assembled first.
+  void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
+                      const std::vector<SnapshotFieldSource>& fields);
 
   void set_load_header(const std::vector<std::string>& columns);
   void add_load_row(const std::vector<double>& values);

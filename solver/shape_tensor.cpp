@@ -4,9 +4,22 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "solver/symmetric_tensor.hpp"
+
 namespace mppm::solver {
 
 namespace {
+
+// G_s (C : K^-1) of point i from its stored K^-1: (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu)
+// K^-1_ik + mu tr(K^-1) delta_ik (isotropic C). Zero for a detached point (K^-1 = 0).
+template <int D>
+void set_stabilization_tensor(PointData& p, const CosseratConstants& c, std::size_t i) {
+  using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
+  constexpr int S = symmetric_components<D>;
+  const Mat kinv = unpack_symmetric<D>(&p.shape_inverse[i * S]);
+  const Mat ck = c.stabilization * ((c.lambda + c.mu) * kinv + c.mu * kinv.trace() * Mat::Identity());
+  pack_symmetric<D>(ck, &p.stabilization_ck[i * S]);
+}
 
 // Recomputes K_i^-1 and the stabilization tensors of point i; returns true if it is detached.
 template <int D>
@@ -34,12 +47,10 @@ bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& 
     return true;
   }
   p.detached[i] = 0;
-  Eigen::Map<Mat> kinv(&p.shape_inverse[i * D * D]);
-  Eigen::Map<Mat> ck(&p.stabilization_ck[i * D * D]);
-  kinv = K.inverse();
+  Mat kinv = K.inverse();
   kinv = 0.5 * (kinv + kinv.transpose()).eval();  // exact symmetry of the stored inverse
-  // (C : K^-1)_ik = C_ijkl K^-1_jl = (lambda + mu) K^-1_ik + mu tr(K^-1) delta_ik (isotropic C)
-  ck = c.stabilization * ((c.lambda + c.mu) * kinv + c.mu * kinv.trace() * Mat::Identity());
+  pack_symmetric<D>(kinv, &p.shape_inverse[i * symmetric_components<D>]);
+  set_stabilization_tensor<D>(p, c, i);
   if (has_rot) p.stabilization_rot[i] = c.stabilization * c.bending_modulus * kinv.trace() / D;
   return false;
 }
@@ -68,10 +79,17 @@ void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c
 
 }  // namespace
 
+void update_stabilization_tensors(PointData& p, const CosseratConstants& c) {
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (p.dimension == 2) set_stabilization_tensor<2>(p, c, i);
+    else set_stabilization_tensor<3>(p, c, i);
+  }
+}
+
 void detach_point(PointData& p, std::size_t i) {
-  const std::size_t dd = static_cast<std::size_t>(p.dimension * p.dimension);
-  std::fill_n(p.shape_inverse.begin() + static_cast<std::ptrdiff_t>(i * dd), dd, 0.0);
-  std::fill_n(p.stabilization_ck.begin() + static_cast<std::ptrdiff_t>(i * dd), dd, 0.0);
+  const std::size_t s = static_cast<std::size_t>(p.dimension * (p.dimension + 1) / 2);
+  std::fill_n(p.shape_inverse.begin() + static_cast<std::ptrdiff_t>(i * s), s, 0.0);
+  std::fill_n(p.stabilization_ck.begin() + static_cast<std::ptrdiff_t>(i * s), s, 0.0);
   if (!p.stabilization_rot.empty()) p.stabilization_rot[i] = 0.0;
   p.detached[i] = 1;
 }

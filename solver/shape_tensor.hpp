@@ -18,6 +18,10 @@ inline constexpr double kDetachReciprocalCondition = 1e-6;
 // (K is never inverted when it is singular); returns the number of detached points.
 std::size_t update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
 
+// Recomputes stabilization_ck of every owned point from its K^-1 and the constants `c` (the
+// same bits as update_shape_tensors), e.g. after a study that switched the stabilization off.
+void update_stabilization_tensors(PointData& points, const CosseratConstants& c);
+
 // Marks point i detached: its K^-1 and stabilization tensors are zero, so it carries no stress
 // and moves ballistically (its bonds are the caller's business).
 void detach_point(PointData& points, std::size_t i);

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "solver/bond_breakage.hpp"
+#include "solver/symmetric_tensor.hpp"
 #include "solver/plasticity/plastic_strain_measures.hpp"
 #include "solver/viscoplastic_point.hpp"
 
@@ -18,25 +19,23 @@ namespace {
 // -eps_vp,zz with viscoplasticity), and the postprocessor's invariants (von Mises, mean stress)
 // need it. The same expressions as the kernel's, so the snapshot shows the stress it used.
 template <int D>
-void stress_field(const Model& m, std::vector<double>& out) {
+void point_stress(const Model& m, std::size_t i, double* out) {
   using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
   const PointData& p = m.points;
-  out.assign(p.owned * 9, 0.0);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    const Mat eps = Eigen::Map<const Mat>(&p.strain[i * D * D]);
-    if (!p.plastic_strain.empty()) {
-      const auto stress =
-          viscoplastic::elastic_stress<D>(viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]), m.constants);
-      for (int r = 0; r < D; ++r)
-        for (int c = 0; c < D; ++c) out[i * 9 + r * 3 + c] = stress.in_plane(r, c);
-      if constexpr (D == 2) out[i * 9 + 8] = stress.zz;
-      continue;
-    }
-    const Mat sigma = cosserat_stress<D>(eps, m.constants);
+  std::fill_n(out, 9, 0.0);
+  const Mat eps = Eigen::Map<const Mat>(&p.strain[i * D * D]);
+  if (!p.plastic_strain.empty()) {
+    const auto stress =
+        viscoplastic::elastic_stress<D>(viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]), m.constants);
     for (int r = 0; r < D; ++r)
-      for (int c = 0; c < D; ++c) out[i * 9 + r * 3 + c] = sigma(r, c);
-    if constexpr (D == 2) out[i * 9 + 8] = m.constants.lambda * eps.trace();  // eps_zz = 0
+      for (int c = 0; c < D; ++c) out[r * 3 + c] = stress.in_plane(r, c);
+    if constexpr (D == 2) out[8] = stress.zz;
+    return;
   }
+  const Mat sigma = cosserat_stress<D>(eps, m.constants);
+  for (int r = 0; r < D; ++r)
+    for (int c = 0; c < D; ++c) out[r * 3 + c] = sigma(r, c);
+  if constexpr (D == 2) out[8] = m.constants.lambda * eps.trace();  // eps_zz = 0
 }
 
 // The weights of ebar of the run's model (the default ones for a model that has none).
@@ -47,58 +46,62 @@ plasticity::EquivalentStrainWeights equivalent_strain_weights(const Model& m) {
 }
 
 // sqrt(b1 e:e + b2 e:e^T + b3 l^2 kap_vp:kap_vp) of the accumulated plastic tensors.
-void plastic_shear_strain_field(const Model& m, std::vector<double>& out) {
+double point_plastic_shear_strain(const Model& m, const plasticity::EquivalentStrainWeights& weights, std::size_t i) {
   const PointData& p = m.points;
-  const auto weights = equivalent_strain_weights(m);
   const int RD = p.rotation_components * p.dimension;
-  out.resize(p.owned);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    const Eigen::Matrix3d eps_vp = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
-    Eigen::VectorXd kap_vp = Eigen::VectorXd::Zero(std::max(RD, 1));
-    for (int k = 0; k < RD; ++k) kap_vp[k] = p.plastic_wryness[i * RD + k];
-    out[i] = plasticity::equivalent_plastic_shear_strain(eps_vp, kap_vp, weights, m.constants.length_scale);
-  }
+  const Eigen::Matrix3d eps_vp = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
+  Eigen::VectorXd kap_vp = Eigen::VectorXd::Zero(std::max(RD, 1));
+  for (int k = 0; k < RD; ++k) kap_vp[k] = p.plastic_wryness[i * RD + k];
+  return plasticity::equivalent_plastic_shear_strain(eps_vp, kap_vp, weights, m.constants.length_scale);
 }
 
 template <int D>
-void couple_stress_field(const Model& m, std::vector<double>& out) {
+void point_couple_stress(const Model& m, std::size_t i, double* out) {
   constexpr int R = D == 2 ? 1 : 3;
   using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
   const PointData& p = m.points;
-  out.resize(p.owned * R * D);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    RMat kap = Eigen::Map<const RMat>(&p.wryness[i * R * D]);
-    if (!p.plastic_wryness.empty()) kap -= Eigen::Map<const RMat>(&p.plastic_wryness[i * R * D]);
-    Eigen::Map<RMat> target(&out[i * R * D]);
-    target = couple_stress<D, R>(kap, m.constants);
-  }
+  RMat kap = Eigen::Map<const RMat>(&p.wryness[i * R * D]);
+  if (!p.plastic_wryness.empty()) kap -= Eigen::Map<const RMat>(&p.plastic_wryness[i * R * D]);
+  Eigen::Map<RMat> target(out);
+  target = couple_stress<D, R>(kap, m.constants);
 }
 
 // n = 1 - phi0 / J with J = det(1 + grad u), grad u from the same nonlocal operator.
 template <int D>
-void porosity_field(const Model& m, std::vector<double>& out) {
+double point_porosity(const Model& m, std::size_t i) {
   using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
   using Vec = Eigen::Matrix<double, D, 1>;
   const PointData& p = m.points;
   const BondFamilies& f = m.bonds;
-  out.resize(p.owned);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    if (p.detached[i]) {
-      out[i] = 1.0 - m.constants.solid_fraction;
-      continue;
-    }
-    Mat S = Mat::Zero();
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      if (!f.intact.empty() && !f.intact[b]) continue;
-      const auto j = static_cast<std::size_t>(f.neighbor[b]);
-      const Vec du = Eigen::Map<const Vec>(&p.displacement[j * D]) - Eigen::Map<const Vec>(&p.displacement[i * D]);
-      Vec xi;
-      bond_vector<D>(f, p.position.data(), i, b, xi.data());
-      S += p.volume[j] * du * xi.transpose();
-    }
-    const Mat F = Mat::Identity() + S * Eigen::Map<const Mat>(&p.shape_inverse[i * D * D]);
-    out[i] = 1.0 - m.constants.solid_fraction / F.determinant();
+  if (p.detached[i]) return 1.0 - m.constants.solid_fraction;
+  Mat S = Mat::Zero();
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if (!f.intact.empty() && !f.intact[b]) continue;
+    const auto j = static_cast<std::size_t>(f.neighbor[b]);
+    const Vec du = Eigen::Map<const Vec>(&p.displacement[j * D]) - Eigen::Map<const Vec>(&p.displacement[i * D]);
+    Vec xi;
+    bond_vector<D>(f, p.position.data(), i, b, xi.data());
+    S += p.volume[j] * du * xi.transpose();
   }
+  const Mat F = Mat::Identity() + S * unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
+  return 1.0 - m.constants.solid_fraction / F.determinant();
+}
+
+// A field whose value at point i is `value(i, out)` (components values into out).
+template <class Value>
+SnapshotFieldSource per_point(const std::string& name, int components, Value value) {
+  return {name, components, [components, value](std::uint64_t first, std::uint64_t count, double* out) {
+            for (std::uint64_t k = 0; k < count; ++k)
+              value(static_cast<std::size_t>(first + k), out + k * static_cast<std::uint64_t>(components));
+          }};
+}
+
+// A field that is a stored per-point array of the model (its owned points' part).
+SnapshotFieldSource stored(const std::string& name, int components, const std::vector<double>& values) {
+  return {name, components, [components, &values](std::uint64_t first, std::uint64_t count, double* out) {
+            const auto c = static_cast<std::uint64_t>(components);
+            std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(first * c), count * c, out);
+          }};
 }
 
 }  // namespace
@@ -114,62 +117,66 @@ std::vector<std::string> available_fields(const Model& m) {
   return f;
 }
 
-Snapshot make_snapshot(const Model& m, const std::vector<std::string>& fields, std::int64_t step, double time) {
+std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vector<std::string>& fields) {
   const PointData& p = m.points;
   const int D = p.dimension;
   const int R = p.rotation_components;
-  Snapshot s;
-  s.dimension = D;
-  s.step = step;
-  s.time = time;
-  s.point_count = p.owned;
   const auto available = available_fields(m);
-  auto head = [&](const std::vector<double>& v, int components) {
-    return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(p.owned * components));
-  };
+  std::vector<SnapshotFieldSource> sources;
   for (const std::string& name : fields) {
     if (std::find(available.begin(), available.end(), name) == available.end()) continue;
-    SnapshotField field;
-    field.name = name;
     if (name == "displacement") {
-      field.components = D;
-      field.data = head(p.displacement, D);
+      sources.push_back(stored(name, D, p.displacement));
     } else if (name == "velocity") {
-      field.components = D;
-      field.data = head(p.velocity, D);
+      sources.push_back(stored(name, D, p.velocity));
     } else if (name == "rotation") {
-      field.components = R;
-      field.data = head(p.rotation, R);
+      sources.push_back(stored(name, R, p.rotation));
     } else if (name == "rotation_rate") {
-      field.components = R;
-      field.data = head(p.spin, R);
+      sources.push_back(stored(name, R, p.spin));
     } else if (name == "strain") {
-      field.components = D * D;
-      field.data = head(p.strain, D * D);
+      sources.push_back(stored(name, D * D, p.strain));
     } else if (name == "wryness") {
-      field.components = R * D;
-      field.data = head(p.wryness, R * D);
+      sources.push_back(stored(name, R * D, p.wryness));
     } else if (name == "stress") {
-      field.components = 9;
-      D == 2 ? stress_field<2>(m, field.data) : stress_field<3>(m, field.data);
+      sources.push_back(per_point(name, 9, [&m, D](std::size_t i, double* out) {
+        D == 2 ? point_stress<2>(m, i, out) : point_stress<3>(m, i, out);
+      }));
     } else if (name == "couple_stress") {
-      field.components = R * D;
-      D == 2 ? couple_stress_field<2>(m, field.data) : couple_stress_field<3>(m, field.data);
+      sources.push_back(per_point(name, R * D, [&m, D](std::size_t i, double* out) {
+        D == 2 ? point_couple_stress<2>(m, i, out) : point_couple_stress<3>(m, i, out);
+      }));
     } else if (name == "porosity") {
-      D == 2 ? porosity_field<2>(m, field.data) : porosity_field<3>(m, field.data);
+      sources.push_back(per_point(name, 1, [&m, D](std::size_t i, double* out) {
+        *out = D == 2 ? point_porosity<2>(m, i) : point_porosity<3>(m, i);
+      }));
     } else if (name == "plastic_strain") {
-      field.components = 9;  // eps_vp, 3 x 3 row-major (plane strain has an eps_vp,zz)
-      field.data = head(p.plastic_strain, 9);
+      sources.push_back(stored(name, 9, p.plastic_strain));  // eps_vp, 3 x 3 row-major (plane strain has an eps_vp,zz)
     } else if (name == "plastic_shear_strain") {
-      plastic_shear_strain_field(m, field.data);
+      sources.push_back(per_point(name, 1, [&m, weights = equivalent_strain_weights(m)](std::size_t i, double* out) {
+        *out = point_plastic_shear_strain(m, weights, i);
+      }));
     } else if (name == "equivalent_plastic_strain") {
-      field.data = head(p.equivalent_plastic_strain, 1);
+      sources.push_back(stored(name, 1, p.equivalent_plastic_strain));
     } else if (name == "detached") {
-      field.data.assign(p.detached.begin(), p.detached.begin() + static_cast<std::ptrdiff_t>(p.owned));
+      sources.push_back(per_point(name, 1, [&p](std::size_t i, double* out) { *out = p.detached[i]; }));
     } else if (name == "damage") {
       // D_i = 1 - sum_j b V_j / sum_j V_j over the family before the pre-crack cuts.
-      field.data = damage_field(p, m.bonds);
+      sources.push_back(per_point(name, 1, [&m](std::size_t i, double* out) { *out = point_damage(m.points, m.bonds, i); }));
     }
+  }
+  return sources;
+}
+
+Snapshot make_snapshot(const Model& m, const std::vector<std::string>& fields, std::int64_t step, double time) {
+  Snapshot s;
+  s.dimension = m.points.dimension;
+  s.step = step;
+  s.time = time;
+  s.point_count = m.points.owned;
+  for (const SnapshotFieldSource& source : snapshot_sources(m, fields)) {
+    SnapshotField field{source.name, source.components,
+                        std::vector<double>(s.point_count * static_cast<std::uint64_t>(source.components))};
+    source.values(0, s.point_count, field.data.data());
     s.fields.push_back(std::move(field));
   }
   return s;

@@ -2,6 +2,7 @@
 #include "solver/solve_command.hpp"
 
 #include <iostream>
+#include <utility>
 
 #include "common/command_line.hpp"
 #include "common/input_error.hpp"
@@ -72,8 +73,8 @@ int solve_command(int argc, char** argv) {
       options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
       options.quiet = cl.quiet;
       options.fail_checkpoint_write = fail_checkpoint_write;
-      const mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
-      const mppm::solver::SolveResult result = mppm::solver::restart(cloud, checkpoint, options);
+      mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
+      const mppm::solver::SolveResult result = mppm::solver::restart(std::move(cloud), checkpoint, options);
       if (result.interrupted) {
         std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";
         return mppm::kExitOther;
@@ -89,7 +90,7 @@ int solve_command(int argc, char** argv) {
     std::optional<mppm::solver::NanInjection> inject_nan;
     if (const auto hook = cl.option("--inject-nan")) inject_nan = mppm::solver::parse_nan_injection(*hook);
     const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
-    const mppm::PointCloud cloud = mppm::read_point_cloud(*points);
+    mppm::PointCloud cloud = mppm::read_point_cloud(*points);
     mppm::solver::SolveOptions options;
     options.run_directory = *out;
     options.points_file = *points;
@@ -97,7 +98,7 @@ int solve_command(int argc, char** argv) {
     options.quiet = cl.quiet;
     options.inject_nan = inject_nan;
     options.fail_checkpoint_write = fail_checkpoint_write;
-    const mppm::solver::SolveResult result = mppm::solver::solve(scene, cloud, options);
+    const mppm::solver::SolveResult result = mppm::solver::solve(scene, std::move(cloud), options);
     if (result.interrupted) {
       std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";
       return mppm::kExitOther;

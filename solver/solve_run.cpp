@@ -159,6 +159,9 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
   in.dimension = scene.dimension;
   in.effects = scene.effects.names();
   in.snapshot_fields = scene.output.fields;
+  in.damping = scene.numerics.damping != 0.0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    in.boundary_points += (!cloud.region.empty() && cloud.region[i] > 0) || (!cloud.boundary_id.empty() && cloud.boundary_id[i] > 0);
   std::optional<std::uint64_t> available = available_memory_bytes();
   if (const char* budget = std::getenv("MPPM_MEMORY_AVAILABLE")) {
     char* end = nullptr;
@@ -211,8 +214,10 @@ void remove_output_after_checkpoint(const std::string& directory, const std::vec
   }
 }
 
+// `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
+// boundary conditions are built from it; null to leave it as it is.
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
-                const CheckpointFile* resume);
+                const CheckpointFile* resume, PointCloud* release);
 
 }  // namespace
 
@@ -221,10 +226,17 @@ std::string checkpoint_path(const std::string& run_directory) {
 }
 
 SolveResult solve(const Scene& scene, const PointCloud& cloud, const SolveOptions& options) {
-  return run(scene, cloud, options, nullptr);
+  return run(scene, cloud, options, nullptr, nullptr);
 }
 
-SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+SolveResult solve(const Scene& scene, PointCloud&& cloud, const SolveOptions& options) {
+  return run(scene, cloud, options, nullptr, &cloud);
+}
+
+namespace {
+
+SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options,
+                        PointCloud* release) {
   const std::string scene_file = options.run_directory + "/" + run_layout::resolved_scene;
   if (fnv1a(file_text(scene_file)) != checkpoint.header.scene_fingerprint)
     throw InputError(scene_file + ": changed since the checkpoint " + checkpoint.path +
@@ -235,13 +247,23 @@ SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, c
                      " was started with (the points file changed since the checkpoint " + checkpoint.path +
                      "; a restart needs the same points)");
   if (options.inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-  return run(load_scene(scene_file), cloud, options, &checkpoint);
+  return run(load_scene(scene_file), cloud, options, &checkpoint, release);
+}
+
+}  // namespace
+
+SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+  return restart_run(cloud, checkpoint, options, nullptr);
+}
+
+SolveResult restart(PointCloud&& cloud, const CheckpointFile& checkpoint, const SolveOptions& options) {
+  return restart_run(cloud, checkpoint, options, &cloud);
 }
 
 namespace {
 
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
-                const CheckpointFile* resume) {
+                const CheckpointFile* resume, PointCloud* release) {
   const auto wall_start = std::chrono::steady_clock::now();
   Scene scene = scene_in;
   check_points_match_scene(scene, cloud, options.points_file);
@@ -251,6 +273,18 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   // Bad viscoplastic parameters are an InputError naming the key.
   Model model = build_model(cloud, model_options(scene));
   const BoundaryConditions conditions(scene, cloud, model.points, options.points_file);
+  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
+  // run's inputs by the resolved scene as written and the points.
+  const bool checkpointing = scene.output.checkpoint_interval > 0.0;
+  RunIdentity identity;
+  if (resume) {
+    identity.scene_fingerprint = resume->header.scene_fingerprint;  // checked by restart()
+    identity.points_fingerprint = resume->header.points_fingerprint;
+  } else if (checkpointing) {
+    identity.points_fingerprint = point_cloud_fingerprint(cloud);
+  }
+  // Nothing reads the points as read from here on: the model holds what it needs of them.
+  if (release) *release = PointCloud{};
 
   if (model.detached_points == model.points.owned)
     throw InputError(options.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
@@ -296,16 +330,6 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
                      std::to_string(steps) + ")");
   model.set_breakage_time_step(dt);
 
-  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
-  // run's inputs by the resolved scene as written and the points.
-  const bool checkpointing = scene.output.checkpoint_interval > 0.0;
-  RunIdentity identity;
-  if (resume) {
-    identity.scene_fingerprint = resume->header.scene_fingerprint;  // checked by restart()
-    identity.points_fingerprint = resume->header.points_fingerprint;
-  } else if (checkpointing) {
-    identity.points_fingerprint = point_cloud_fingerprint(cloud);
-  }
   std::optional<RunWriter> writer_storage;
   if (resume) writer_storage.emplace(options.run_directory, RunWriter::ContinueExisting{});
   else writer_storage.emplace(options.run_directory, options.force);
@@ -411,7 +435,8 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
     info.detached_points = model.detached_points;
   };
   auto snapshot = [&] {
-    writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+    writer.write_snapshot(model.dimension(), dynamics.steps(), dynamics.time(), model.points.owned,
+                          snapshot_sources(model, scene.output.fields));
     update_info("running", "");
     writer.flush(info);
   };
@@ -535,7 +560,9 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
     if (checkpointing && (checkpoint_due || interrupted)) checkpoint(snap);
     if (interrupted) {
       clear_interruption();
-      if (!snap) writer.write_snapshot(make_snapshot(model, scene.output.fields, dynamics.steps(), dynamics.time()));
+      if (!snap)
+        writer.write_snapshot(model.dimension(), dynamics.steps(), dynamics.time(), model.points.owned,
+                              snapshot_sources(model, scene.output.fields));
       const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(steps) +
                                   ", t = " + text(dynamics.time()) + " s; the state there is the last snapshot" +
                                   (checkpointing ? "; mppm-solve --restart " + writer.directory() +

@@ -43,6 +43,9 @@ struct SolveResult {
 };
 
 SolveResult solve(const Scene& scene, const PointCloud& cloud, const SolveOptions& options);
+// The same, emptying `cloud` as soon as the model is built from it, so that the points as read do
+// not stay in memory beside the model's copy for the whole run (mppm-solve).
+SolveResult solve(const Scene& scene, PointCloud&& cloud, const SolveOptions& options);
 
 // RUN_DIR/checkpoint/state.ckpt; read_checkpoint_file of it says "no checkpoint" when it is missing.
 std::string checkpoint_path(const std::string& run_directory);
@@ -54,5 +57,6 @@ std::string checkpoint_path(const std::string& run_directory);
 // (bit for bit: snapshots, load.csv, energy.csv). Throws InputError (exit 2) when the scene or
 // the points changed since the checkpoint, or when the tables do not hold the checkpoint's rows.
 SolveResult restart(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options);
+SolveResult restart(PointCloud&& cloud, const CheckpointFile& checkpoint, const SolveOptions& options);
 
 }  // namespace mppm::solver

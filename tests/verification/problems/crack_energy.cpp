@@ -159,10 +159,11 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   for (std::size_t i = 0; i < p.owned; ++i)
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       const auto j = static_cast<std::size_t>(f.neighbor[b]);
-      if (f.intact[b]) r.largest_bond_work_ratio = std::max(r.largest_bond_work_ratio, f.work[b] / model.constants.critical_bond_work);
+      const double work = solver::bond_work(f, i, b);
+      if (f.intact[b]) r.largest_bond_work_ratio = std::max(r.largest_bond_work_ratio, work / model.constants.critical_bond_work);
       if (j <= i || f.intact[b]) continue;
-      r.broken_bond_work += p.volume[i] * p.volume[j] * f.work[b];
-      if (crossing(i, b)) r.crossing_bond_work += p.volume[i] * p.volume[j] * f.work[b];
+      r.broken_bond_work += p.volume[i] * p.volume[j] * work;
+      if (crossing(i, b)) r.crossing_bond_work += p.volume[i] * p.volume[j] * work;
     }
   r.other_bonds_broken = model.broken_bonds - r.crossing_bonds_broken;
   return r;
