@@ -19,7 +19,6 @@ Exit codes: 0 written; 2 bad input; 1 a run failed.
 """
 
 import argparse
-import csv
 import os
 import re
 import shutil
@@ -87,13 +86,7 @@ def main(argv):
         rows.append({"case": "plate", "effects": name, "steps": info["steps"], "bonds": info["bonds"],
                      "instructions": instructions,
                      "instructions_per_bond_update": f"{instructions / (info['bonds'] * info['steps']):.2f}"})
-    temporary = args.csv + ".tmp"
-    with open(temporary, "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
-    os.replace(temporary, args.csv)
-    print(f"wrote {args.csv} ({len(rows)} rows)")
+    run_mppm.write_csv(args.csv, COLUMNS, rows)
     return 0
 
 

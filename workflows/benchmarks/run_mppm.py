@@ -111,6 +111,17 @@ def preprocess(args, scene, points, extra_sets):
     os.replace(points + ".tmp.vtp", points)
 
 
+def write_csv(path, columns, rows):
+    """The rows as a CSV file, written to a temporary and renamed (never half-written)."""
+    temporary = path + ".tmp"
+    with open(temporary, "w", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=columns)
+        writer.writeheader()
+        writer.writerows(rows)
+    os.replace(temporary, path)
+    print(f"wrote {path} ({len(rows)} rows)")
+
+
 def read_run_info(run_dir):
     with open(os.path.join(run_dir, "run_info.json")) as stream:
         return json.load(stream)
@@ -194,13 +205,7 @@ def main(argv):
                                ["micropolar", "damage", "viscoplasticity"], threads, args.block_set)
             rows.append(row("block-3d", "micropolar+damage+viscoplasticity", threads, info, peak))
             shutil.rmtree(os.path.join(run_dir, "snapshots"), ignore_errors=True)  # 1e6-point snapshots
-    temporary = args.csv + ".tmp"
-    with open(temporary, "w", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=CSV_COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
-    os.replace(temporary, args.csv)
-    print(f"wrote {args.csv} ({len(rows)} rows)")
+    write_csv(args.csv, CSV_COLUMNS, rows)
     return 0
 
 
