@@ -1,8 +1,8 @@
 // mppm-bench-checkpoint: the cost of one checkpoint of a large 3-D run (README "Reliability"):
 // bytes, seconds to write it (atomic: temporary, fsync, rename) and seconds to read it back and
 // restore the state, for a cubic lattice of N^3 points (default N = 100: 1 million points,
-// horizon factor 2.05, 30.4 bonds per point), micropolar, elastic and with damage (whose bond
-// flags and bond work make the checkpoint grow with the bonds). The model is built, not run: the
+// horizon factor 2.05, 30.4 bonds per point), micropolar, elastic and with damage (whose marked
+// neighbour lists and bond work make the checkpoint grow with the bonds). The model is built, not run: the
 // checkpoint's cost does not depend on the state's values.
 // Usage: mppm-bench-checkpoint [N] [DIRECTORY] [REPEATS]. Not a test: it prints figures.
 #include <chrono>

@@ -53,26 +53,34 @@ std::uint64_t estimated_bond_entries(std::uint64_t points, double horizon_factor
 
 MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   const std::uint64_t D = in.dimension == 3 ? 3 : 2;
-  const std::uint64_t R = D == 3 ? 3 : 1;  // rotation components
+  // Rotation components: the micro-rotation arrays exist with micropolar only.
+  const std::uint64_t R = has(in.effects, "micropolar") ? (D == 3 ? 3 : 1) : 0;
+  const std::uint64_t S = D * (D + 1) / 2;  // a symmetric tensor, packed
   const bool damage = has(in.effects, "damage");
   const bool viscoplastic = has(in.effects, "viscoplasticity");
   MemoryEstimate e;
   e.bonds = in.bonds ? in.bonds : estimated_bond_entries(in.points, in.horizon_factor, in.dimension);
 
-  // Bytes per point, array by array (8 per double, 4 per int32, 1 per flag).
+  // Bytes per point, array by array (8 per double, 4 per int32, 1 per flag): solver/point_data.hpp,
+  // bond_families.hpp, boundary_conditions.hpp. The points as read are released when the model is
+  // built, before its bonds exist, so they are not part of the peak.
   std::uint64_t p = 0;
-  p += 8 + 8 * D + 8 + 4 + 4;                  // id, reference position, volume, region, boundary id
-  p += 2 * 8 * D + 2 * 8 * R + 8 * D + 8 * R;  // displacement, velocity, rotation, spin, force, moment
-  p += 2 * 8 * (D * (D + 1) / 2) + 8 + 1;      // K^-1, C:K^-1 (symmetric, packed), rotation term, detached
-  p += 2 * 8 * D * D + 2 * 8 * R * D;          // strain, force tensor, wryness, moment tensor
-  p += 8 * D + 8 * R + 2 * 8 * D * D + 8 * R * D + 8;  // previous step (energy balance)
-  p += 3 * 8;                                  // energy densities
-  p += 8;                                      // bond offsets (CSR)
-  p += 8 * 8 + 2 * 4;                          // the points file as read (mppm-solve keeps it)
-  // family volume, no-fail, broken count, and the previous evaluation's displacement, rotation and
-  // force / moment tensors (the bond work's trapezoid rule), the offsets of the bond pairs
-  if (damage) p += 8 + 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
-  if (viscoplastic) p += 9 * 8 + 8 * R * D + 3 * 8;  // plastic strain and wryness, ebar, cohesion, dissipation
+  p += 8 * D + 8 + 4 + 4;                // reference position, volume, region, boundary id
+  p += 3 * 8 * D;                        // displacement, velocity, force
+  p += 2 * 8 * S + 1;                    // K^-1, C:K^-1, detached
+  p += 2 * 8 * D * D;                    // strain, force tensor A
+  p += 8;                                // stabilization energy
+  if (R > 0) p += 3 * 8 * R + 8 + 2 * 8 * R * D;  // rotation, spin, moment, g = G_s B_w tr K^-1 / d, wryness, Q
+  p += 8;                                // bond offsets (CSR)
+  p += 1;                                // prescribed-component bits of the boundary conditions
+  // The cell list of the family search while the bonds are filled: its point list and the cells'
+  // starts (one cell per horizon cube, a few points each: 1 B per point rounded up).
+  p += 4 + 1;
+  // no-fail, broken count, the previous evaluation's displacement, rotation and force / moment
+  // tensors (the bond work's trapezoid rule), the offsets of the bond pairs (the family volumes of
+  // the few points next to a pre-crack are left out)
+  if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
+  if (viscoplastic) p += 9 * 8 + 8 * R * D + 2 * 8 + 1;  // plastic strain and wryness, ebar, dissipation, active
   e.bytes_per_point = p;
 
   // The integrator (solver/explicit_dynamics.hpp), per tracked point: body force and its previous
@@ -82,10 +90,10 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   const std::uint64_t tracked = track_all ? in.points : std::min(in.boundary_points, in.points);
   e.integrator_bytes = tracked * (8 * (4 * D + 2 * R + 1) + (track_all ? 0 : 4 + 4));
 
-  // Per bond entry: the neighbour index (the bond vector comes from the positions); with damage
-  // also the intact flag and half the bond work, which is stored once per pair of entries
-  // (solver/model.cpp allocates those only then).
-  e.bytes_per_bond = 4 + (damage ? 1 + 4 : 0);
+  // Per bond entry: the neighbour index (the bond vector comes from the positions; a broken bond is
+  // marked in it); with damage also half the bond work, which is stored once per pair of entries
+  // (solver/model.cpp allocates it only then).
+  e.bytes_per_bond = 4 + (damage ? 4 : 0);
 
   // Snapshots are written a chunk of points at a time (common/snapshot_file.hpp), one field after
   // the other: the buffer of the widest field (the reference snapshot's position has 3).

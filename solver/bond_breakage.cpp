@@ -85,20 +85,47 @@ void mark_no_fail_zone(PointData& p, double depth) {
   }
 }
 
-void record_family_volume(PointData& p, const BondFamilies& f) {
+namespace {
+
+double list_volume(const PointData& p, const BondFamilies& f, std::size_t i) {
+  double v = 0.0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) v += p.volume[f.neighbor_of(b)];
+  return v;
+}
+
+}  // namespace
+
+std::vector<double> family_volumes(const PointData& p, const BondFamilies& f) {
+  std::vector<double> v(p.owned);
+  for (std::size_t i = 0; i < p.owned; ++i) v[i] = list_volume(p, f, i);
+  return v;
+}
+
+void record_precut_family_volumes(PointData& p, const BondFamilies& f, const std::vector<double>& before) {
+  p.precut_points.clear();
+  p.precut_family_volume.clear();
+  // A point whose list lost bonds sums to another value (a point where it would not, rounding
+  // aside, needs no entry either: the sum over its list gives the same bits).
   for (std::size_t i = 0; i < p.owned; ++i) {
-    double v = 0.0;
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) v += p.volume[static_cast<std::size_t>(f.neighbor[b])];
-    p.family_volume[i] = v;
+    if (list_volume(p, f, i) == before[i]) continue;
+    p.precut_points.push_back(i);
+    p.precut_family_volume.push_back(before[i]);
   }
 }
 
+double family_volume_of(const PointData& p, const BondFamilies& f, std::size_t i) {
+  const auto it = std::lower_bound(p.precut_points.begin(), p.precut_points.end(), i);
+  if (it != p.precut_points.end() && *it == i) return p.precut_family_volume[static_cast<std::size_t>(it - p.precut_points.begin())];
+  return list_volume(p, f, i);
+}
+
 double point_damage(const PointData& p, const BondFamilies& f, std::size_t i) {
-  if (!(p.family_volume[i] > 0.0)) return 0.0;
+  const double family = family_volume_of(p, f, i);
+  if (!(family > 0.0)) return 0.0;
   double acting = 0.0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-    if (f.intact[b]) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
-  return 1.0 - acting / p.family_volume[i];
+    if (f.acting(b)) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
+  return 1.0 - acting / family;
 }
 
 std::vector<double> damage_field(const PointData& p, const BondFamilies& f) {
@@ -109,7 +136,7 @@ std::vector<double> damage_field(const PointData& p, const BondFamilies& f) {
 
 double family_breaking_energy(const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
   double family = 0.0;
-  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) family += p.volume[static_cast<std::size_t>(f.neighbor[b])];
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) family += p.volume[f.neighbor_of(b)];
   return 0.5 * c.critical_bond_work * p.volume[i] * family;
 }
 
@@ -120,25 +147,39 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
   p.refreshed_points.clear();
   std::vector<std::size_t>& changed = w.changed;
   changed.clear();
-  // The kernel counts a break at one end of the bond and marks both 2: the points with a count,
-  // and the other ends of their marked bonds, are the points whose families change.
-  for (std::size_t i = 0; i < p.owned; ++i)
-    if (p.bonds_broken[i] > 0) {
-      changed.push_back(i);
-      for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-        if (f.intact[b] == 2 && static_cast<std::size_t>(f.neighbor[b]) < p.owned)
-          changed.push_back(static_cast<std::size_t>(f.neighbor[b]));
+  // The kernel counts a break at the lower end of the bond, which holds the pair's work: the bonds
+  // of a counting point whose work reached the critical work are the breaking ones (the kernel
+  // books no work on a bond with a no-fail end, so those stay at zero), and their two ends the
+  // points whose families change.
+  // They still act until they are broken below.
+  std::vector<std::int64_t>& breaking = w.breaking;  // both entries of every breaking bond
+  breaking.clear();
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (p.bonds_broken[i] == 0) continue;
+    counted += static_cast<std::size_t>(p.bonds_broken[i]);
+    changed.push_back(i);
+    const std::int64_t split = first_bond_above(f, i);
+    for (std::int64_t b = split; b < f.offset[i + 1]; ++b) {
+      if (!f.acting(b)) continue;
+      const std::size_t j = f.neighbor_of(b);
+      const double work = f.work[static_cast<std::size_t>(f.pair_offset[i] + (b - split))];
+      if (!(work >= c.critical_bond_work)) continue;
+      breaking.push_back(b);
+      breaking.push_back(mirror_bond(f, i, j));
+      changed.push_back(j);
     }
+  }
   if (changed.empty()) return u;
+  if (breaking.size() != 2 * counted)
+    throw std::logic_error("update_after_breakage: the bonds at their critical work are not those the kernel counted");
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-  std::size_t broken_ends = 0;
-  for (const std::size_t i : changed)
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) broken_ends += f.intact[b] == 2 ? 1 : 0;
+  std::size_t broken_ends = breaking.size();
   if (w.affected_index.size() != p.owned) w.affected_index.assign(p.owned, -1);
 
   // The points whose families change in this update, in the order first met, with the energy they
-  // stored just before (bonds marked 2 by the kernel still act, shape tensor as it was).
+  // stored just before (the breaking bonds still act, shape tensor as it was).
   w.affected.clear();
   w.energy_before.clear();
   auto record = [&](std::size_t i) {
@@ -148,9 +189,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
     w.energy_before.push_back(kernel.point_energy(p, f, c, i).total());
   };
   for (const std::size_t i : changed) record(i);
-  for (const std::size_t i : changed)
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-      if (f.intact[b] == 2) f.intact[b] = 0;
+  for (const std::int64_t b : breaking) f.break_bond(b);
 
   // Points to detach, found after the shape tensors of the changed points are recomputed:
   //  - a singular shape tensor (SPEC section 2);
@@ -217,7 +256,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
       for (const std::size_t i : changed) {
         candidates.push_back(i);
         for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-          if (f.intact[b]) candidates.push_back(static_cast<std::size_t>(f.neighbor[b]));
+          if (f.acting(b)) candidates.push_back(static_cast<std::size_t>(f.neighbor[b]));
       }
       std::sort(candidates.begin(), candidates.end());
       candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
@@ -236,7 +275,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
     for (const std::size_t i : detach) {
       ++u.newly_detached;
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-        if (!f.intact[b]) continue;
+        if (!f.acting(b)) continue;
         const auto j = static_cast<std::size_t>(f.neighbor[b]);
         // A bond with a no-fail end never breaks (SPEC section 7), not even here: the detached
         // point stays tied to the protected boundary by it (its own stress is zero; the pair
@@ -244,8 +283,8 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
         if (j < p.owned && p.no_fail[j]) continue;
         record(j);
         const std::int64_t rb = mirror_bond(f, i, j);
-        f.intact[b] = 0;
-        if (rb >= 0) f.intact[rb] = 0;
+        f.break_bond(b);
+        if (rb >= 0) f.break_bond(rb);
         broken_ends += 2;
         next.push_back(j);
       }
@@ -265,8 +304,9 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
   kernel.refresh_after_breakage(p, f, c, w.sorted);
   for (std::size_t k = 0; k < w.affected.size(); ++k) {
     const std::size_t i = w.affected[k];
-    double after = p.force_stress_energy[i] + p.stabilization_energy[i];
-    if (!p.couple_stress_energy.empty()) after += p.couple_stress_energy[i];
+    const PointEnergy elastic = kernel.elastic_energy(p, c, i);
+    double after = elastic.force_stress + p.stabilization_energy[i];
+    if (!p.rotation.empty()) after += elastic.couple_stress;
     u.released_energy += w.energy_before[k] - after;
     w.affected_index[i] = -1;
   }

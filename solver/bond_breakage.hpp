@@ -37,26 +37,31 @@ double lattice_crossing_sum(int dimension, double horizon_factor);
 // themselves included when depth > 0. A bond with a no-fail end never breaks.
 void mark_no_fail_zone(PointData& points, double depth);
 
-// sum_j V_j over each point's current family, stored as points.family_volume: call it before
-// the pre-crack cuts, so that the notch shows as damage from the start.
-void record_family_volume(PointData& points, const BondFamilies& bonds);
+// sum_j V_j over each point's whole list (broken bonds included), in list order.
+std::vector<double> family_volumes(const PointData& points, const BondFamilies& bonds);
+// Keeps in points.precut_* the family volumes `before` of the points whose lists the pre-crack cuts
+// changed (call it after the cuts), so that the notch shows as damage from the start.
+void record_precut_family_volumes(PointData& points, const BondFamilies& bonds, const std::vector<double>& before);
+// The family volume of point i before the pre-crack cuts.
+double family_volume_of(const PointData& points, const BondFamilies& bonds, std::size_t i);
 
-// D_i = 1 - sum_j b_ij V_j / family_volume_i (0 for a point without a family).
+// D_i = 1 - sum_j b_ij V_j / family volume_i (0 for a point without a family).
 double point_damage(const PointData& points, const BondFamilies& bonds, std::size_t i);
 std::vector<double> damage_field(const PointData& points, const BondFamilies& bonds);
 
-// After a force evaluation that broke bonds (marked 2 by the kernel): breaks them for good,
-// recomputes the shape tensors of the points that lost bonds and the step's forces without them;
-// a point left with a singular one is detached and its remaining bonds break (it moves
-// ballistically). The energy the breaks release is measured, not assumed: the stored energy of the
-// affected points before minus after, at the same configuration (so the energy balance closes; the
-// bond work W_ij is the breakage criterion, not the measure of what a break dissipates). A point
-// whose stored energy would rise by losing bonds, by more than kEnergyRiseToDetach or at all when
-// it is overloaded (kOverloadedBreakingEnergyMultiple), is detached (see the .cpp for why). A body
-// point whose stiffness block exceeds `block_eigenvalue_limit` (point_stability.hpp; 0: no such
-// check) is detached as well: its lopsided family would make the run's time step unstable. Returns
-// the pairs broken in that evaluation (cascade included), the points newly detached (of them for
-// stability) and the released energy [J].
+// After a force evaluation in which bonds reached their critical work (counted by the kernel in
+// points.bonds_broken at their lower end): breaks them for good, recomputes the shape tensors of
+// the points that lost bonds and the step's forces without them; a point left with a singular one
+// is detached and its remaining bonds break (it moves ballistically). The energy the breaks
+// release is measured, not assumed: the stored energy of the affected points before minus after,
+// at the same configuration (so the energy balance closes; the bond work W_ij is the breakage
+// criterion, not the measure of what a break dissipates). A point whose stored energy would rise
+// by losing bonds, by more than kEnergyRiseToDetach or at all when it is overloaded
+// (kOverloadedBreakingEnergyMultiple), is detached (see the .cpp for why). A body point whose
+// stiffness block exceeds `block_eigenvalue_limit` (point_stability.hpp; 0: no such check) is
+// detached as well: its lopsided family would make the run's time step unstable. Returns the pairs
+// broken in that evaluation (cascade included), the points newly detached (of them for stability)
+// and the released energy [J].
 struct BreakageUpdate {
   std::size_t broken_pairs = 0;
   std::size_t newly_detached = 0;
@@ -82,6 +87,7 @@ double family_breaking_energy(const PointData& points, const BondFamilies& bonds
 // Scratch arrays kept from one step to the next (no allocation in the time loop once warm).
 struct BreakageWorkspace {
   std::vector<std::int64_t> affected_index;  // per point: index into affected, -1 if not met
+  std::vector<std::int64_t> breaking;        // bond entries breaking in this update
   std::vector<std::size_t> affected, changed, next, detach, candidates, sorted;
   std::vector<double> energy_before;
   std::vector<std::uint8_t> was_detached;

@@ -160,7 +160,7 @@ void index_bond_pairs(BondFamilies& f) {
 #pragma omp parallel for schedule(static) reduction(|| : asymmetric) if (thread_bond_loop(f.bond_count()))
   for (std::int64_t i = 0; i < n; ++i) {
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      const std::int64_t j = f.neighbor[b];
+      const auto j = static_cast<std::int64_t>(f.neighbor_of(b));
       if (j >= n || mirror_bond(f, static_cast<std::size_t>(i), static_cast<std::size_t>(j)) < 0) asymmetric = true;
     }
     f.pair_offset[i + 1] = f.offset[i + 1] - first_bond_above(f, static_cast<std::size_t>(i));
@@ -173,7 +173,7 @@ void index_bond_pairs(BondFamilies& f) {
 double bond_work(const BondFamilies& f, std::size_t i, std::int64_t b) {
   std::size_t low = i;
   std::int64_t entry = b;
-  const auto j = static_cast<std::size_t>(f.neighbor[b]);
+  const std::size_t j = f.neighbor_of(b);
   if (j < i) {
     low = j;
     entry = mirror_bond(f, i, j);

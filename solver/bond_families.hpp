@@ -8,6 +8,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -19,10 +20,12 @@ namespace mppm::solver {
 struct BondFamilies {
   int dimension = 2;
   std::vector<std::int64_t> offset;    // owned + 1 entries
-  std::vector<std::int32_t> neighbor;  // local index (owned or ghost)
+  // Local index of the neighbour (owned or ghost). A bond broken by damage keeps its entry with the
+  // sign bit set (break_bond): the force pass reads the index anyway, so the test costs it no
+  // load, and no per-bond flag array is needed (1 B per bond entry).
+  std::vector<std::int32_t> neighbor;
   std::vector<double> xi;              // D per bond, periodic lattices only (else empty)
   // Damage effect only (empty otherwise):
-  std::vector<std::uint8_t> intact;    // per bond entry: 1 = the bond acts; 0 = broken (for good)
   // W_ij [J/m^6] of every bond pair, stored once, at its lower-index end: the pairs of point i are
   // its bonds to higher indices (the tail of its sorted list), the k-th of them at
   // work[pair_offset[i] + k]. The force pass computes a bond's work at that end only (the other end
@@ -32,21 +35,33 @@ struct BondFamilies {
 
   std::size_t bond_count() const { return neighbor.size(); }
   std::size_t pair_count() const { return work.size(); }
+
+  // The bond acts (it is not broken).
+  bool acting(std::int64_t b) const { return neighbor[static_cast<std::size_t>(b)] >= 0; }
+  // The neighbour's index, broken or not.
+  std::size_t neighbor_of(std::int64_t b) const { return index_of(neighbor[static_cast<std::size_t>(b)]); }
+  // Breaks bond entry b for good (its other end is a separate entry).
+  void break_bond(std::int64_t b) { neighbor[static_cast<std::size_t>(b)] |= kBrokenBit; }
+
+  static constexpr std::int32_t kBrokenBit = INT32_MIN;
+  static std::size_t index_of(std::int32_t entry) { return static_cast<std::size_t>(entry & INT32_MAX); }
 };
 
 // The first bond of point i to a neighbour of higher index (neighbours are sorted by index).
 inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i) {
   const std::int32_t* first = f.neighbor.data() + f.offset[i];
   const std::int32_t* last = f.neighbor.data() + f.offset[i + 1];
-  return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - f.neighbor.data();
+  return std::upper_bound(first, last, i, [](std::size_t v, std::int32_t e) { return v < BondFamilies::index_of(e); }) -
+         f.neighbor.data();
 }
 
 // The entry of bond (j, i) in j's list (by bisection: neighbours are sorted), -1 if j has none.
 inline std::int64_t mirror_bond(const BondFamilies& f, std::size_t i, std::size_t j) {
   const std::int32_t* first = f.neighbor.data() + f.offset[j];
   const std::int32_t* last = f.neighbor.data() + f.offset[j + 1];
-  const std::int32_t* it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
-  return it != last && *it == static_cast<std::int32_t>(i) ? static_cast<std::int64_t>(it - f.neighbor.data()) : -1;
+  const std::int32_t* it =
+      std::lower_bound(first, last, i, [](std::int32_t e, std::size_t v) { return BondFamilies::index_of(e) < v; });
+  return it != last && BondFamilies::index_of(*it) == i ? static_cast<std::int64_t>(it - f.neighbor.data()) : -1;
 }
 
 // W_ij of bond b of point i (damage), read from either end of the bond.
@@ -58,7 +73,7 @@ inline void bond_vector(const BondFamilies& f, const double* position, std::size
   if (!f.xi.empty()) {
     for (int a = 0; a < D; ++a) xi[a] = f.xi[static_cast<std::size_t>(b) * D + a];
   } else {
-    const auto j = static_cast<std::size_t>(f.neighbor[b]);
+    const std::size_t j = f.neighbor_of(b);
     for (int a = 0; a < D; ++a) xi[a] = position[j * D + a] - position[i * D + a];
   }
 }
@@ -103,7 +118,6 @@ void remove_bonds(BondFamilies& families, Predicate&& cut) {
   }
   families.neighbor.resize(kept);
   if (!families.xi.empty()) families.xi.resize(kept * D);
-  if (!families.intact.empty()) families.intact.assign(kept, 1);
   if (!families.pair_offset.empty()) index_bond_pairs(families);
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "solver/compiled_effects.hpp"
 
 namespace mppm::solver {
 
@@ -47,20 +48,31 @@ double history_slope(const History& h, double t, std::size_t c) {
 BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& cloud, const PointData& p,
                                        const std::string& points_file) {
   dimension_ = p.dimension;
-  rotation_components_ = p.rotation_components;
+  match(scene, cloud, p.rotation_components, p.total(), p.region, p.boundary_id, p.volume, points_file);
+}
+
+BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& cloud, const std::string& points_file) {
+  dimension_ = cloud.dimension;
+  match(scene, cloud, scene.effects.micropolar ? rotation_components_of(cloud.dimension) : 0, cloud.size(),
+        cloud.region, cloud.boundary_id, cloud.volume, points_file);
+}
+
+void BoundaryConditions::match(const Scene& scene, const PointCloud& cloud, int rotation_components, std::size_t points,
+                               const std::vector<std::int32_t>& region, const std::vector<std::int32_t>& boundary_id,
+                               const std::vector<double>& volume, const std::string& points_file) {
+  rotation_components_ = rotation_components;
   const int D = dimension_;
   const int R = rotation_components_;
   condition_count_ = scene.boundary_conditions.size();
-  prescribed_u_.assign(p.total() * D, 0);
-  prescribed_w_.assign(p.total() * R, 0);
+  prescribed_.assign(points, 0);
   if (cloud.boundaries.size() != condition_count_)
     throw InputError(points_file + ": holds " + std::to_string(cloud.boundaries.size()) +
                      " boundaries but the scene has " + std::to_string(condition_count_) +
                      " boundary conditions (rerun mppm-preprocess with this scene)");
   std::vector<std::vector<std::int32_t>> layer_points(condition_count_ + 1), loaded_points(condition_count_ + 1);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    const auto r = p.region[i];
-    const auto b = p.boundary_id[i];
+  for (std::size_t i = 0; i < points; ++i) {
+    const auto r = region.empty() ? 0 : region[i];
+    const auto b = boundary_id.empty() ? 0 : boundary_id[i];
     if (r < 0 || static_cast<std::size_t>(r) > condition_count_)
       throw InputError(points_file + ": point " + std::to_string(i) + " has region " + std::to_string(r) +
                        " but the scene has " + std::to_string(condition_count_) + " boundary conditions");
@@ -104,9 +116,12 @@ BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& clo
       layer.value = bc.value;
       if (bc.rotation && R > 0) layer.rotation = bc.rotation;
       for (auto i : layer.points) {
-        for (int c = 0; c < D; ++c) prescribed_u_[i * D + c] = layer.constrained[c];
+        std::uint8_t bits = 0;
+        for (int c = 0; c < D; ++c)
+          if (layer.constrained[c]) bits |= static_cast<std::uint8_t>(1u << c);
         if (layer.rotation)
-          for (int c = 0; c < R; ++c) prescribed_w_[i * R + c] = 1;
+          for (int c = 0; c < R; ++c) bits |= static_cast<std::uint8_t>(1u << (kRotationBit + c));
+        prescribed_[i] = bits;
       }
       layers_.push_back(std::move(layer));
     } else {
@@ -118,13 +133,13 @@ BoundaryConditions::BoundaryConditions(const Scene& scene, const PointCloud& clo
       if (s.pressure) {
         s.normal.assign(s.points.size() * static_cast<std::size_t>(D), 0.0);
         const std::vector<double>* components[3] = {&cloud.normal_x, &cloud.normal_y, &cloud.normal_z};
-        for (std::size_t k = 0; k < s.points.size(); ++k)
+        for (std::size_t q = 0; q < s.points.size(); ++q)
           for (int c = 0; c < D; ++c)
-            if (!components[c]->empty()) s.normal[k * D + c] = (*components[c])[static_cast<std::size_t>(s.points[k])];
+            if (!components[c]->empty()) s.normal[q * D + c] = (*components[c])[static_cast<std::size_t>(s.points[q])];
       }
       s.value = bc.value;
       s.area = info.area;
-      for (auto i : s.points) s.volume_sum += p.volume[i];
+      for (auto i : s.points) s.volume_sum += volume[i];
       if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
         throw InputError(points_file + ": loaded boundary '" + bc.name +
                          "' has no loaded points or no area (boundary_id " + std::to_string(k + 1) + ")");

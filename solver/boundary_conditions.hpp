@@ -49,12 +49,14 @@ class BoundaryConditions {
   // No conditions at all (a free body).
   explicit BoundaryConditions(const PointData& points)
       : dimension_(points.dimension), rotation_components_(points.rotation_components),
-        prescribed_u_(points.total() * points.dimension, 0),
-        prescribed_w_(points.total() * points.rotation_components, 0) {}
+        prescribed_(points.total(), 0) {}
   // Matches the scene's conditions with the cloud's regions and boundary ids; throws
   // InputError naming the points file when they do not agree.
   BoundaryConditions(const Scene& scene, const PointCloud& cloud, const PointData& points,
                      const std::string& points_file);
+  // The same from the cloud alone (its points are the model's, in order, all owned), so that the
+  // conditions can be set up before the model takes over the cloud's arrays (mppm-solve).
+  BoundaryConditions(const Scene& scene, const PointCloud& cloud, const std::string& points_file);
 
   // Sets the prescribed components of u, v (and w, spin) at time t.
   void prescribe(PointData& points, double t) const;
@@ -64,9 +66,12 @@ class BoundaryConditions {
   void add_surface_loads(const PointData& points, double t, std::vector<double>& b,
                          const std::vector<std::int32_t>* rows = nullptr) const;
 
-  // 1 where a displacement / rotation component is prescribed (D / R per point).
-  const std::vector<std::uint8_t>& prescribed_displacement() const { return prescribed_u_; }
-  const std::vector<std::uint8_t>& prescribed_rotation() const { return prescribed_w_; }
+  // The prescribed components of point i: bit c for displacement component c, bit
+  // kRotationBit + c for rotation component c (0: none).
+  std::uint8_t prescribed(std::size_t i) const { return prescribed_[i]; }
+  static constexpr int kRotationBit = 3;
+  bool prescribed_displacement(std::size_t i, int c) const { return (prescribed_[i] >> c) & 1; }
+  bool prescribed_rotation(std::size_t i, int c) const { return (prescribed_[i] >> (kRotationBit + c)) & 1; }
 
   const std::vector<KinematicLayer>& layers() const { return layers_; }
   const std::vector<LoadedSurface>& surfaces() const { return surfaces_; }
@@ -85,13 +90,18 @@ class BoundaryConditions {
   std::size_t condition_count() const { return condition_count_; }
 
  private:
+  // The points' rotation components R, count, region, boundary id and volume (empty region or
+  // boundary id: all 0).
+  void match(const Scene& scene, const PointCloud& cloud, int rotation_components, std::size_t points,
+             const std::vector<std::int32_t>& region, const std::vector<std::int32_t>& boundary_id,
+             const std::vector<double>& volume, const std::string& points_file);
   int dimension_ = 2;
   int rotation_components_ = 0;
   std::size_t condition_count_ = 0;
   std::vector<std::string> names_;
   std::vector<KinematicLayer> layers_;
   std::vector<LoadedSurface> surfaces_;
-  std::vector<std::uint8_t> prescribed_u_, prescribed_w_;
+  std::vector<std::uint8_t> prescribed_;  // one byte of component bits per point
 };
 
 }  // namespace mppm::solver

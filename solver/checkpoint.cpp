@@ -29,7 +29,6 @@ void visit_carried_arrays(ModelRef& model, Visit&& visit) {
     visit("strain", p.strain);
     visit("plastic_strain", p.plastic_strain);
     visit("equivalent_plastic_strain", p.equivalent_plastic_strain);
-    visit("plastic_cohesion", p.plastic_cohesion);
     visit("plastic_dissipation", p.plastic_dissipation);
     if (model.effects.micropolar) {
       visit("wryness", p.wryness);
@@ -38,7 +37,9 @@ void visit_carried_arrays(ModelRef& model, Visit&& visit) {
   }
   if (model.effects.damage) {
     auto& f = model.bonds;
-    visit("bond_intact", f.intact);
+    // The neighbour lists with the broken bonds marked (BondFamilies::kBrokenBit); restored by
+    // restore_broken_bonds, which checks them against the lists built from the points.
+    visit("bond_neighbor", f.neighbor);
     visit("bond_work", f.work);
     visit("shape_inverse", p.shape_inverse);
     visit("stabilization_ck", p.stabilization_ck);
@@ -83,6 +84,16 @@ std::vector<T> scalars(const CheckpointFile& file, const std::string& name, std:
   std::vector<T> v(count);
   file.restore(name, v);
   return v;
+}
+
+// Breaks the bonds the checkpoint's neighbour lists mark broken in the model's lists (built from the
+// same points, so the same entries apart from the marks).
+void restore_broken_bonds(const CheckpointFile& file, BondFamilies& f) {
+  auto saved = file.array<std::int32_t>("bond_neighbor");
+  bool same = saved.size() == f.neighbor.size();
+  for (std::size_t b = 0; same && b < saved.size(); ++b) same = BondFamilies::index_of(saved[b]) == f.neighbor_of(b);
+  if (!same) throw InputError(file.path + ": the checkpoint's bonds are not those of these points (corrupted checkpoint?)");
+  f.neighbor.swap(saved);
 }
 
 template <class T>
@@ -174,7 +185,10 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
     throw InputError(file.path + ": the checkpoint is of a " + std::to_string(h.dimension) + "-D run with " +
                      std::to_string(h.point_count) + " points and other effects than this one");
 
-  visit_carried_arrays(model, [&](const char* name, auto& values) { file.restore(name, values); });
+  visit_carried_arrays(model, [&](const char* name, auto& values) {
+    if (std::string(name) == "bond_neighbor") restore_broken_bonds(file, model.bonds);
+    else file.restore(name, values);
+  });
   std::vector<double> body_force(dynamics.body_force().size());
   file.restore("body_force", body_force);
   const auto energy = scalars<double>(file, "energy", 8);

@@ -9,7 +9,7 @@ namespace mppm::solver {
 template <bool Micropolar, bool Damage, bool Viscoplasticity>
 struct CompiledEffects {
   static constexpr bool micropolar = Micropolar;
-  static constexpr bool damage = Damage;  // bonds carry an `intact` flag that kernels honour
+  static constexpr bool damage = Damage;  // bonds can be broken (BondFamilies::acting), kernels honour it
   static constexpr bool viscoplasticity = Viscoplasticity;  // stress from eps - eps_vp
 };
 

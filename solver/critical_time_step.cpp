@@ -19,7 +19,7 @@ namespace {
 
 enum class Block { coupled, translational, rotational };
 
-// A deterministic start vector from the point's global id (no dependence on threads).
+// A deterministic start vector from the point's index in the points file (no dependence on threads).
 double start_value(std::int64_t id, int component) {
   std::uint64_t x = static_cast<std::uint64_t>(id) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(component + 1) * 0xBF58476D1CE4E5B9ull;
   x ^= x >> 31;
@@ -39,10 +39,12 @@ struct OperatorEstimate {
 // power iteration stalls there and under-estimates omega_max). Only the three-term recurrence
 // is kept (no stored basis): loss of orthogonality creates duplicate Ritz values, not wrong
 // extreme ones. The Lanczos vector q lives in the model's displacement and rotation (where the
-// kernel reads it) and w = M^-1 K q in its force and moment (where the kernel writes it), so that
-// the only vectors of the model's size allocated here are the previous ones: this runs before the
-// time loop, and its vectors would otherwise set the run's peak memory.
-OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance, int max_iterations) {
+// kernel reads it) and w = M^-1 K q in its force and moment (where the kernel writes it), and the
+// previous q in `prev_u`, `prev_w` (the model's velocity and spin before a run: see
+// critical_time_step), so that no vector of the model's size is allocated here: this runs before
+// the time loop, and its vectors would otherwise set the run's peak memory.
+OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance, int max_iterations,
+                                    std::vector<double>& prev_u, std::vector<double>& prev_w) {
   PointData& p = model.points;
   const int D = p.dimension;
   const int R = p.rotation_components;
@@ -55,10 +57,11 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance,
   std::vector<double>& q_w = p.rotation;
   std::vector<double>& w_u = p.force;
   std::vector<double>& w_w = p.moment;
-  std::vector<double> prev_u(q_u.size(), 0.0), prev_w(q_w.size(), 0.0);
+  prev_u.assign(q_u.size(), 0.0);
+  prev_w.assign(q_w.size(), 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u ? start_value(p.global_id[i], c) : 0.0;
-    for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w ? start_value(p.global_id[i], D + c) : 0.0;
+    for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u ? start_value(static_cast<std::int64_t>(i), c) : 0.0;
+    for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w ? start_value(static_cast<std::int64_t>(i), D + c) : 0.0;
   }
   auto mass_dot = [&](const std::vector<double>& au, const std::vector<double>& aw, const std::vector<double>& bu,
                       const std::vector<double>& bw) {
@@ -125,21 +128,24 @@ std::string number(double v) {
 CriticalTimeStep critical_time_step(Model& model) {
   PointData& p = model.points;
   // The Lanczos vectors overwrite the state, which is put back at the end. Before a run it is the
-  // reference configuration (all +0.0, as allocated), which needs no copy of the model's size.
-  auto at_rest = [](const std::vector<double>& v) {
+  // reference configuration at rest (all +0.0, as allocated): then nothing is copied, and the
+  // velocity and spin hold the previous Lanczos vector, so no vector of the model's size is made.
+  auto zero = [](const std::vector<double>& v) {
     return std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); });
   };
-  const bool rest = at_rest(p.displacement) && at_rest(p.rotation);
-  std::vector<double> saved_u, saved_w;
+  const bool rest = zero(p.displacement) && zero(p.rotation) && zero(p.velocity) && zero(p.spin);
+  std::vector<double> saved_u, saved_w, own_prev_u, own_prev_w;
   if (!rest) {
     saved_u = p.displacement;
     saved_w = p.rotation;
   }
+  std::vector<double>& prev_u = rest ? p.velocity : own_prev_u;
+  std::vector<double>& prev_w = rest ? p.spin : own_prev_w;
   CriticalTimeStep out;
   // The coupled estimate sets the step (Ritz value converged to 1e-8, far finer than any safety
   // factor); the block estimates name the limiting mode.
-  const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, 1e-8, 150);
-  const OperatorEstimate trans = largest_eigenvalue(model, Block::translational, 1e-5, 100);
+  const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, 1e-8, 150, prev_u, prev_w);
+  const OperatorEstimate trans = largest_eigenvalue(model, Block::translational, 1e-5, 100, prev_u, prev_w);
   out.step = 2.0 / std::sqrt(coupled.lambda);
   out.translational = 2.0 / std::sqrt(trans.lambda);
   out.iterations = coupled.iterations;
@@ -160,7 +166,7 @@ CriticalTimeStep critical_time_step(Model& model) {
   auto estimate_without = [&](Block b, auto&& switch_off) {
     const CosseratConstants saved = c;
     switch_off();
-    const OperatorEstimate e = largest_eigenvalue(model, b, 1e-4, 60);
+    const OperatorEstimate e = largest_eigenvalue(model, b, 1e-4, 60, prev_u, prev_w);
     c = saved;
     update_stabilization_tensors(p, c);
     return e.lambda;
@@ -169,7 +175,7 @@ CriticalTimeStep critical_time_step(Model& model) {
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
   double rot_lambda = 0.0;
   if (p.rotation_components > 0) {
-    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, 1e-5, 100);
+    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, 1e-5, 100, prev_u, prev_w);
     out.rotational = 2.0 / std::sqrt(rot.lambda);
     rot_lambda = rot.lambda;
   }
@@ -206,8 +212,7 @@ CriticalTimeStep critical_time_step(Model& model) {
                  number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
   }
   if (rest) {
-    std::fill(p.displacement.begin(), p.displacement.end(), 0.0);
-    std::fill(p.rotation.begin(), p.rotation.end(), 0.0);
+    for (auto* v : {&p.displacement, &p.rotation, &p.velocity, &p.spin}) std::fill(v->begin(), v->end(), 0.0);
   } else {
     p.displacement = saved_u;
     p.rotation = saved_w;

@@ -32,12 +32,8 @@ void ExplicitDynamics::lay_out_tracked_points() {
   tracked_.clear();
   load_rows_.clear();
   if (!track_all_) {
-    for (std::size_t i = 0; i < p.owned; ++i) {
-      bool prescribed = false;
-      for (int c = 0; c < D; ++c) prescribed |= conditions_.prescribed_displacement()[i * D + c] != 0;
-      for (int c = 0; c < R; ++c) prescribed |= conditions_.prescribed_rotation()[i * R + c] != 0;
-      if (prescribed) tracked_.push_back(static_cast<std::int32_t>(i));
-    }
+    for (std::size_t i = 0; i < p.owned; ++i)
+      if (conditions_.prescribed(i) != 0) tracked_.push_back(static_cast<std::int32_t>(i));
     for (const LoadedSurface& s : conditions_.surfaces()) tracked_.insert(tracked_.end(), s.points.begin(), s.points.end());
     std::sort(tracked_.begin(), tracked_.end());
     tracked_.erase(std::unique(tracked_.begin(), tracked_.end()), tracked_.end());
@@ -108,8 +104,6 @@ void ExplicitDynamics::evaluate_energy() {
   const PointData& p = model_.points;
   const int D = p.dimension;
   const int R = p.rotation_components;
-  const auto& fixed_u = conditions_.prescribed_displacement();
-  const auto& fixed_w = conditions_.prescribed_rotation();
   const double rho = model_.constants.density;
   const double inertia = model_.constants.micro_inertia;
   // Kinetic energy of the central-difference scheme, 1/2 M v^{n-1/2} . v^{n+1/2}
@@ -124,10 +118,11 @@ void ExplicitDynamics::evaluate_energy() {
     const bool tracked = track_all_ || (next_tracked < tracked_.size() && static_cast<std::size_t>(tracked_[next_tracked]) == i);
     const std::size_t row = track_all_ ? i : next_tracked;
     if (tracked && !track_all_) ++next_tracked;
+    const unsigned fixed = conditions_.prescribed(i);
     double v2 = 0.0, t2 = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
-      if (fixed_u[k]) continue;
+      if ((fixed >> c) & 1u) continue;
       const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
       v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
       t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
@@ -138,7 +133,7 @@ void ExplicitDynamics::evaluate_energy() {
       double s2 = 0.0, r2 = 0.0;
       for (int c = 0; c < R; ++c) {
         const std::size_t k = i * R + c;
-        if (fixed_w[k]) continue;
+        if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
         const double a = p.moment[k] / inertia;
         s2 += p.spin[k] * p.spin[k] - h2 * a * a;
         r2 += p.spin[k] * p.spin[k] + h2 * a * a;
@@ -195,8 +190,6 @@ void ExplicitDynamics::step(bool with_energy) {
   // explicit in the first half kick, implicit in the second (so any c is stable); its work
   // (negative) is accumulated with the external work by the trapezoid rule.
   const double c_damp = damping_;
-  const auto& fixed_u = conditions_.prescribed_displacement();
-  const auto& fixed_w = conditions_.prescribed_rotation();
   for_each_point(threaded, [&](std::size_t i, std::ptrdiff_t row) {
     const bool tracked = row >= 0;
     const auto t = static_cast<std::size_t>(row);
@@ -210,6 +203,10 @@ void ExplicitDynamics::step(bool with_energy) {
         rotation_prev_[t * R + c] = p.rotation[i * R + c];
       }
     }
+    // The damping's work over the first half of the step (only with damping, where every point is
+    // tracked).
+    const bool damping_work = tracked && c_damp > 0.0;
+    const unsigned fixed = conditions_.prescribed(i);
     double work = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
@@ -217,7 +214,7 @@ void ExplicitDynamics::step(bool with_energy) {
       const double body = tracked ? body_force_prev_[t * D + c] : 0.0;
       p.velocity[k] += half * ((p.force[k] + body) * inv_rho - damp);
       p.displacement[k] += dt * p.velocity[k];
-      if (!fixed_u[k]) work -= 0.5 * damp * dt * p.velocity[k];
+      if (damping_work && !((fixed >> c) & 1u)) work -= 0.5 * damp * dt * p.velocity[k];
     }
     double rot_work = 0.0;
     for (int c = 0; c < R; ++c) {
@@ -225,9 +222,10 @@ void ExplicitDynamics::step(bool with_energy) {
       const double damp = c_damp * p.spin[k];
       p.spin[k] += half * (p.moment[k] * inv_inertia - damp);
       p.rotation[k] += dt * p.spin[k];
-      if (!fixed_w[k]) rot_work -= 0.5 * damp * dt * p.spin[k];
+      if (damping_work && !((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u))
+        rot_work -= 0.5 * damp * dt * p.spin[k];
     }
-    if (tracked) work_increment_[t] = c_damp > 0.0 ? p.volume[i] * (rho * work + inertia * rot_work) : 0.0;
+    if (tracked) work_increment_[t] = damping_work ? p.volume[i] * (rho * work + inertia * rot_work) : 0.0;
     return 0;
   });
   // The clock is recomputed from the step count (no drift over many steps); with set_clock the
@@ -257,13 +255,13 @@ void ExplicitDynamics::step(bool with_energy) {
       for (int c = 0; c < D; ++c) {
         const std::size_t k = i * D + c;
         const double change = p.force_before_refresh[r * D + c] - p.force[k];  // f_old - f_new
-        if (fixed_u[k]) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
+        if (conditions_.prescribed_displacement(i, c)) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
         else breakage_kick += half * p.velocity[k] * change * p.volume[i];
       }
       for (int c = 0; c < R; ++c) {
         const std::size_t k = i * R + c;
         const double change = p.moment_before_refresh[r * R + c] - p.moment[k];
-        if (fixed_w[k]) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
+        if (conditions_.prescribed_rotation(i, c)) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
         else breakage_kick += half * p.spin[k] * change * p.volume[i];
       }
     }
@@ -289,11 +287,12 @@ void ExplicitDynamics::step(bool with_energy) {
       return bad_here;
     }
     const auto t = static_cast<std::size_t>(row);
+    const unsigned fixed = conditions_.prescribed(i);
     double work = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
       const double du = p.displacement[k] - displacement_prev_[t * D + c];
-      if (fixed_u[k]) {
+      if ((fixed >> c) & 1u) {
         // The reaction -f V does the work of the prescribed motion (layer inertia excluded).
         work -= 0.5 * (force_prev_[t * D + c] + p.force[k]) * du;
       } else {
@@ -306,7 +305,7 @@ void ExplicitDynamics::step(bool with_energy) {
     for (int c = 0; c < R; ++c) {
       const std::size_t k = i * R + c;
       const double dw = p.rotation[k] - rotation_prev_[t * R + c];
-      if (fixed_w[k]) {
+      if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) {
         work -= 0.5 * (moment_prev_[t * R + c] + p.moment[k]) * dw;
       } else {
         p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;

@@ -12,18 +12,15 @@
 // first advances each point's plastic state by the return map (once per time step).
 // Damage (SPEC section 7): broken bonds are skipped; with a StepAdvance, pass 2 also adds to each
 // bond's work W_ij the trapezoid-rule increment 1/2 (t_old + t) . (U - U_old) + 1/2 (m_old + m) .
-// (Om - Om_old) of its pair force t = T_ij - T_ji and pair moment m = M_ij - M_ji, and breaks it
-// when W_ij >= w_cr. The old pair force is rebuilt from the previous evaluation's per-point arrays
+// (Om - Om_old) of its pair force t = T_ij - T_ji and pair moment m = M_ij - M_ji, and counts it
+// as breaking when W_ij >= w_cr (update_after_breakage breaks it). The old pair force is rebuilt from the previous evaluation's per-point arrays
 // (previous_*: a few numbers per point instead of D + R per bond). Seen from j, every term of the
 // increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
 // IEEE addition commutes), so the increment is computed once, by the lower-index end, which holds
-// the bond pair's W_ij (BondFamilies::work) and marks both ends when it breaks (the other end found
-// by bisection in its sorted list, only then). Both ends break it in the same step, for any thread
-// count.
+// the bond pair's W_ij (BondFamilies::work). Both ends break in the same step, for any thread count.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
-#include <atomic>
 #include <vector>
 
 #include "solver/bond_families.hpp"
@@ -126,7 +123,8 @@ struct StabilizationEnergySum {
 };
 
 // eps_i = [sum_j b V_j U_ij (x) xi] K_i^-1 and kap_i = [sum_j b V_j (w_j - w_i) (x) xi] K_i^-1 over
-// the bonds that act (intact != 0 with damage; a bond marked 2, breaking in this step, still acts).
+// the bonds that act (BondFamilies::acting; a bond that reached its critical work in this step
+// still acts until update_after_breakage breaks it).
 template <int D, class Effects, bool StoredXi>
 MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::size_t i,
                                const Mat<D>& kinv, Mat<D>& eps,
@@ -142,15 +140,15 @@ MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::s
   double pos_i[D];
   for (int a = 0; a < D; ++a) pos_i[a] = pos[i * D + a];
   const std::int32_t* __restrict nb = f.neighbor.data();
-  [[maybe_unused]] const std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
   const double* ui = u + i * D;
   const double* wi = polar ? w + i * R : zero_rotation;
   double S[D * D] = {};   // sum V U (x) xi
   double Sk[R * D] = {};  // sum V (w_j - w_i) (x) xi
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    const std::int32_t entry = nb[b];
     if constexpr (Effects::damage)
-      if (!intact[b]) continue;
-    const auto j = static_cast<std::size_t>(nb[b]);
+      if (entry < 0) continue;  // broken (BondFamilies::kBrokenBit)
+    const auto j = static_cast<std::size_t>(entry);
     double xi[D];
     for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
     const double vj = vol[j];
@@ -169,16 +167,68 @@ MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::s
   if constexpr (polar) kap = Eigen::Map<const RMat<R, D>>(Sk) * kinv;
 }
 
+// The elastic energies [J] of point i (1/2 V eps_e : sigma, the out-of-plane term of plane strain
+// included, and 1/2 V kap_e : m) for its strain and wryness, with its plastic state as it is.
+template <int D, class Effects>
+PointEnergy elastic_energies(const PointData& p, const CosseratConstants& c, std::size_t i, const Mat<D>& eps,
+                             [[maybe_unused]] const RMat<rotation_components<D>, D>& kap) {
+  constexpr int R = rotation_components<D>;
+  constexpr int RD = R * D;
+  const double vi = p.volume[i];
+  PointEnergy e;
+  if constexpr (Effects::viscoplasticity) {
+    const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]);
+    e.force_stress = vi * viscoplastic::elastic_energy_density<D>(
+                              eps_elastic, viscoplastic::elastic_stress<D>(eps_elastic, c));
+  } else {
+    e.force_stress = 0.5 * vi * (eps.cwiseProduct(cosserat_stress<D>(eps, c))).sum();
+  }
+  if constexpr (Effects::micropolar) {
+    RMat<R, D> kap_elastic = kap;
+    if constexpr (Effects::viscoplasticity)
+      kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
+    e.couple_stress =
+        0.5 * vi * (kap_elastic.cwiseProduct(couple_stress<D, R>(kap_elastic, c))).sum();
+  }
+  return e;
+}
+
+// The elastic energies of point i at the strain and wryness of the last force evaluation (the
+// stored ones; zero for a detached point): what the energy rows sum, in point order. Computed
+// here rather than stored by the force pass, which saves two doubles per point for a few
+// operations per point on the steps that report energies.
+template <int D, class Effects>
+PointEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants& c, std::size_t i) {
+  constexpr int R = rotation_components<D>;
+  if (p.detached[i]) return {};
+  const Mat<D> eps = Eigen::Map<const Mat<D>>(&p.strain[i * D * D]);
+  RMat<R, D> kap = RMat<R, D>::Zero();
+  if constexpr (Effects::micropolar) kap = Eigen::Map<const RMat<R, D>>(&p.wryness[i * R * D]);
+  return elastic_energies<D, Effects>(p, c, i, eps, kap);
+}
+
+// The sums of elastic_energy_of_point over the owned points, serially in index order (the same
+// bits for any thread count).
+template <int D, class Effects>
+PointEnergy elastic_energy_sums(const PointData& p, const CosseratConstants& c) {
+  PointEnergy sum;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const PointEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
+    sum.force_stress += e.force_stress;
+    sum.couple_stress += e.couple_stress;
+  }
+  return sum;
+}
+
 // The energy stored at one point [J] (force stress, couple stress, stabilization), with its bonds,
 // shape tensor and plastic state as they are now: the same numbers as an evaluation with energies
-// writes into force_stress_energy, couple_stress_energy and stabilization_energy. Breakage uses it
-// on the few points whose bonds changed, before and after the change (bond_breakage.cpp).
+// gives (elastic_energy_of_point and stabilization_energy). Breakage uses it on the few points
+// whose bonds changed, before and after the change (bond_breakage.cpp).
 template <int D, class Effects>
 PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
                                    const CosseratConstants& c, std::size_t i) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
-  constexpr int RD = R * D;
   PointEnergy e;
   if (p.detached[i]) return e;
   const double vi = p.volume[i];
@@ -187,20 +237,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   [[maybe_unused]] RMat<R, D> kap;
   if (f.xi.empty()) point_strains<D, Effects, false>(p, f, i, kinv, eps, kap);
   else point_strains<D, Effects, true>(p, f, i, kinv, eps, kap);
-  if constexpr (Effects::viscoplasticity) {
-    const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]);
-    e.force_stress = vi * viscoplastic::elastic_energy_density<D>(
-                              eps_elastic, viscoplastic::elastic_stress<D>(eps_elastic, c));
-  } else {
-    e.force_stress = 0.5 * vi * (eps.cwiseProduct(cosserat_stress<D>(eps, c))).sum();
-  }
-  if constexpr (polar) {
-    RMat<R, D> kap_elastic = kap;
-    if constexpr (Effects::viscoplasticity)
-      kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
-    e.couple_stress =
-        0.5 * vi * (kap_elastic.cwiseProduct(couple_stress<D, R>(kap_elastic, c))).sum();
-  }
+  e = elastic_energies<D, Effects>(p, c, i, eps, kap);
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
   const double* ui = &p.displacement[i * D];
   const double* wi = polar ? &p.rotation[i * R] : zero_rotation;
@@ -209,7 +246,7 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   StabilizationEnergySum<D, R, polar> stab;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if constexpr (Effects::damage)
-      if (!f.intact[b]) continue;
+      if (!f.acting(b)) continue;
     const auto j = static_cast<std::size_t>(f.neighbor[b]);
     double xi[D];
     bond_vector<D>(f, p.position.data(), i, b, xi);
@@ -223,15 +260,16 @@ PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
 }
 
 // Pass 1 at point i: strain and wryness, constitutive update (the return map with `advance`),
-// the force/moment tensors A_i, Q_i, and with WithEnergy the point's elastic energies.
-template <int D, class Effects, bool WithEnergy, bool StoredXi>
+// the force/moment tensors A_i, Q_i (the elastic energies come from the stored strain and wryness
+// when they are asked for: elastic_energy_of_point).
+template <int D, class Effects, bool StoredXi>
 MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const CosseratConstants& c,
                              std::size_t i, [[maybe_unused]] const StepAdvance* advance) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
   constexpr int RD = R * D;
-  const double* __restrict vol = p.volume.data();
+  [[maybe_unused]] const double* __restrict vol = p.volume.data();
   Eigen::Map<Mat<D>> eps_out(&p.strain[i * DD]);
   Eigen::Map<Mat<D>> a_out(&p.force_tensor[i * DD]);
   if (p.detached[i]) {
@@ -240,10 +278,6 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     if constexpr (polar) {
       Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]).setZero();
       Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]).setZero();
-    }
-    if constexpr (WithEnergy) {
-      p.force_stress_energy[i] = 0.0;
-      if constexpr (polar) p.couple_stress_energy[i] = 0.0;
     }
     if constexpr (Effects::viscoplasticity)
       if (advance) p.plastic_dissipation[i] = 0.0;
@@ -264,19 +298,14 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
           vol[i] * viscoplastic::advance_point<D, R, polar>(
                        eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
                        polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
-                       polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i],
-                       p.plastic_cohesion[i], c, *advance);
+                       polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i], c,
+                       *advance);
     }
     const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, plastic_strain);
     const auto stress = viscoplastic::elastic_stress<D>(eps_elastic, c);
     sigma = stress.in_plane;
-    if constexpr (WithEnergy)
-      p.force_stress_energy[i] =
-          vol[i] * viscoplastic::elastic_energy_density<D>(eps_elastic, stress);
   } else {
     sigma = cosserat_stress<D>(eps, c);
-    if constexpr (WithEnergy)
-      p.force_stress_energy[i] = 0.5 * vol[i] * (eps.cwiseProduct(sigma)).sum();
   }
   const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
@@ -288,8 +317,6 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     const RMat<R, D> m = couple_stress<D, R>(kap_elastic, c);
     Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]) = kap;
     Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]) = m * kinv - p.stabilization_rot[i] * kap;
-    if constexpr (WithEnergy)
-      p.couple_stress_energy[i] = 0.5 * vol[i] * (kap_elastic.cwiseProduct(m)).sum();
   }
 }
 
@@ -310,7 +337,6 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   const double* __restrict pos = p.position.data();
   const std::int32_t* __restrict nb = f.neighbor.data();
   const std::int64_t* __restrict off = f.offset.data();
-  [[maybe_unused]] std::uint8_t* intact = Effects::damage ? f.intact.data() : nullptr;
   [[maybe_unused]] double* pair_work = Effects::damage ? f.work.data() : nullptr;
   [[maybe_unused]] const double critical_work = c.critical_bond_work;
   [[maybe_unused]] const double* u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
@@ -369,11 +395,12 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   // One bond; with Work (damage, a bond to a higher index from a point that books work) also
   // its work increment and breaking mark.
   auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
-    // Atomic (relaxed: a plain load): the lower end of a bond to a lower index may mark it 2 while
-    // this loop reads it, and 1 and 2 both mean acting.
+    // Nothing writes the neighbour lists during the force pass: a bond that reaches its critical
+    // work here still acts in this evaluation, and update_after_breakage breaks it afterwards.
+    const std::int32_t entry = nb[b];
     if constexpr (Effects::damage)
-      if (!std::atomic_ref<std::uint8_t>(intact[b]).load(std::memory_order_relaxed)) return;
-    const auto j = static_cast<std::size_t>(nb[b]);
+      if (entry < 0) return;  // broken (BondFamilies::kBrokenBit)
+    const auto j = static_cast<std::size_t>(entry);
     double xi[D];
     for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
     const double vj = vol[j];
@@ -436,14 +463,10 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
         double& pair = pair_work[pair_base + b];
         const double work = pair + 0.5 * dw;
         pair = work;
-        // Marked 2 (breaking) at both ends: this step's force had the bond, and
-        // update_after_breakage still needs it acting to measure the energy the break releases
-        // before it sets 0 (broken). Counted here only (update_after_breakage finds j).
-        if (work >= critical_work) {
-          intact[b] = 2;
-          std::atomic_ref<std::uint8_t>(intact[mirror_bond(f, i, j)]).store(2, std::memory_order_relaxed);
-          ++broken;
-        }
+        // Counted here, at the lower end, and broken afterwards by update_after_breakage, which
+        // finds it by its work (this step's force had the bond, and the energy the break releases is
+        // measured with it still acting).
+        if (work >= critical_work) ++broken;
       }
     }
     if constexpr (WithEnergy) stab_energy.add(U, xi, eps_i, kap_i, wi, wj, vj);
@@ -486,14 +509,14 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
     if (stored_xi) {
 #pragma omp for schedule(static)
       for (std::int64_t s = 0; s < n; ++s)
-        pass1_point<D, Effects, WithEnergy, true>(p, f, c, static_cast<std::size_t>(s), advance);
+        pass1_point<D, Effects, true>(p, f, c, static_cast<std::size_t>(s), advance);
 #pragma omp for schedule(static)
       for (std::int64_t s = 0; s < n; ++s)
         pass2_point<D, Effects, WithEnergy, true>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
     } else {
 #pragma omp for schedule(static)
       for (std::int64_t s = 0; s < n; ++s)
-        pass1_point<D, Effects, WithEnergy, false>(p, f, c, static_cast<std::size_t>(s), advance);
+        pass1_point<D, Effects, false>(p, f, c, static_cast<std::size_t>(s), advance);
 #pragma omp for schedule(static)
       for (std::int64_t s = 0; s < n; ++s)
         pass2_point<D, Effects, WithEnergy, false>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
@@ -529,14 +552,14 @@ void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstan
     constexpr bool polar = Effects::micropolar;
     const bool stored_xi = !f.xi.empty();
     for (const std::size_t i : changed) {
-      if (stored_xi) pass1_point<D, Effects, true, true>(p, f, c, i, nullptr);
-      else pass1_point<D, Effects, true, false>(p, f, c, i, nullptr);
+      if (stored_xi) pass1_point<D, Effects, true>(p, f, c, i, nullptr);
+      else pass1_point<D, Effects, false>(p, f, c, i, nullptr);
     }
     std::vector<std::size_t>& around = p.refreshed_points;
     around = changed;
     for (const std::size_t i : changed)
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-        if (f.intact[b]) around.push_back(static_cast<std::size_t>(f.neighbor[b]));
+        if (f.acting(b)) around.push_back(static_cast<std::size_t>(f.neighbor[b]));
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
     while (!around.empty() && around.back() >= p.owned) around.pop_back();

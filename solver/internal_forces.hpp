@@ -24,6 +24,11 @@ struct PointEnergy {
 };
 using PointEnergyFunction = PointEnergy (*)(const PointData&, const BondFamilies&, const CosseratConstants&,
                                             std::size_t point);
+// The elastic energies of one point at the strain and wryness of the last evaluation
+// (kernel::elastic_energy_of_point; its stabilization is 0: see PointData::stabilization_energy).
+using ElasticEnergyFunction = PointEnergy (*)(const PointData&, const CosseratConstants&, std::size_t point);
+// Their sums over the owned points, in index order (kernel::elastic_energy_sums).
+using ElasticEnergySumFunction = PointEnergy (*)(const PointData&, const CosseratConstants&);
 
 // Damage: the forces (and energies) again after bonds broke, for the listed points whose families
 // changed (sorted) and their neighbours (kernel::refresh_after_breakage).
@@ -32,8 +37,10 @@ using BreakageRefreshFunction = void (*)(PointData&, BondFamilies&, const Cosser
 
 struct InternalForceFunctions {
   InternalForceFunction forces = nullptr;              // force and moment only
-  InternalForceFunction forces_and_energy = nullptr;   // also the per-point energies
+  InternalForceFunction forces_and_energy = nullptr;   // also the stabilization energies
   PointEnergyFunction point_energy = nullptr;          // one point's stored energy (breakage)
+  ElasticEnergyFunction elastic_energy = nullptr;      // one point's elastic energies (breakage)
+  ElasticEnergySumFunction elastic_energy_sums = nullptr;  // their totals (energy rows)
   BreakageRefreshFunction refresh_after_breakage = nullptr;
 };
 

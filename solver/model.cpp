@@ -71,20 +71,29 @@ ModelOptions model_options(const Scene& scene) {
   return mo;
 }
 
-Model build_model(const PointCloud& cloud, const ModelOptions& o) {
+namespace {
+
+// Everything after the points: `cloud` is read for its pre-cracks only.
+Model complete_model(PointData points, const PointCloud& cloud, const ModelOptions& o) {
   Model m;
   m.constants = o.constants;
   m.effects = o.effects;
-  m.points = make_point_data(cloud, o.effects);
+  m.points = std::move(points);
   FamilyOptions fo;
   fo.horizon = o.horizon;
   fo.spacing = o.spacing;
   fo.period = o.period;
   m.bonds = build_families(m.points, fo);
-  if (o.effects.damage) record_family_volume(m.points, m.bonds);
-  m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
+  if (o.effects.damage && !cloud.precrack_vertices.empty()) {
+    // The family volumes before the cuts are kept for the points that lost bonds to them, so that
+    // the notch shows as damage from the start.
+    const std::vector<double> before_cuts = family_volumes(m.points, m.bonds);
+    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
+    record_precut_family_volumes(m.points, m.bonds, before_cuts);
+  } else {
+    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
+  }
   if (o.effects.damage) {
-    m.bonds.intact.assign(m.bonds.bond_count(), 1);
     index_bond_pairs(m.bonds);
     mark_no_fail_zone(m.points, o.no_fail_depth);
     if (o.damage_region)
@@ -98,12 +107,20 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o) {
     if (!o.viscoplastic_model)
       throw std::logic_error("build_model: the viscoplasticity effect needs ModelOptions::viscoplastic_model");
     m.viscoplastic_model = o.viscoplastic_model;
-    const double c0 = m.points.dimension == 2 ? o.viscoplastic_model->initial_state_2d().cohesion
-                                              : o.viscoplastic_model->initial_state_3d().cohesion;
-    std::fill(m.points.plastic_cohesion.begin(), m.points.plastic_cohesion.end(), c0);
   }
   m.kernel = internal_force_functions(m.points.dimension, o.effects);
   return m;
+}
+
+}  // namespace
+
+Model build_model(const PointCloud& cloud, const ModelOptions& o) {
+  return complete_model(make_point_data(cloud, o.effects), cloud, o);
+}
+
+Model build_model(PointCloud&& cloud, const ModelOptions& o) {
+  PointData points = make_point_data(std::move(cloud), o.effects);
+  return complete_model(std::move(points), cloud, o);
 }
 
 void Model::advance_internal_forces(double dt, bool with_energy) {
@@ -133,12 +150,10 @@ void Model::set_breakage_time_step(double dt) {
 InternalEnergy internal_energy(const Model& model) {
   InternalEnergy e;
   const PointData& p = model.points;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    e.force_stress += p.force_stress_energy[i];
-    e.stabilization += p.stabilization_energy[i];
-  }
-  for (std::size_t i = 0; i < p.couple_stress_energy.size() && i < p.owned; ++i)
-    e.couple_stress += p.couple_stress_energy[i];
+  const PointEnergy elastic = model.kernel.elastic_energy_sums(p, model.constants);
+  e.force_stress = elastic.force_stress;
+  e.couple_stress = elastic.couple_stress;  // 0 without micropolar
+  for (std::size_t i = 0; i < p.owned; ++i) e.stabilization += p.stabilization_energy[i];
   return e;
 }
 

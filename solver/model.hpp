@@ -81,6 +81,9 @@ ModelOptions model_options(const Scene& scene);
 
 // Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.
 Model build_model(const PointCloud& cloud, const ModelOptions& options);
+// The same, taking over or releasing the cloud's per-point arrays (make_point_data): what is left
+// of it after the call is its pre-cracks and boundaries.
+Model build_model(PointCloud&& cloud, const ModelOptions& options);
 
 // Totals of the per-point energies of the last evaluation with energies [J], summed serially in
 // index order (the same result for any thread count).

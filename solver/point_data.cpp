@@ -5,27 +5,66 @@
 
 namespace mppm::solver {
 
-PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
-  const bool micropolar = effects.micropolar;
-  PointData p;
+namespace {
+
+// Dimension, counts, ids and positions of the cloud's points.
+void set_geometry(PointData& p, const PointCloud& cloud, const EffectSet& effects) {
   const int D = cloud.dimension;
   const std::size_t n = cloud.size();
-  const int R = micropolar ? rotation_components_of(D) : 0;
   p.dimension = D;
-  p.rotation_components = R;
+  p.rotation_components = effects.micropolar ? rotation_components_of(D) : 0;
   p.owned = n;
   p.ghost = 0;
-  p.global_id.resize(n);
   p.position.resize(n * D);
   for (std::size_t i = 0; i < n; ++i) {
-    p.global_id[i] = static_cast<std::int64_t>(i);
     const double xyz[3] = {cloud.x[i], cloud.y[i], cloud.z.empty() ? 0.0 : cloud.z[i]};
     for (int c = 0; c < D; ++c) p.position[i * D + c] = xyz[c];
   }
+}
+
+// The state arrays of the dimension and the effects, zero (an effect that is off allocates nothing).
+void allocate_state(PointData& p, const EffectSet& effects);
+
+// Frees v's memory (v = {} would keep its capacity).
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
+}  // namespace
+
+PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
+  PointData p;
+  set_geometry(p, cloud, effects);
+  const std::size_t n = p.owned;
   p.volume = cloud.volume;
   p.region = cloud.region.empty() ? std::vector<std::int32_t>(n, 0) : cloud.region;
   p.boundary_id = cloud.boundary_id.empty() ? std::vector<std::int32_t>(n, 0) : cloud.boundary_id;
+  allocate_state(p, effects);
+  return p;
+}
 
+PointData make_point_data(PointCloud&& cloud, const EffectSet& effects) {
+  PointData p;
+  set_geometry(p, cloud, effects);
+  const std::size_t n = p.owned;
+  for (auto* v : {&cloud.x, &cloud.y, &cloud.z, &cloud.normal_x, &cloud.normal_y, &cloud.normal_z}) release(*v);
+  p.volume = std::move(cloud.volume);
+  p.region = cloud.region.empty() ? std::vector<std::int32_t>(n, 0) : std::move(cloud.region);
+  p.boundary_id = cloud.boundary_id.empty() ? std::vector<std::int32_t>(n, 0) : std::move(cloud.boundary_id);
+  release(cloud.volume);
+  release(cloud.region);
+  release(cloud.boundary_id);
+  allocate_state(p, effects);
+  return p;
+}
+
+namespace {
+
+void allocate_state(PointData& p, const EffectSet& effects) {
+  const int D = p.dimension;
+  const int R = p.rotation_components;
+  const std::size_t n = p.owned;
   const std::size_t DD = static_cast<std::size_t>(D) * D;
   p.displacement.assign(n * D, 0.0);
   p.velocity.assign(n * D, 0.0);
@@ -36,7 +75,6 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
   p.detached.assign(n, 0);
   p.strain.assign(n * DD, 0.0);
   p.force_tensor.assign(n * DD, 0.0);
-  p.force_stress_energy.assign(n, 0.0);
   p.stabilization_energy.assign(n, 0.0);
   if (R > 0) {
     p.rotation.assign(n * R, 0.0);
@@ -45,18 +83,15 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
     p.stabilization_rot.assign(n, 0.0);
     p.wryness.assign(n * R * D, 0.0);
     p.moment_tensor.assign(n * R * D, 0.0);
-    p.couple_stress_energy.assign(n, 0.0);
   }
   if (effects.viscoplasticity) {
     p.plastic_strain.assign(n * 9, 0.0);
     if (R > 0) p.plastic_wryness.assign(n * R * D, 0.0);
     p.equivalent_plastic_strain.assign(n, 0.0);
-    p.plastic_cohesion.assign(n, 0.0);  // set from the model's initial state by build_model
     p.plastic_dissipation.assign(n, 0.0);
     p.plastic_active.assign(n, 1);  // narrowed to the region by build_model
   }
   if (effects.damage) {
-    p.family_volume.assign(n, 0.0);  // filled by build_model before the pre-crack cuts
     p.no_fail.assign(n, 0);
     p.bonds_broken.assign(n, 0);
     p.previous_displacement.assign(n * D, 0.0);
@@ -66,7 +101,8 @@ PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
       p.previous_moment_tensor.assign(n * R * D, 0.0);
     }
   }
-  return p;
 }
+
+}  // namespace
 
 }  // namespace mppm::solver

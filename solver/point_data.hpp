@@ -1,8 +1,10 @@
 // Per-point storage of the solver: one array per field (structure of arrays), owned points
-// first and ghost points (copies of other ranks' points, none yet) after them, each with a
-// global id, so that a distributed decomposition can be added without touching the kernels:
-// kernels loop over owned points and read neighbours by local index, owned or ghost; with
-// ghosts, their kinematic state and pass-1 tensors come from a halo exchange between passes.
+// first and ghost points (copies of other ranks' points, none yet) after them, so that a
+// distributed decomposition can be added without touching the kernels: kernels loop over owned
+// points and read neighbours by local index, owned or ghost; with ghosts, their kinematic state
+// and pass-1 tensors come from a halo exchange between passes. A single process owns every
+// point and the local index is the index in the points file; a decomposition adds the points'
+// global ids with the ghosts (8 B per point that a single process does not need).
 // Small tensors of one point are contiguous (row-major) inside their field's array: the force
 // pass gathers them per neighbour, and one cache line then holds a neighbour's whole tensor.
 #pragma once
@@ -22,7 +24,6 @@ struct PointData {
   std::size_t ghost = 0;        // read-only copies after the owned ones
   std::size_t total() const { return owned + ghost; }
 
-  std::vector<std::int64_t> global_id;
   std::vector<double> position;  // reference, D per point
   std::vector<double> volume;
   std::vector<std::int32_t> region;
@@ -55,12 +56,16 @@ struct PointData {
   std::vector<double> plastic_strain;             // eps_vp, 9 per point
   std::vector<double> plastic_wryness;            // kap_vp, R*D (micropolar)
   std::vector<double> equivalent_plastic_strain;  // ebar
-  std::vector<double> plastic_cohesion;           // c(ebar) [Pa]
   std::vector<double> plastic_dissipation;        // [J] of the last step (trapezoid rule)
   std::vector<std::uint8_t> plastic_active;       // 1 inside material.viscoplasticity.region
 
   // Damage state (allocated only when the effect is on, SPEC section 7).
-  std::vector<double> family_volume;         // sum V_j over the family before pre-crack cuts
+  // The family volume sum_j V_j before the pre-crack cuts of the points that lost bonds to them
+  // (sorted by point); any other point's is the sum over its whole list, broken bonds included
+  // (family_volume_of in bond_breakage.hpp), so that the points away from a pre-crack, nearly
+  // all of them, store none.
+  std::vector<std::size_t> precut_points;
+  std::vector<double> precut_family_volume;
   std::vector<std::uint8_t> no_fail;         // 1: the bonds of this point never break
   // Bonds that broke in the last step, counted at their lower-index end (both ends are marked 2).
   std::vector<std::int32_t> bonds_broken;
@@ -74,14 +79,19 @@ struct PointData {
   std::vector<std::size_t> refreshed_points;
   std::vector<double> force_before_refresh, moment_before_refresh;
 
-  // Energy per point [J], filled when a force evaluation is asked for energies.
-  std::vector<double> force_stress_energy;   // V 1/2 eps:sigma
-  std::vector<double> couple_stress_energy;  // V 1/2 kap:m
-  std::vector<double> stabilization_energy;  // V 1/2 sum_j V_j (z_u.T^s + z_w.M^s)
+  // The stabilization energy per point [J], V 1/2 sum_j V_j (z_u.T^s + z_w.M^s), filled when a force
+  // evaluation is asked for energies (the bond loop that gives it is the force pass's). The elastic
+  // energies are computed from the stored strain and wryness when they are summed
+  // (kernel::elastic_energy_of_point), not stored.
+  std::vector<double> stabilization_energy;
 };
 
 // Copies positions, volumes, regions of the cloud; allocates the state for the dimension and
 // the effects (an effect that is off allocates nothing). Every point is owned (single process).
 PointData make_point_data(const PointCloud& cloud, const EffectSet& effects);
+// The same, taking over the cloud's volumes, regions and boundary ids instead of copying them and
+// releasing its coordinates and normals (its pre-cracks and boundaries stay), so that the points
+// are not held twice.
+PointData make_point_data(PointCloud&& cloud, const EffectSet& effects);
 
 }  // namespace mppm::solver

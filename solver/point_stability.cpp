@@ -71,7 +71,6 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   using RMat = Eigen::Matrix<double, RR, D, Eigen::RowMajor>;
   Block H = Block::Zero();
   if (p.detached[i]) return H;
-  const bool damage = !f.intact.empty();
   const double vi = p.volume[i];
   constexpr int S = symmetric_components<D>;
   const Mat<D> kinv_i = unpack_symmetric<D>(&p.shape_inverse[i * S]);
@@ -79,7 +78,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   Vec<D> s = Vec<D>::Zero();
   double family = 0.0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-    if (damage && !f.intact[b]) continue;
+    if (!f.acting(b)) continue;
     const double vj = p.volume[static_cast<std::size_t>(f.neighbor[b])];
     Vec<D> xi;
     bond_vector<D>(f, p.position.data(), i, b, xi.data());
@@ -114,7 +113,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
 
   // Every neighbour whose family holds i (the reverse bond acts exactly when this one does).
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-    if (damage && !f.intact[b]) continue;
+    if (!f.acting(b)) continue;
     const auto k = static_cast<std::size_t>(f.neighbor[b]);
     if (k >= p.owned || p.detached[k]) continue;
     const double vk = p.volume[k];

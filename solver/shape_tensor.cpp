@@ -30,7 +30,7 @@ bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& 
   Mat K = Mat::Zero();
   int count = 0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-    if (!f.intact.empty() && !f.intact[b]) continue;
+    if (!f.acting(b)) continue;
     Vec xi;
     bond_vector<D>(f, p.position.data(), i, b, xi.data());
     K += p.volume[f.neighbor[b]] * xi * xi.transpose();

@@ -76,7 +76,7 @@ double point_porosity(const Model& m, std::size_t i) {
   if (p.detached[i]) return 1.0 - m.constants.solid_fraction;
   Mat S = Mat::Zero();
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-    if (!f.intact.empty() && !f.intact[b]) continue;
+    if (!f.acting(b)) continue;
     const auto j = static_cast<std::size_t>(f.neighbor[b]);
     const Vec du = Eigen::Map<const Vec>(&p.displacement[j * D]) - Eigen::Map<const Vec>(&p.displacement[i * D]);
     Vec xi;

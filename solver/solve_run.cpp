@@ -271,8 +271,7 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   refuse_runs_that_do_not_fit(scene, cloud);
 
   // Bad viscoplastic parameters are an InputError naming the key.
-  Model model = build_model(cloud, model_options(scene));
-  const BoundaryConditions conditions(scene, cloud, model.points, options.points_file);
+  const ModelOptions model_settings = model_options(scene);
   // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
   // run's inputs by the resolved scene as written and the points.
   const bool checkpointing = scene.output.checkpoint_interval > 0.0;
@@ -283,7 +282,10 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   } else if (checkpointing) {
     identity.points_fingerprint = point_cloud_fingerprint(cloud);
   }
-  // Nothing reads the points as read from here on: the model holds what it needs of them.
+  const BoundaryConditions conditions(scene, cloud, options.points_file);
+  // With `release` the model takes the cloud's arrays over instead of copying them, and the rest
+  // of the cloud is emptied: `cloud` (the same object) is not read after this.
+  Model model = release ? build_model(std::move(*release), model_settings) : build_model(cloud, model_settings);
   if (release) *release = PointCloud{};
 
   if (model.detached_points == model.points.owned)

@@ -79,7 +79,7 @@ inline double elastic_energy_density(const ElasticStrain<D>& e, const ElasticStr
 template <int D, int R, bool Polar>
 inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& eps_start,
                             const double* kap_start, double* plastic_strain9, double* plastic_wryness,
-                            double& ebar, double& cohesion, const CosseratConstants& c, const StepAdvance& step) {
+                            double& ebar, const CosseratConstants& c, const StepAdvance& step) {
   using Curvature = plasticity::Curvature<D>;
   constexpr int RD = R * D;
   Eigen::Matrix3d eps3 = Eigen::Matrix3d::Zero(), eps3_start = Eigen::Matrix3d::Zero();
@@ -102,7 +102,7 @@ inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& 
   state.plastic_strain = Eigen::Map<const Mat3>(plastic_strain9);
   state.plastic_wryness = kap_vp;
   state.equivalent_plastic_strain = ebar;
-  state.cohesion = cohesion;
+  state.cohesion = step.plastic_model->cohesion_at(ebar);
   plasticity::PointUpdate<D> r;
   plasticity::CosseratElasticity<D> el;
   if constexpr (D == 2) {
@@ -112,7 +112,6 @@ inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& 
   }
   r = step.plastic_model->update(eps3, kap_c, state, el, step.dt);
   ebar = r.state.equivalent_plastic_strain;
-  cohesion = r.state.cohesion;
   if (!r.plastic) return 0.0;  // elastic step: the plastic strains are untouched
   Eigen::Map<Mat3> plastic_strain_out(plastic_strain9);
   plastic_strain_out = r.state.plastic_strain;

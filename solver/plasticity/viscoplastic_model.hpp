@@ -15,6 +15,10 @@ class ViscoplasticModel {
   virtual std::string name() const = 0;
   virtual PlasticState<2> initial_state_2d() const = 0;
   virtual PlasticState<3> initial_state_3d() const = 0;
+  // The cohesion c(ebar) [Pa] of the state with equivalent plastic strain ebar: the models' cohesion
+  // is a function of ebar, so the solver passes it into update() from ebar instead of storing it
+  // per point.
+  virtual double cohesion_at(double equivalent_plastic_strain) const = 0;
   virtual PointUpdate<2> update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness,
                                 const PlasticState<2>& state,
                                 const CosseratElasticity<2>& elasticity, double dt) const = 0;
@@ -33,6 +37,9 @@ class DruckerPragerPerzynaModel final : public ViscoplasticModel {
   std::string name() const override { return kName; }
   PlasticState<2> initial_state_2d() const override { return initial_plastic_state<2>(model_); }
   PlasticState<3> initial_state_3d() const override { return initial_plastic_state<3>(model_); }
+  double cohesion_at(double equivalent_plastic_strain) const override {
+    return model_.cohesion_at(equivalent_plastic_strain);
+  }
   PointUpdate<2> update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness,
                         const PlasticState<2>& state, const CosseratElasticity<2>& elasticity,
                         double dt) const override {

@@ -311,16 +311,16 @@ TEST(CheckpointRestart, CheckpointHoldsTheStateOfTheEffectsOnly) {
   for (const char* name : {"displacement", "velocity", "rotation", "rotation_rate", "force", "moment", "body_force",
                            "energy", "schedule", "energy_guard", "tables", "points_file"})
     EXPECT_TRUE(elastic.has(name)) << name;
-  for (const char* name : {"bond_intact", "bond_work", "plastic_strain", "strain", "shape_inverse"})
+  for (const char* name : {"bond_neighbor", "bond_work", "plastic_strain", "strain", "shape_inverse"})
     EXPECT_FALSE(elastic.has(name)) << name;
   EXPECT_EQ(elastic.header.effects, checkpoint_effect_bits(elastic_bar().scene.effects));
   EXPECT_EQ(elastic.header.step, 10);
   const CheckpointFile damage = read_checkpoint_file(checkpoint_path(stopped_run(damage_bar(), "contents_damage")));
-  for (const char* name : {"bond_intact", "bond_work", "shape_inverse", "detached", "previous_displacement"})
+  for (const char* name : {"bond_neighbor", "bond_work", "shape_inverse", "detached", "previous_displacement"})
     EXPECT_TRUE(damage.has(name)) << name;
   const CheckpointFile plastic =
       read_checkpoint_file(checkpoint_path(stopped_run(softening_compression(), "contents_plastic")));
-  for (const char* name : {"plastic_strain", "plastic_wryness", "equivalent_plastic_strain", "plastic_cohesion", "strain"})
+  for (const char* name : {"plastic_strain", "plastic_wryness", "equivalent_plastic_strain", "strain"})
     EXPECT_TRUE(plastic.has(name)) << name;
 }
 

@@ -112,7 +112,7 @@ TEST(SolverBoundaryConditions, SurfaceLoadsAddUpToTractionTimesAreaAndRotationIs
     if (m.points.region[i] != 3) continue;
     EXPECT_DOUBLE_EQ(m.points.rotation[i], 0.5e-3);
     EXPECT_DOUBLE_EQ(m.points.spin[i], 2e3);
-    EXPECT_TRUE(bc.prescribed_rotation()[i]);
+    EXPECT_TRUE(bc.prescribed_rotation(i, 0));
   }
 }
 

@@ -127,7 +127,7 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
     std::size_t count = 0;
     for (std::size_t i = 0; i < p.owned; ++i)
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-        if (static_cast<std::size_t>(f.neighbor[b]) > i && crossing(i, b) && (!intact_only || f.intact[b]))
+        if (f.neighbor_of(b) > i && crossing(i, b) && (!intact_only || f.acting(b)))
           ++count;
     return count;
   };
@@ -158,10 +158,10 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   r.crossing_bonds_broken = r.crossing_bonds - count_crossing(true);
   for (std::size_t i = 0; i < p.owned; ++i)
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      const auto j = static_cast<std::size_t>(f.neighbor[b]);
+      const std::size_t j = f.neighbor_of(b);
       const double work = solver::bond_work(f, i, b);
-      if (f.intact[b]) r.largest_bond_work_ratio = std::max(r.largest_bond_work_ratio, work / model.constants.critical_bond_work);
-      if (j <= i || f.intact[b]) continue;
+      if (f.acting(b)) r.largest_bond_work_ratio = std::max(r.largest_bond_work_ratio, work / model.constants.critical_bond_work);
+      if (j <= i || f.acting(b)) continue;
       r.broken_bond_work += p.volume[i] * p.volume[j] * work;
       if (crossing(i, b)) r.crossing_bond_work += p.volume[i] * p.volume[j] * work;
     }
