@@ -159,7 +159,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
     if (p.bonds_broken[i] == 0) continue;
     counted += static_cast<std::size_t>(p.bonds_broken[i]);
     changed.push_back(i);
-    const std::int64_t split = first_bond_above(f, i);
+    const std::int64_t split = f.first_pair_bond(i);
     for (std::int64_t b = split; b < f.offset[i + 1]; ++b) {
       if (!f.acting(b)) continue;
       const std::size_t j = f.neighbor_of(b);

@@ -36,6 +36,10 @@ struct BondFamilies {
   std::size_t bond_count() const { return neighbor.size(); }
   std::size_t pair_count() const { return work.size(); }
 
+  // The first bond of point i to a higher index (damage: pair_offset filled), without the
+  // bisection of first_bond_above: point i's pairs are the tail of its list.
+  std::int64_t first_pair_bond(std::size_t i) const { return offset[i + 1] - (pair_offset[i + 1] - pair_offset[i]); }
+
   // The bond acts (it is not broken).
   bool acting(std::int64_t b) const { return neighbor[static_cast<std::size_t>(b)] >= 0; }
   // The neighbour's index, broken or not.

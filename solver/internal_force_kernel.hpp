@@ -390,7 +390,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   // Damage: a bond's work is the same bits from both ends (see the top of this file), so it is
   // computed once, at the lower-index end; the bonds to lower indices come first (sorted
   // neighbours), and the k-th bond from `split` on is the point's k-th pair.
-  [[maybe_unused]] const std::int64_t split = Effects::damage && work_here ? first_bond_above(f, i) : off[i + 1];
+  [[maybe_unused]] const std::int64_t split = Effects::damage && work_here ? f.first_pair_bond(i) : off[i + 1];
   [[maybe_unused]] const std::int64_t pair_base = Effects::damage && work_here ? f.pair_offset[i] - split : 0;
   // One bond; with Work (damage, a bond to a higher index from a point that books work) also
   // its work increment and breaking mark.
