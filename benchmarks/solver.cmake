@@ -2,7 +2,7 @@
 add_executable(mppm-bench-solver bench_solver.cpp)
 target_link_libraries(mppm-bench-solver PRIVATE mppm_solver mppm_warnings)
 # mppm-damage-calibration: the released fraction of the `dissipation` calibration of the damage
-# effect (workflows/damage-calibration). Uses the verification problems' crack strip.
+# effect (the table in solver/damage_calibration.cpp). Uses the verification problems' crack strip.
 if(NOT TARGET mppm_verification_problems)
   add_subdirectory(${PROJECT_SOURCE_DIR}/tests/verification/problems ${CMAKE_BINARY_DIR}/verification_problems)
 endif()

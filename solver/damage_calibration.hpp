@@ -7,8 +7,9 @@
 // strain of its remaining family, so it keeps part of the energy the broken bonds carried; that
 // part later leaves the crack faces as waves. rho is a property of the discretization (horizon
 // factor, G_s, dimension), not of the material, the spacing or G_cr (measured within +-4 %; see
-// benchmarks/damage_calibration.cpp, which produced the table, and workflows/damage-calibration,
-// which regenerates and checks it).
+// benchmarks/damage_calibration.cpp, which produced the table: `build/bin/mppm-damage-calibration
+// --dimension 2 --horizon-factors 2.55,3.05,3.55,4.05,5.05 --stabilizations 0.1,0.2,0.3,0.5`
+// regenerates the 2-D part).
 #pragma once
 #include <optional>
 #include <string>
