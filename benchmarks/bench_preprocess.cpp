@@ -41,7 +41,6 @@ int main(int argc, char** argv) {
     const mppm::Scene scene =
         mppm::parse_scene(scene_text, std::string(MPPM_SOURCE_DIR) + "/geometry/bench_preprocess.yaml");
     mppm::pre::PreprocessOptions options;
-    options.threads = omp_get_max_threads();
     const mppm::pre::PreprocessResult result = mppm::pre::preprocess(scene, options);
     const auto written = std::chrono::steady_clock::now();
     mppm::write_point_cloud(result.cloud, output);

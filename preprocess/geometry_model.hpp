@@ -60,13 +60,14 @@ struct GeometryModel {
 };
 
 // Reads a .geo .msh .step .stp .brep or .stl file through gmsh and meshes the entities of
-// dimension d-1 with facets no longer than `facet_size` [m] (curvature-refined).
+// dimension d-1 with facets no longer than `facet_size` [m] (curvature-refined). gmsh meshes on
+// one thread (its parallel meshing is not deterministic); the caller's OpenMP thread count is
+// left as it was.
 struct GeometryRequest {
   std::string file;
   int dimension = 2;
   double unit = 1.0;         // metres per file unit (.step/.stp carry their own unit)
   double facet_size = 0.0;   // [m]
-  int threads = 1;
   bool verbose = false;      // let gmsh talk
 };
 

@@ -2,6 +2,7 @@
 // entities, mesh the entities of dimension d-1 finely, and copy facets and physical groups
 // out into a GeometryModel (metres). gmsh is a global singleton, so calls are serialized.
 #include <gmsh.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -20,6 +21,20 @@ namespace {
 
 std::mutex gmsh_mutex;
 
+// gmsh sets the caller's OpenMP thread count (omp_set_num_threads) from General.NumThreads,
+// already in gmsh::initialize (to 1); this puts the caller's count back when the session ends,
+// so the OpenMP loops after the read (inside test, layers) keep their threads.
+class OmpThreadsRestorer {
+ public:
+  OmpThreadsRestorer() : threads_(omp_get_max_threads()) {}
+  ~OmpThreadsRestorer() { omp_set_num_threads(threads_); }
+  OmpThreadsRestorer(const OmpThreadsRestorer&) = delete;
+  OmpThreadsRestorer& operator=(const OmpThreadsRestorer&) = delete;
+
+ private:
+  int threads_;
+};
+
 // gmsh::initialize / finalize for one read; finalize even when reading throws.
 class GmshSession {
  public:
@@ -27,6 +42,15 @@ class GmshSession {
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", verbose ? 1 : 0);
     gmsh::option::setNumber("General.Verbosity", verbose ? 5 : 1);
+    // gmsh works on one thread, whatever --threads says: its parallel curve and surface
+    // meshing (gmsh 4.8, Mesh.MaxNumThreads1D/2D > 1) is not deterministic; on
+    // notched_specimen_3d.step at 2 threads it gave a different boundary mesh (node positions,
+    // at fine sizes even the triangle count) in about half of the runs, and so different layer
+    // points (20732 vs 20734) and boundary areas. Results must not depend on the thread count
+    // (preprocess/README.md); meshing on one thread takes 1.5-2x as long (figures there).
+    gmsh::option::setNumber("General.NumThreads", 1);
+    gmsh::option::setNumber("Mesh.MaxNumThreads1D", 1);
+    gmsh::option::setNumber("Mesh.MaxNumThreads2D", 1);
     gmsh::logger::start();
   }
   ~GmshSession() {
@@ -127,6 +151,7 @@ GeometryModel read_geometry(const GeometryRequest& request) {
   const double scale = step ? 1.0 : request.unit;
 
   std::lock_guard<std::mutex> lock(gmsh_mutex);
+  const OmpThreadsRestorer omp_threads;  // declared before the session: restores after finalize
   GmshSession session(request.verbose);
   GeometryModel model;
   model.file = file;
@@ -134,7 +159,6 @@ GeometryModel read_geometry(const GeometryRequest& request) {
   model.facets.dimension = d;
   std::ostringstream note;
   try {
-    gmsh::option::setNumber("General.NumThreads", std::max(1, request.threads));
     if (step) gmsh::option::setString("Geometry.OCCTargetUnit", "M");
     gmsh::open(file);
     if (std::string error = session.logged_error(); !error.empty())
@@ -227,8 +251,6 @@ GeometryModel read_geometry(const GeometryRequest& request) {
       // Curved boundaries: at least 48 facets per full turn (area of the inscribed polygon within
       // 0.3 % of the circle) so that a curved part keeps its volume to well under 1 %.
       gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 48);
-      gmsh::option::setNumber("Mesh.MaxNumThreads1D", std::max(1, request.threads));
-      gmsh::option::setNumber("Mesh.MaxNumThreads2D", std::max(1, request.threads));
       gmsh::model::mesh::generate(d - 1);
       if (std::string error = session.logged_error(); !error.empty())
         throw InputError(file + ": gmsh could not mesh the boundary: " + error);

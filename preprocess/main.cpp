@@ -1,6 +1,4 @@
 // mppm-preprocess: scene -> POINTS.vtp (material points, boundary layers, pre-cracks).
-#include <omp.h>
-
 #include <iostream>
 
 #include "common/command_line.hpp"
@@ -19,7 +17,7 @@ int main(int argc, char** argv) {
       "Options:\n"
       "  -o POINTS.vtp        output points file (VTK XML PolyData; written atomically)\n"
       "  --set key.path=value override a scene entry (repeatable), e.g. --set geometry.spacing=1mm\n"
-      "  --threads N          threads for meshing and the inside test\n"
+      "  --threads N          threads for the inside test and the layers (gmsh meshes on one)\n"
       "  --verbose            show gmsh's own log\n"
       "  --quiet              no report\n"
       "  --help, --version\n"
@@ -36,7 +34,6 @@ int main(int argc, char** argv) {
       if (!cl.quiet) std::cerr << "mppm-preprocess: warning: " << warning << "\n";
     mppm::pre::PreprocessOptions options;
     options.verbose = cl.has_flag("--verbose");
-    options.threads = cl.threads.value_or(omp_get_max_threads());
     const mppm::pre::PreprocessResult result = mppm::pre::preprocess(scene, options);
     mppm::write_point_cloud(result.cloud, *output);
     if (!cl.quiet) std::cout << mppm::pre::format_report(scene, result, *output);

@@ -67,7 +67,6 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
   request.unit = scene.geometry.unit;
   const double factor = options.facet_size_factor > 0 ? options.facet_size_factor : (d == 2 ? 0.25 : 3.0);
   request.facet_size = factor * dx;
-  request.threads = options.threads;
   request.verbose = options.verbose;
   const GeometryModel model = read_geometry(request);
   FacetMesh boundary = model.body_boundary();

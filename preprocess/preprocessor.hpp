@@ -14,7 +14,6 @@ namespace mppm::pre {
 
 struct PreprocessOptions {
   bool verbose = false;          // let gmsh print its log
-  int threads = 1;               // gmsh meshing threads (OpenMP loops follow omp_get_max_threads)
   // Boundary facet size / dx; 0 = default: 2-D 1/4, 3-D 3. Flat faces are exact at any facet
   // size; curved ones are refined by curvature (48 facets per turn) regardless, so 3-D facets
   // can be large, which keeps gmsh's surface meshing (the dominant cost) small.

@@ -299,6 +299,9 @@ TEST(PreprocessLattice, SameResultForOneAndTwoThreads) {
   const auto one = preprocess(scene);
   omp_set_num_threads(2);
   const auto two = preprocess(scene);
+  // gmsh sets the OpenMP thread count (to 1 in gmsh::initialize); reading the geometry must
+  // leave it as it was, or the inside test and the layers would have run on one thread.
+  EXPECT_EQ(omp_get_max_threads(), 2);
   omp_set_num_threads(saved);
   EXPECT_EQ(one.cloud.x, two.cloud.x);
   EXPECT_EQ(one.cloud.y, two.cloud.y);
