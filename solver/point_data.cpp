@@ -95,10 +95,10 @@ void allocate_state(PointData& p, const EffectSet& effects) {
     p.no_fail.assign(n, 0);
     p.bonds_broken.assign(n, 0);
     p.previous_displacement.assign(n * D, 0.0);
-    p.previous_force_tensor.assign(n * DD, 0.0);
+    p.force_tensor_sum.assign(n * DD, 0.0);
     if (R > 0) {
       p.previous_rotation.assign(n * R, 0.0);
-      p.previous_moment_tensor.assign(n * R * D, 0.0);
+      p.moment_tensor_sum.assign(n * R * D, 0.0);
     }
   }
 }

@@ -70,9 +70,13 @@ struct PointData {
   // Bonds that broke in the last step, counted at their lower-index end (both ends are marked 2).
   std::vector<std::int32_t> bonds_broken;
   // The state of the previous force evaluation, for the trapezoid rule on the bond work (the
-  // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond).
+  // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond):
+  // its displacement and rotation, and the sums A + A_prev and Q + Q_prev of this evaluation's
+  // tensors and the previous one's (written by pass 1 of an advancing evaluation just before it
+  // overwrites A and Q; the bond work needs only the sums, and one array each instead of the
+  // previous tensors saves a load and an addition per tensor entry and bond).
   std::vector<double> previous_displacement, previous_rotation;
-  std::vector<double> previous_force_tensor, previous_moment_tensor;
+  std::vector<double> force_tensor_sum, moment_tensor_sum;
   // The points whose force the last breakage refresh changed (sorted), with their force and moment
   // before it: the integrator books the kick and the layers' reaction work with them
   // (ExplicitDynamics::step). Cleared at every advance.
