@@ -128,9 +128,11 @@ TEST(SolverPatch, RigidTranslationAndRotationAreStrainFree) {
       const double theta_size = 1e-2;
       Model ref = model_for(c, micropolar);
       for (std::size_t i = 0; i < ref.points.owned; ++i) ref.points.displacement[i * D] = theta_size * ref.points.position[i * D];
-      ref.compute_internal_forces();
+      ref.compute_internal_forces(true);
       const double force_scale = max_abs(ref.points.force);
       ASSERT_GT(force_scale, 0.0);
+      const double energy_scale = internal_energy(ref).total();
+      ASSERT_GT(energy_scale, 0.0);
 
       Model m = model_for(c, micropolar);
       const int R = m.points.rotation_components;
@@ -167,7 +169,15 @@ TEST(SolverPatch, RigidTranslationAndRotationAreStrainFree) {
       }
       EXPECT_LT(max_abs(m.points.force), 1e-10 * force_scale) << "D=" << D << " micropolar=" << micropolar;
       const InternalEnergy e = internal_energy(m);
-      EXPECT_LT(std::abs(e.total()), 1e-20);
+      // Round-off only: the stress of a rotation is a difference of equal terms, exact without
+      // fused multiply-adds and a few units in the last place of mu theta with them (the force
+      // kernel uses them where the processor has them), so the energy is that rounding times
+      // theta: measured 1e-17 of the reference energy of a strain theta (non-polar, with FMA;
+      // 1e-30 micropolar), against 1e-14 here; with the misprinted composite state it is of the
+      // reference's order.
+      EXPECT_LT(std::abs(e.total()), 1e-14 * energy_scale)
+          << "D=" << D << " micropolar=" << micropolar << ": force stress " << e.force_stress << ", couple stress "
+          << e.couple_stress << ", stabilization " << e.stabilization << " J";
     }
   }
 }
