@@ -2,7 +2,8 @@
 # (with its MPI launcher and GNU time) if missing, writes the crack-branching plate inputs for
 # peri/lps and peri/pmb, runs each at 1 and 2 MPI ranks and writes $(OUT)/lammps.csv.
 # Included by workflows/benchmarks/Makefile: set OUT there *before* the include (default: out).
-# Knobs: LAMMPS_RANKS (default 1,2), LAMMPS_MPIRUN_ARGS (e.g. --bind-to none),
+# Knobs: LAMMPS_RANKS (default 1,2), LAMMPS_REPEATS (runs of each, default 3: the fastest is
+# kept), LAMMPS_MPIRUN_ARGS (e.g. --bind-to none),
 # LAMMPS_PLATE_ARGS (generator options, e.g. "--nx 40 --ny 20 --steps 50" for a smoke test).
 
 LAMMPS_BENCH_DIR          := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))/lammps
@@ -11,6 +12,7 @@ LAMMPS_SAVED_DEFAULT_GOAL := $(.DEFAULT_GOAL)
 OUT                ?= out
 LAMMPS_PYTHON      ?= /usr/bin/python3
 LAMMPS_RANKS       ?= 1,2
+LAMMPS_REPEATS     ?= 3
 LAMMPS_MPIRUN_ARGS ?=
 LAMMPS_PLATE_ARGS  ?=
 LAMMPS_PACKAGES    := lammps openmpi-bin time
@@ -35,7 +37,7 @@ $(LAMMPS_INPUTS)/plate.json: $(LAMMPS_BENCH_DIR)/make_plate_input.py
 $(OUT)/lammps.csv: $(LAMMPS_INPUTS)/plate.json $(LAMMPS_BENCH_DIR)/run_lammps.py | lammps-deps
 	@rm -f $@.tmp
 	$(LAMMPS_PYTHON) $(LAMMPS_BENCH_DIR)/run_lammps.py $@.tmp --inputs $(LAMMPS_INPUTS) \
-	  --ranks $(LAMMPS_RANKS) $(if $(LAMMPS_MPIRUN_ARGS),--mpirun-args="$(LAMMPS_MPIRUN_ARGS)")
+	  --ranks $(LAMMPS_RANKS) --repeats $(LAMMPS_REPEATS) $(if $(LAMMPS_MPIRUN_ARGS),--mpirun-args="$(LAMMPS_MPIRUN_ARGS)")
 	mv $@.tmp $@
 
 # Including this fragment must not change the including Makefile's default goal.
