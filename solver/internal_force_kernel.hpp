@@ -479,6 +479,10 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   double moment[R > 0 ? R : 1] = {};
   [[maybe_unused]] double* pair_work = Effects::damage ? f.work.data() : nullptr;
   [[maybe_unused]] std::int32_t broken = 0;
+  // With energies (the steps that report them), the stabilization energy from the same bonds.
+  [[maybe_unused]] const double* eps_i = WithEnergy ? &p.strain[i * DD] : nullptr;
+  [[maybe_unused]] const double* kap_i = WithEnergy && polar ? &p.wryness[i * RD] : nullptr;
+  [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   // One bond; with Work (damage, a bond to a higher index from a point that books work) also its
   // work increment and breaking mark.
   auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
@@ -553,6 +557,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
         if (work >= critical_work) ++broken;
       }
     }
+    if constexpr (WithEnergy) stab_energy.add(U, xi, eps_i, kap_i, wi, wj, vj);
   };
   if constexpr (Effects::damage) {
     for (std::int64_t b = off[i]; b < split; ++b) visit_bond.template operator()<false>(b);
@@ -563,25 +568,8 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   for (int r = 0; r < D; ++r) p.force[i * D + r] += force[r];
   if constexpr (polar)
     for (int r = 0; r < R; ++r) p.moment[i * R + r] += moment[r];
-  if constexpr (WithEnergy) {
-    // The stabilization energy, on the steps that report energies only: a loop of its own keeps
-    // the force loop's registers for the force.
-    const double* eps_i = &p.strain[i * DD];
-    [[maybe_unused]] const double* kap_i = polar ? &p.wryness[i * RD] : nullptr;
-    StabilizationEnergySum<D, R, polar> stab_energy;
-    for (std::int64_t b = off[i]; b < off[i + 1]; ++b) {
-      if (nb[b] < 0) continue;  // broken (BondFamilies::kBrokenBit)
-      const auto j = static_cast<std::size_t>(nb[b]);
-      double xi[D];
-      for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
-      const double* wj = polar ? w + j * R : zero_rotation;
-      double U[D];
-      composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-      stab_energy.add(U, xi, eps_i, kap_i, wi, wj, vol[j]);
-    }
-    const double* ck_i = &ck_all[i * S];
-    p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy.contract(ck_i, polar ? g_all[i] : 0.0);
-  }
+  if constexpr (WithEnergy)
+    p.stabilization_energy[i] = 0.5 * vol[i] * stab_energy.contract(&ck_all[i * S], polar ? g_all[i] : 0.0);
   if constexpr (Effects::damage) {
     if (accumulate_work) p.bonds_broken[i] = broken;
   }

@@ -8,7 +8,7 @@ namespace mppm::solver {
 
 struct ParallelThresholds {
   std::size_t bonds = 100000;   // loops over bonds (force kernel, families, shape tensors, cuts)
-  std::size_t points = 50000;   // loops doing a few operations per point (integrator)
+  std::size_t points = 4096;    // loops doing a few operations per point (integrator)
 };
 
 // Process-wide thresholds; tests lower them to exercise the threaded paths on small lattices.
