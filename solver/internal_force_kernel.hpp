@@ -15,8 +15,9 @@
 // Damage (SPEC section 7): broken bonds are skipped; with a StepAdvance, pass 2 also adds to each
 // bond's work W_ij the trapezoid-rule increment 1/2 (t_old + t) . (U - U_old) + 1/2 (m_old + m) .
 // (Om - Om_old) of its pair force t = T_ij - T_ji and pair moment m = M_ij - M_ji, and counts it
-// as breaking when W_ij >= w_cr (update_after_breakage breaks it). The old pair force is rebuilt from the previous evaluation's per-point arrays
-// (previous_*: a few numbers per point instead of D + R per bond). Seen from j, every term of the
+// as breaking when W_ij >= w_cr (update_after_breakage breaks it). The old pair force is rebuilt
+// from per-point arrays (the previous displacement and rotation, and the sums A + A_prev,
+// Q + Q_prev that pass 1 forms: a few numbers per point instead of D + R per bond). Seen from j, every term of the
 // increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
 // IEEE addition commutes), so the increment is computed once, by the lower-index end, which holds
 // the bond pair's W_ij (BondFamilies::work). Both ends break in the same step, for any thread count.
