@@ -9,7 +9,8 @@
 //            plastic_dissipation_J, fracture_dissipation_J, external_work_J, balance_error
 //            balance_error = (kinetic + elastic + stabilization + dissipations - external
 //            work - initial total) / max(|external work|, total energy, tiny): relative.
-// run_info.json (rewritten atomically at each snapshot and at the end):
+// run_info.json (rewritten atomically after a snapshot at most once a second of wall time, and at
+// checkpoints, stops and the end):
 //   {"status": "running" | "completed" | "numerical_failure" | "interrupted" | "write_error",
 //    "message": "...", "points": N, "bonds": N, "steps": N, "time_s": t,
 //    "wall_seconds": s, "threads": n, "effects": ["micropolar", ...],
