@@ -76,8 +76,8 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   // The cell list of the family search while the bonds are filled: its point list and the cells'
   // starts (one cell per horizon cube, a few points each: 1 B per point rounded up).
   p += 4 + 1;
-  // no-fail, broken count, the previous evaluation's displacement, rotation and force / moment
-  // tensors (the bond work's trapezoid rule), the offsets of the bond pairs (the family volumes of
+  // no-fail, broken count, the previous evaluation's displacement and rotation and the sums of its
+  // force / moment tensors with this one's (the bond work's trapezoid rule), the offsets of the bond pairs (the family volumes of
   // the few points next to a pre-crack are left out)
   if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 2 * 8 + 1;  // plastic strain and wryness, ebar, dissipation, active

@@ -344,11 +344,12 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   // formed before the previous ones are overwritten.
   [[maybe_unused]] const bool sum_tensors = Effects::damage && advance != nullptr;
   if (p.detached[i]) {
+    // Its tensors are zero now, so the sums are the previous tensors.
     if constexpr (Effects::damage)
       if (sum_tensors) {
-        for (int k = 0; k < DD; ++k) p.force_tensor_sum[i * DD + k] = 0.0 + p.force_tensor[i * DD + k];
+        for (int k = 0; k < DD; ++k) p.force_tensor_sum[i * DD + k] = p.force_tensor[i * DD + k];
         if constexpr (polar)
-          for (int k = 0; k < RD; ++k) p.moment_tensor_sum[i * RD + k] = 0.0 + p.moment_tensor[i * RD + k];
+          for (int k = 0; k < RD; ++k) p.moment_tensor_sum[i * RD + k] = p.moment_tensor[i * RD + k];
       }
     eps_out.setZero();
     a_out.setZero();

@@ -511,6 +511,7 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   auto checkpoint = [&] {
     update_info("running", "");
     writer.flush(info);
+    last_flush = std::chrono::steady_clock::now();
     RunLoopState loop;
     loop.next_row = rows.next();
     loop.next_snapshot = snapshots.next();
