@@ -51,7 +51,7 @@ void commit_temporary(const std::string& temporary, const std::string& path) {
   }
 }
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+std::string write_temporary(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string temporary = temporary_name_for(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -81,7 +81,11 @@ void write_file_atomically(const std::string& path, const std::function<void(std
       throw InputError(path + ": writing failed (" + why + "; is the disk full?); the previous file, if any, is unchanged");
     }
   }
-  commit_temporary(temporary, path);
+  return temporary;
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  commit_temporary(write_temporary(path, write), path);
 }
 
 }  // namespace mppm

@@ -12,6 +12,11 @@ namespace mppm {
 // removes the temporary.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// The first half of write_file_atomically: writes the temporary next to `path` and returns its
+// name, for commit_temporary (which may run later, on another thread: its fsyncs wait for the
+// disk). Throws InputError as write_file_atomically does, with the temporary removed.
+std::string write_temporary(const std::string& path, const std::function<void(std::ostream&)>& write);
+
 // Temporary name used for `path` (same directory, so the rename is atomic).
 std::string temporary_name_for(const std::string& path);
 

@@ -44,9 +44,14 @@ void write_snapshot(const Snapshot& s, const std::string& path) {
 
 void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                     const std::vector<SnapshotFieldSource>& fields, const std::string& path) {
+  commit_temporary(write_snapshot_temporary(dimension, step, time, point_count, fields, path), path);
+}
+
+std::string write_snapshot_temporary(int dimension, std::int64_t step, double time, std::uint64_t point_count,
+                                     const std::vector<SnapshotFieldSource>& fields, const std::string& path) {
   constexpr std::uint64_t kPointsPerChunk = kSnapshotPointsPerChunk;
   std::vector<double> chunk;
-  write_file_atomically(path, [&](std::ostream& out) {
+  return write_temporary(path, [&](std::ostream& out) {
     ChecksummedWriter w(out);
     w.bytes(kMagic, sizeof kMagic);
     w.value<std::uint32_t>(kVersion);

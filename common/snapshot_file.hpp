@@ -51,6 +51,10 @@ inline constexpr std::uint64_t kSnapshotPointsPerChunk = 4096;
 // of a large run does not need a copy of its fields (which would add to the run's peak memory).
 void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                     const std::vector<SnapshotFieldSource>& fields, const std::string& path);
+// The same bytes written to a temporary next to `path`, whose name it returns: commit_temporary
+// (common/atomic_file.hpp) makes it `path`, possibly later and on another thread.
+std::string write_snapshot_temporary(int dimension, std::int64_t step, double time, std::uint64_t point_count,
+                                     const std::vector<SnapshotFieldSource>& fields, const std::string& path);
 
 // Throws InputError naming the file and what is wrong (missing, truncated, bad checksum).
 Snapshot read_snapshot(const std::string& path);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <filesystem>
 #include <system_error>
+#include <utility>
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
@@ -102,11 +103,34 @@ void RunWriter::write_reference(const PointData& p) {
   mppm::write_snapshot(p.dimension, 0, 0.0, p.owned, fields, path(run_layout::reference));
 }
 
+RunWriter::~RunWriter() {
+  if (commit_thread_.joinable()) commit_thread_.join();
+}
+
 void RunWriter::write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                                const std::vector<SnapshotFieldSource>& fields) {
+  wait_for_snapshot();
   const std::string file = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(step);
-  mppm::write_snapshot(dimension, step, time, point_count, fields, path(file));
-  snapshots_.push_back({file, step, time});
+  const std::string target = path(file);
+  const std::string temporary = mppm::write_snapshot_temporary(dimension, step, time, point_count, fields, target);
+  committing_ = SnapshotRecord{file, step, time};
+  // commit_temporary removes the temporary when it fails; the error waits for wait_for_snapshot.
+  commit_thread_ = std::thread([this, temporary, target] {
+    try {
+      commit_temporary(temporary, target);
+    } catch (...) {
+      commit_error_ = std::current_exception();
+    }
+  });
+}
+
+void RunWriter::wait_for_snapshot() {
+  if (commit_thread_.joinable()) commit_thread_.join();
+  if (!committing_) return;
+  const SnapshotRecord record = *committing_;
+  committing_.reset();
+  if (commit_error_) std::rethrow_exception(std::exchange(commit_error_, nullptr));
+  snapshots_.push_back(record);
 }
 
 void RunWriter::set_load_header(const std::vector<std::string>& columns) {
@@ -124,6 +148,7 @@ void RunWriter::add_energy_row(const std::vector<double>& values) { energy_csv_ 
 void RunWriter::log(const std::string& line) { log_ += line + '\n'; }
 
 void RunWriter::flush(const RunInfo& info) {
+  wait_for_snapshot();
   write_file_atomically(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
   write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
   write_file_atomically(path(run_layout::log), [&](std::ostream& out) { out << log_; });

@@ -2,10 +2,14 @@
 // resolved scene, reference points, snapshots, load.csv, energy.csv, log.txt, run_info.json.
 // Tables and the log are kept in memory and rewritten atomically (flush) after snapshots, at most
 // once a second of wall time, and at checkpoints, stops and the end (solve_run.cpp), so no file is
-// ever half-written under its final name.
+// ever half-written under its final name. A snapshot is written on the calling thread and made
+// durable (fsync, rename, fsync of the directory) on a background thread, while the run goes on.
 #pragma once
 #include <cstdint>
+#include <exception>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/scene.hpp"
@@ -41,6 +45,11 @@ class RunWriter {
   // and snapshot list are put back with restore_* before anything is written.
   struct ContinueExisting {};
   RunWriter(std::string directory, ContinueExisting);
+  // Waits for a snapshot still being committed (its error, if any, is dropped: the run is already
+  // ending with another).
+  ~RunWriter();
+  RunWriter(const RunWriter&) = delete;
+  RunWriter& operator=(const RunWriter&) = delete;
 
   const std::string& directory() const { return directory_; }
   std::string path(const std::string& name) const { return directory_ + "/" + name; }
@@ -49,21 +58,26 @@ class RunWriter {
   // Returns the text written (its fingerprint identifies the scene of a checkpoint).
   std::string write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
   void write_reference(const PointData& points);
-  // Named by its step; recorded in run_info. The fields are written as they are produced
-  // (common/snapshot_file.hpp), not assembled first.
+  // Named by its step. The fields are written as they are produced (common/snapshot_file.hpp), not
+  // assembled first, to a temporary file; a background thread then fsyncs it, renames it to its
+  // name and fsyncs the directory (about 2 ms of waiting for the disk, during which the run's
+  // threads go on stepping). At most one snapshot is in flight: the next call, flush() and
+  // wait_for_snapshot() wait for it, record it in the snapshot list (run_info.json) and throw its
+  // error (InputError naming the file), if any.
   void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                       const std::vector<SnapshotFieldSource>& fields);
+  void wait_for_snapshot();
 
   void set_load_header(const std::vector<std::string>& columns);
   void add_load_row(const std::vector<double>& values);
   void add_energy_row(const std::vector<double>& values);
   void log(const std::string& line);  // also kept for log.txt
 
-  // Rewrites load.csv, energy.csv, log.txt and run_info.json.
+  // Rewrites load.csv, energy.csv, log.txt and run_info.json (after wait_for_snapshot).
   void flush(const RunInfo& info);
 
-  // The tables and the snapshot list so far (what a checkpoint records of them) and their
-  // restoration on a restart.
+  // The tables and the snapshot list so far (what a checkpoint records of them, after a flush) and
+  // their restoration on a restart.
   struct SnapshotRecord {
     std::string file;  // relative to the run directory
     std::int64_t step;
@@ -83,6 +97,10 @@ class RunWriter {
   std::string directory_;
   std::string load_csv_, energy_csv_, log_;
   std::vector<SnapshotRecord> snapshots_;
+  // The snapshot being committed on commit_thread_, and the commit's error.
+  std::optional<SnapshotRecord> committing_;
+  std::thread commit_thread_;
+  std::exception_ptr commit_error_;
 };
 
 // Formats a number for the tables (shortest text that reads back to the same double).

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "solver/bond_breakage.hpp"
+#include "solver/parallel_policy.hpp"
 #include "solver/symmetric_tensor.hpp"
 #include "solver/plasticity/plastic_strain_measures.hpp"
 #include "solver/viscoplastic_point.hpp"
@@ -87,12 +88,18 @@ double point_porosity(const Model& m, std::size_t i) {
   return 1.0 - m.constants.solid_fraction / F.determinant();
 }
 
-// A field whose value at point i is `value(i, out)` (components values into out).
+// A field whose value at point i is `value(i, out)` (components values into out). The points of a
+// chunk are computed in parallel (the damage of a point sums over its bonds, the stress evaluates
+// the constitutive law): each writes only its own values, so the bytes do not depend on the
+// thread count.
 template <class Value>
 SnapshotFieldSource per_point(const std::string& name, int components, Value value) {
   return {name, components, [components, value](std::uint64_t first, std::uint64_t count, double* out) {
-            for (std::uint64_t k = 0; k < count; ++k)
-              value(static_cast<std::size_t>(first + k), out + k * static_cast<std::uint64_t>(components));
+            const auto n = static_cast<std::int64_t>(count);
+#pragma omp parallel for schedule(static) if (thread_point_loop(count))
+            for (std::int64_t k = 0; k < n; ++k)
+              value(static_cast<std::size_t>(first) + static_cast<std::size_t>(k),
+                    out + static_cast<std::uint64_t>(k) * static_cast<std::uint64_t>(components));
           }};
 }
 

@@ -441,7 +441,9 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   // passed since their last rewrite; at checkpoints, stops, failures and the end always. Ten
   // fsyncs cost about 13 ms on the development VM: after every one of the crack-branching case's
   // 241 snapshots that was 3 s of its 17 s. A run killed between rewrites leaves every file
-  // whole, the tables up to a second behind the newest snapshot.
+  // whole, the tables up to a second behind the newest snapshot. The snapshot's own fsyncs run
+  // on the run writer's background thread (run_writer.hpp); a rewrite waits for them, so that
+  // run_info.json lists only snapshots that are complete under their names.
   constexpr std::chrono::duration<double> kTableFlushInterval{1.0};
   std::optional<std::chrono::steady_clock::time_point> last_flush;
   auto snapshot = [&] {

@@ -152,6 +152,25 @@ TEST(SolverRun, OneAndTwoThreadsGiveIdenticalFiles) {
   EXPECT_GE(compared, 3);
 }
 
+// How often energies are reported must not change the motion: the kernel evaluated with energies
+// (every step here) gives the same forces, to the bit, as without them (only at the end).
+TEST(SolverRun, EnergyRowsDoNotChangeTheMotion) {
+  BarCase c = bar({40, 12, 1}, 3.05);
+  c.scene.time.end = 20e-6;
+  c.scene.output.interval = 20e-6;
+  c.scene.output.fields = {"displacement", "rotation", "velocity"};
+  c.scene.output.load_interval = 0.0;
+  const std::string every = fresh_directory("energy_every_step");
+  solve(c.scene, c.cloud, options_for(every));
+  c.scene.output.load_interval = 20e-6;
+  const std::string end = fresh_directory("energy_at_end");
+  const SolveResult r = solve(c.scene, c.cloud, options_for(end));
+  ASSERT_GT(r.steps, 5);
+  const std::string last = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(r.steps);
+  ASSERT_TRUE(fs::exists(fs::path(end) / last)) << last;
+  EXPECT_EQ(read_text(every + "/" + last), read_text(end + "/" + last));
+}
+
 TEST(SolverRun, NonFiniteStateStopsWithNumericalFailureAndKeepsTheLastGoodSnapshot) {
   BarCase c = bar({24, 6, 1}, 3.05);
   // A velocity history that turns non-finite after 20 us (the guard must catch it, whatever the cause).
