@@ -235,6 +235,8 @@ void ExplicitDynamics::step(bool with_energy) {
   conditions_.prescribe(p, time_);
   compute_loads_and_forces(with_energy, true);
   if (injection_ && injection_->step == steps_ + 1) inject_nan();
+  if (kick_ && kick_->step == steps_ + 1)
+    p.velocity[kick_->point * static_cast<std::size_t>(D) + static_cast<std::size_t>(kick_->component)] += kick_->velocity;
 
   // Damage: where breaks refreshed the forces (Model::advance_internal_forces), this step's kick
   // and next step's use the forces without the broken bonds, as they must (a bond past its

@@ -49,6 +49,17 @@ struct NanInjection {
   static const char* name(Field f);
 };
 
+// Test hook (mppm-solve --inject-kick, solver/README.md "Test hooks"): `velocity` m/s added to one
+// component of one point's velocity in the middle of a step, at the same place as a NaN injection.
+// Nothing accounts for the kinetic energy it adds, so the periodic energy check sees unexplained
+// growth for a known reason.
+struct VelocityKick {
+  std::int64_t step = 1;    // the step (1-based) in which the velocity jumps
+  std::size_t point = 0;    // index in the points file
+  int component = 0;
+  double velocity = 0.0;    // [m/s]
+};
+
 // Where the per-step guard found non-finite values (ExplicitDynamics::first_non_finite).
 struct NonFinitePoint {
   std::size_t point = 0;     // the lowest index holding a non-finite value
@@ -95,6 +106,7 @@ class ExplicitDynamics {
 
   // Test hook: the NaN to inject (none by default).
   void set_nan_injection(std::optional<NanInjection> injection) { injection_ = injection; }
+  void set_velocity_kick(std::optional<VelocityKick> kick) { kick_ = kick; }
 
   Model& model() { return model_; }
   const Model& model() const { return model_; }
@@ -160,6 +172,7 @@ class ExplicitDynamics {
   EnergyState energy_;
   double initial_total_ = 0.0;
   std::optional<NanInjection> injection_;
+  std::optional<VelocityKick> kick_;
   void inject_nan();
 };
 

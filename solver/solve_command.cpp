@@ -45,9 +45,10 @@ int solve_command(int argc, char** argv) {
       "snapshot), 1 other errors or interrupted (Ctrl-C / SIGTERM: the run stops cleanly after\n"
       "its step with a last snapshot, a checkpoint when checkpoints are on, and status\n"
       "\"interrupted\")\n";
-  // --inject-nan STEP:POINT[:FIELD[:COMPONENT]] and --fail-checkpoint-write K are test hooks
-  // (solver/README.md "Test hooks"), not listed in the usage: they make the run fail on purpose.
-  spec.value_options = {"-o", "--points", "--inject-nan", "--restart", "--fail-checkpoint-write"};
+  // --inject-nan STEP:POINT[:FIELD[:COMPONENT]], --inject-kick STEP:POINT:COMPONENT:VELOCITY and
+  // --fail-checkpoint-write K are test hooks (solver/README.md "Test hooks"), not listed in the
+  // usage: they make the run fail on purpose.
+  spec.value_options = {"-o", "--points", "--inject-nan", "--inject-kick", "--restart", "--fail-checkpoint-write"};
   spec.flag_options = {"--force"};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) {
     int fail_checkpoint_write = 0;
@@ -67,6 +68,7 @@ int solve_command(int argc, char** argv) {
                                " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
                                "or --force with it (see --help)");
       if (cl.option("--inject-nan")) throw mppm::InputError("mppm-solve: --inject-nan cannot be combined with --restart");
+      if (cl.option("--inject-kick")) throw mppm::InputError("mppm-solve: --inject-kick cannot be combined with --restart");
       const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(mppm::solver::checkpoint_path(*run_directory));
       mppm::solver::SolveOptions options;
       options.run_directory = *run_directory;
@@ -89,6 +91,8 @@ int solve_command(int argc, char** argv) {
     if (!out) throw mppm::InputError("mppm-solve: -o RUN_DIR is required (see --help)");
     std::optional<mppm::solver::NanInjection> inject_nan;
     if (const auto hook = cl.option("--inject-nan")) inject_nan = mppm::solver::parse_nan_injection(*hook);
+    std::optional<mppm::solver::VelocityKick> inject_kick;
+    if (const auto hook = cl.option("--inject-kick")) inject_kick = mppm::solver::parse_velocity_kick(*hook);
     const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
     mppm::PointCloud cloud = mppm::read_point_cloud(*points);
     mppm::solver::SolveOptions options;
@@ -97,6 +101,7 @@ int solve_command(int argc, char** argv) {
     options.force = cl.has_flag("--force");
     options.quiet = cl.quiet;
     options.inject_nan = inject_nan;
+    options.inject_kick = inject_kick;
     options.fail_checkpoint_write = fail_checkpoint_write;
     const mppm::solver::SolveResult result = mppm::solver::solve(scene, std::move(cloud), options);
     if (result.interrupted) {

@@ -20,6 +20,7 @@
 #include "common/input_error.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
+#include "common/units.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/checkpoint.hpp"
 #include "common/memory_estimate.hpp"
@@ -149,6 +150,40 @@ NanInjection parse_nan_injection(const std::string& value) {
   return k;
 }
 
+VelocityKick parse_velocity_kick(const std::string& value) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
+    parts.push_back(value.substr(start, at - start));
+  parts.push_back(value.substr(start));
+  const std::string form = " (expected STEP:POINT:COMPONENT:VELOCITY, e.g. 60:17:0:50)";
+  if (parts.size() != 4) throw InputError("mppm-solve: --inject-kick " + value + ":" + form);
+  auto integer = [&](const std::string& part, const char* what) {
+    std::size_t used = 0;
+    long long v = -1;
+    try {
+      v = std::stoll(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || part.empty() || v < 0)
+      throw InputError("mppm-solve: --inject-kick " + value + ": " + what + " '" + part + "' is not a non-negative integer" + form);
+    return v;
+  };
+  VelocityKick k;
+  k.step = integer(parts[0], "STEP");
+  if (k.step < 1) throw InputError("mppm-solve: --inject-kick " + value + ": STEP counts from 1 (the first step)");
+  k.point = static_cast<std::size_t>(integer(parts[1], "POINT"));
+  k.component = static_cast<int>(integer(parts[2], "COMPONENT"));
+  try {
+    k.velocity = parse_quantity_as(parts[3], dim::velocity);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY: " + e.what() + form);
+  }
+  if (!std::isfinite(k.velocity)) throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY must be finite" + form);
+  return k;
+}
+
 // Before anything big is allocated: the memory estimate (common/memory_estimate.hpp) against what
 // this machine has available (MemAvailable, or MPPM_MEMORY_AVAILABLE in bytes: a budget a user or
 // a test sets), refused with the estimate and the advice.
@@ -247,6 +282,7 @@ SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoin
                      " was started with (the points file changed since the checkpoint " + checkpoint.path +
                      "; a restart needs the same points)");
   if (options.inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
+  if (options.inject_kick) throw InputError("mppm-solve: --inject-kick cannot be combined with --restart");
   return run(load_scene(scene_file), cloud, options, &checkpoint, release);
 }
 
@@ -306,6 +342,14 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
       throw InputError("mppm-solve: --inject-nan: COMPONENT " + std::to_string(k->component) + " of " +
                        NanInjection::name(k->field) + " (expected 0 to " + std::to_string(components - 1) + ")");
   }
+  if (const auto& k = options.inject_kick) {
+    if (k->point >= model.points.owned)
+      throw InputError("mppm-solve: --inject-kick: POINT " + std::to_string(k->point) + " is not a point of " +
+                       options.points_file + " (expected 0 to " + std::to_string(model.points.owned - 1) + ")");
+    if (k->component >= model.dimension())
+      throw InputError("mppm-solve: --inject-kick: COMPONENT " + std::to_string(k->component) +
+                       " of the velocity (expected 0 to " + std::to_string(model.dimension() - 1) + ")");
+  }
   const CriticalTimeStep critical = critical_time_step(model);
   if (!(critical.step > 0.0 && std::isfinite(critical.step)))
     throw NumericalFailure(options.run_directory + ": the critical time step could not be estimated (" +
@@ -328,6 +372,10 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   scene.time.step = dt;
   if (options.inject_nan && options.inject_nan->step > steps)
     throw InputError("mppm-solve: --inject-nan: STEP " + std::to_string(options.inject_nan->step) +
+                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
+                     std::to_string(steps) + ")");
+  if (options.inject_kick && options.inject_kick->step > steps)
+    throw InputError("mppm-solve: --inject-kick: STEP " + std::to_string(options.inject_kick->step) +
                      " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
                      std::to_string(steps) + ")");
   model.set_breakage_time_step(dt);
@@ -391,6 +439,10 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
         writer.log("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
                  " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
                  std::to_string(k->step));
+    if (const auto& k = options.inject_kick)
+      writer.log("test hook (--inject-kick): " + text(k->velocity) + " m/s will be added to velocity component " +
+                 std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
+                 std::to_string(k->step) + " (kinetic energy that nothing accounts for)");
     const auto available = available_fields(model);
     for (const auto& f : scene.output.fields)
       if (std::find(available.begin(), available.end(), f) == available.end())
@@ -411,6 +463,7 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   dynamics.set_damping(scene.numerics.damping);
   dynamics.set_clock(end, steps);
   dynamics.set_nan_injection(options.inject_nan);
+  dynamics.set_velocity_kick(options.inject_kick);
   dynamics.initialize();
   const auto loop_start = std::chrono::steady_clock::now();
 

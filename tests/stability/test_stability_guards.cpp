@@ -12,11 +12,14 @@
 // 2. The periodic energy check's reporting path, end to end. A real instability cannot be
 //    entered from a scene (every step above the critical one is refused up front, and the
 //    solver's work bookkeeping balances to round-off, ~5e-16 here), so the check is made to
-//    trip deliberately: numerics.energy_check_tolerance = 1e-300 means "any unexplained growth
-//    at all", and over ~1000 energy rows the round-off of the balance is positive somewhere
-//    after the check starts (step 50). mppm-solve must then stop with exit code 3, say why,
-//    and leave a run directory whose run_info.json says "numerical_failure" and whose kept
-//    snapshots are readable and finite.
+//    trip deliberately, for a known reason: the test hook --inject-kick adds 100 m/s to one
+//    point's velocity in step 100, kinetic energy that no work accounts for, far beyond the
+//    default tolerance (5 %). mppm-solve must then stop in that step with exit code 3, say why,
+//    report the growth the kick put in (1/2 rho V dv^2, rho = solid_fraction * density), and leave a run directory whose
+//    run_info.json says "numerical_failure" and whose kept snapshots are readable and finite.
+//    (This case used to set numerics.energy_check_tolerance = 1e-300 and rely on the sign of
+//    the balance's round-off somewhere in 1100 rows: a change in summation order made it <= 0
+//    in every row.)
 // 3. No false alarm when a load starts late. In the step in which a load starts, the scheme's
 //    kinetic energy 1/2 M v^(n-1/2) . v^(n+1/2) is a difference of two equal numbers (round-off,
 //    ~1e-24 J here) while the work is still exactly 0: relative to an energy scale made of such
@@ -156,14 +159,26 @@ TEST(StabilityGuards, EnergyCheckStopsTheRunWithExitCode3AndKeepsAReadableRunDir
   const std::string scene = scene_path("elastic_block.yaml");
   const CommandResult pre = run_program(program("mppm-preprocess"), {scene, "-o", points, "--quiet"});
   ASSERT_EQ(pre.exit_code, 0) << pre.output;
+  constexpr double kKick = 100.0;  // m/s, added to velocity component 0 of point 0 in step 100
   const CommandResult r = run_program(program("mppm-solve"),
-                                      {scene, "--points", points, "-o", dir, "--quiet",
-                                       "--set", "numerics.energy_check_tolerance=1e-300",
-                                       "--set", "time.end=400us", "--set", "output.interval=5us"});
-  std::printf("mppm-solve with a hypersensitive energy check: exit %d\n%s", r.exit_code, r.output.c_str());
+                                      {scene, "--points", points, "-o", dir, "--quiet", "--inject-kick",
+                                       "100:0:0:" + std::to_string(kKick), "--set", "time.end=400us", "--set",
+                                       "output.interval=5us"});
+  std::printf("mppm-solve with a velocity kick in step 100: exit %d\n%s", r.exit_code, r.output.c_str());
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("energy"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("numerics.energy_check_tolerance"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("at step 100,"), std::string::npos) << r.output;  // in the kick's own step
+  // The growth it reports is the kick's kinetic energy 1/2 rho V dv^2 (+ rho V v dv with the
+  // point's own velocity v, ~0.01 m/s at that step: 2 v / dv ~ 2e-4; 1 % bounds it with margin).
+  const std::size_t grew = r.output.find("energy grew by ");
+  ASSERT_NE(grew, std::string::npos) << r.output;
+  const double reported = std::stod(r.output.substr(grew + 15));
+  const Snapshot reference = read_snapshot(dir + "/" + run_layout::reference);
+  const double volume = reference.find("volume")->data[0];
+  constexpr double kDensity = 0.95 * 2650.0;  // elastic_block.yaml: rho = solid_fraction * density
+  const double kick_energy = 0.5 * kDensity * volume * kKick * kKick;
+  EXPECT_NEAR(reported, kick_energy, 1e-2 * kick_energy);
   const RunReport report = read_run(dir);
   EXPECT_EQ(report.status, "numerical_failure");
   EXPECT_NE(report.message.find("energy"), std::string::npos) << report.message;
@@ -316,6 +331,22 @@ TEST_F(StabilityGuardsEndToEnd, NanInjectedInOnePointStopsMppmSolveWithExitCode3
     EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir)) << dir;
     all = all && r.exit_code == 2;
   }
+  // The same for --inject-kick (its stop path is case 2).
+  const std::vector<std::pair<std::string, std::string>> bad_kicks{
+      {"0:1:0:5", "STEP"},       {"5:x:0:5", "POINT"},         {"5:100000:0:5", "POINT"},
+      {"5:1:7:5", "COMPONENT"},  {"5:1:0:5 MPa", "VELOCITY"},  {"5:1:0", "STEP:POINT:COMPONENT:VELOCITY"},
+      {"5:1:0:nan", "VELOCITY"}, {"100000:1:0:5", "beyond"}};
+  for (const auto& [hook, word] : bad_kicks) {
+    const std::string dir = fresh_directory("kick-inject-bad");
+    const CommandResult r = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points",
+                                                                block_points_, "-o", dir, "--quiet", "--inject-kick", hook});
+    std::printf("--inject-kick %s: exit %d\n%s", hook.c_str(), r.exit_code, r.output.c_str());
+    EXPECT_EQ(r.exit_code, 2) << hook;
+    EXPECT_TRUE(contains(r.output, "--inject-kick")) << r.output;
+    EXPECT_TRUE(contains(r.output, word)) << r.output;
+    EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir)) << dir;
+    all = all && r.exit_code == 2;
+  }
   record_margin({"06b-nan-injected-end-to-end", "a NaN appearing in one point mid-step, end to end (mppm-solve --inject-nan)",
                  "exit 3, run_info numerical_failure naming the point and the step, kept snapshots finite and older",
                  measured, "contract check (no numeric margin): detected in the step of the fault, 1 point named", all});
@@ -333,10 +364,11 @@ TEST_F(StabilityGuardsEndToEnd, BothGuardsCoverDamageRuns) {
     args.insert(args.end(), extra.begin(), extra.end());
     return run_program(program("mppm-solve"), args);
   };
-  // a. The energy check, made to trip on round-off (as in case 2): it runs on the damage balance.
+  // a. The energy check, made to trip by a velocity kick (as in case 2): 1000 m/s on point 0 in
+  //    step 100, about 2 J against an energy scale of about 9 J: it runs on the damage balance.
   const std::string energy_dir = fresh_directory("damage-energy-guard");
-  const CommandResult e = solve(energy_dir, {"--set", "numerics.energy_check_tolerance=1e-300"});
-  std::printf("damage run, hypersensitive energy check: exit %d\n%s", e.exit_code, e.output.c_str());
+  const CommandResult e = solve(energy_dir, {"--inject-kick", "100:0:0:1000"});
+  std::printf("damage run, velocity kick: exit %d\n%s", e.exit_code, e.output.c_str());
   const StoppedRun se = read_stopped_run(energy_dir);
   EXPECT_EQ(e.exit_code, 3) << e.output;
   EXPECT_EQ(se.report.status, "numerical_failure");
@@ -369,7 +401,7 @@ TEST_F(StabilityGuardsEndToEnd, BothGuardsCoverDamageRuns) {
   record_margin({"07b-guards-on-damage-runs", "the guards on a damage run (fragmentation scene: bonds breaking, points detaching)",
                  "energy check trips on unexplained growth with the fracture dissipation in its sum (exit 3); no false alarm at "
                  "the default tolerance (exit 0); a NaN caught in its step (exit 3)",
-                 "hypersensitive check: exit " + std::to_string(e.exit_code) + "; default: exit " +
+                 "velocity kick: exit " + std::to_string(e.exit_code) + "; default: exit " +
                      std::to_string(q.exit_code) + " with " + std::to_string(sq.report.detached_points) +
                      " points detached, worst balance error " + sci(sq.report.worst_balance_error) + "; NaN: exit " +
                      std::to_string(n.exit_code),
