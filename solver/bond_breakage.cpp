@@ -223,8 +223,8 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
   //    shape tensor too, so that check covers them.
   // A detached point moves ballistically: its remaining bonds break (which changes its
   // neighbours in turn), except those to no-fail points; no-fail points are never detached by the
-  // last two rules. Serial and in index order: the same for any thread count. Points detached
-  // from the start (isolated by the geometry) are left as they are.
+  // last two rules. Decided serially and in index order: the same for any thread count. Points
+  // detached from the start (isolated by the geometry) are left as they are.
   std::vector<std::size_t>& next = w.next;
   std::vector<std::size_t>& detach = w.detach;
   std::vector<std::size_t>& candidates = w.candidates;
@@ -260,9 +260,26 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
       }
       std::sort(candidates.begin(), candidates.end());
       candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      for (const std::size_t i : candidates) {
-        if (i >= p.owned || p.detached[i] || p.region[i] != 0 || p.no_fail[i]) continue;
-        if (point_block_eigenvalue(p, f, c, i) > block_eigenvalue_limit) {
+      // The blocks (an eigenvalue problem each, for every changed point's neighbours: the bulk of
+      // this update's work) are evaluated in parallel first; the decisions below stay serial and
+      // in index order. A detachment changes its neighbours' blocks, so once one happened in this
+      // round the later candidates are evaluated again, as a serial loop would see them.
+      auto checked = [&](std::size_t i) { return i < p.owned && !p.detached[i] && p.region[i] == 0 && !p.no_fail[i]; };
+      std::vector<double>& eigenvalue = w.candidate_eigenvalue;
+      eigenvalue.assign(candidates.size(), 0.0);
+      const auto count = static_cast<std::int64_t>(candidates.size());
+#pragma omp parallel for schedule(dynamic, 16) if (count >= 64)
+      for (std::int64_t k = 0; k < count; ++k) {
+        const std::size_t i = candidates[static_cast<std::size_t>(k)];
+        if (checked(i)) eigenvalue[static_cast<std::size_t>(k)] = point_block_eigenvalue(p, f, c, i);
+      }
+      bool detached_this_round = false;
+      for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const std::size_t i = candidates[k];
+        if (!checked(i)) continue;
+        const double block = detached_this_round ? point_block_eigenvalue(p, f, c, i) : eigenvalue[k];
+        if (block > block_eigenvalue_limit) {
+          detached_this_round = true;
           record(i);
           detach_point(p, i);
           detach.push_back(i);

@@ -90,6 +90,7 @@ struct BreakageWorkspace {
   std::vector<std::int64_t> breaking;        // bond entries breaking in this update
   std::vector<std::size_t> affected, changed, next, detach, candidates, sorted;
   std::vector<double> energy_before;
+  std::vector<double> candidate_eigenvalue;  // the stability check's blocks, evaluated in parallel
   std::vector<std::uint8_t> was_detached;
 };
 BreakageUpdate update_after_breakage(PointData& points, BondFamilies& bonds, const CosseratConstants& c,

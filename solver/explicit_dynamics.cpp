@@ -1,12 +1,15 @@
 // Velocity-Verlet stepping with prescribed layers and energy bookkeeping. Every loop writes only
-// per-point data; sums over points are serial and in index order, so any thread count gives the
-// same bits.
-#include "solver/parallel_policy.hpp"
+// per-point data; sums over points are in index order, serially or in chunks fixed by the point
+// count (ordered_point_sums.hpp), so any thread count gives the same bits.
 #include "solver/explicit_dynamics.hpp"
+
+#include "solver/ordered_point_sums.hpp"
+#include "solver/parallel_policy.hpp"
 
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -111,37 +114,46 @@ void ExplicitDynamics::evaluate_energy() {
   // the trapezoid-rule work of the loads for a linear elastic model (the plain 1/2 M v^n . v^n
   // differs from it by O((omega dt)^2) in the highest modes).
   const double h2 = 0.25 * dt_ * dt_;
-  double kinetic = 0.0, rotational = 0.0, terms = 0.0;
-  std::size_t next_tracked = 0;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    // A point that is not tracked has no body force.
-    const bool tracked = track_all_ || (next_tracked < tracked_.size() && static_cast<std::size_t>(tracked_[next_tracked]) == i);
-    const std::size_t row = track_all_ ? i : next_tracked;
-    if (tracked && !track_all_) ++next_tracked;
-    const unsigned fixed = conditions_.prescribed(i);
-    double v2 = 0.0, t2 = 0.0;
-    for (int c = 0; c < D; ++c) {
-      const std::size_t k = i * D + c;
-      if ((fixed >> c) & 1u) continue;
-      const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
-      v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
-      t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
-    }
-    kinetic += 0.5 * rho * p.volume[i] * v2;
-    terms += 0.5 * rho * p.volume[i] * t2;
-    if (R > 0) {
-      double s2 = 0.0, r2 = 0.0;
-      for (int c = 0; c < R; ++c) {
-        const std::size_t k = i * R + c;
-        if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
-        const double a = p.moment[k] / inertia;
-        s2 += p.spin[k] * p.spin[k] - h2 * a * a;
-        r2 += p.spin[k] * p.spin[k] + h2 * a * a;
+  // Summed in chunks fixed by the point count (ordered_point_sums.hpp): the same bits for any
+  // thread count.
+  const auto sums = ordered_point_sums<3>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi,
+                                                                                 std::array<double, 3>& acc) {
+    // The tracked points are sorted: one search for the chunk's first, then a walk along it.
+    std::size_t next_tracked =
+        track_all_ ? 0
+                   : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(), static_cast<std::int32_t>(lo)) -
+                                              tracked_.begin());
+    for (std::size_t i = lo; i < hi; ++i) {
+      // A point that is not tracked has no body force.
+      const bool tracked = track_all_ || (next_tracked < tracked_.size() && static_cast<std::size_t>(tracked_[next_tracked]) == i);
+      const std::size_t row = track_all_ ? i : next_tracked;
+      if (tracked && !track_all_) ++next_tracked;
+      const unsigned fixed = conditions_.prescribed(i);
+      double v2 = 0.0, t2 = 0.0;
+      for (int c = 0; c < D; ++c) {
+        const std::size_t k = i * D + c;
+        if ((fixed >> c) & 1u) continue;
+        const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
+        v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
+        t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
       }
-      rotational += 0.5 * inertia * p.volume[i] * s2;
-      terms += 0.5 * inertia * p.volume[i] * r2;
+      acc[0] += 0.5 * rho * p.volume[i] * v2;
+      acc[2] += 0.5 * rho * p.volume[i] * t2;
+      if (R > 0) {
+        double s2 = 0.0, r2 = 0.0;
+        for (int c = 0; c < R; ++c) {
+          const std::size_t k = i * R + c;
+          if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
+          const double a = p.moment[k] / inertia;
+          s2 += p.spin[k] * p.spin[k] - h2 * a * a;
+          r2 += p.spin[k] * p.spin[k] + h2 * a * a;
+        }
+        acc[1] += 0.5 * inertia * p.volume[i] * s2;
+        acc[2] += 0.5 * inertia * p.volume[i] * r2;
+      }
     }
-  }
+  });
+  const double kinetic = sums[0], rotational = sums[1], terms = sums[2];
   energy_.kinetic_terms = terms;
   const InternalEnergy e = internal_energy(model_);
   energy_.kinetic = kinetic;

@@ -24,12 +24,14 @@
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "solver/bond_families.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/internal_forces.hpp"
+#include "solver/ordered_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
@@ -242,16 +244,25 @@ PointEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants&
   return elastic_energies<D, Effects>(p, c, i, eps, kap);
 }
 
-// The sums of elastic_energy_of_point over the owned points, serially in index order (the same
-// bits for any thread count).
+// The sums over the owned points of elastic_energy_of_point and of the stabilization energies of
+// the last evaluation with energies (PointData::stabilization_energy): the stored energy of an
+// energy row. Summed in chunks fixed by the point count (ordered_point_sums), so the same bits for
+// any thread count; the chunks run in parallel (a stress evaluation per point).
 template <int D, class Effects>
-PointEnergy elastic_energy_sums(const PointData& p, const CosseratConstants& c) {
+PointEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
+  const auto sums = ordered_point_sums<3>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 3>& acc) {
+                                            for (std::size_t i = lo; i < hi; ++i) {
+                                              const PointEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
+                                              acc[0] += e.force_stress;
+                                              acc[1] += e.couple_stress;
+                                              acc[2] += p.stabilization_energy[i];
+                                            }
+                                          });
   PointEnergy sum;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    const PointEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
-    sum.force_stress += e.force_stress;
-    sum.couple_stress += e.couple_stress;
-  }
+  sum.force_stress = sums[0];
+  sum.couple_stress = sums[1];
+  sum.stabilization = sums[2];
   return sum;
 }
 

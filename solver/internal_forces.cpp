@@ -1,4 +1,5 @@
-// Instantiations of the internal-force kernel for every dimension and effect combination.
+// Instantiations of the internal-force kernel for every dimension and effect combination (this
+// file is compiled with fused multiply-adds: solver/CMakeLists.txt).
 #include "solver/internal_forces.hpp"
 
 #include "solver/internal_force_kernel.hpp"
@@ -6,10 +7,13 @@
 namespace mppm::solver {
 
 InternalForceFunctions internal_force_functions(int dimension, const EffectSet& effects) {
-  return dispatch_effects(dimension, effects, []<int D, class E>() {
-    return InternalForceFunctions{&kernel::internal_forces<D, E, false>, &kernel::internal_forces<D, E, true>,
-                                  &kernel::stored_energy_of_point<D, E>, &kernel::elastic_energy_of_point<D, E>,
-                                  &kernel::elastic_energy_sums<D, E>, &kernel::refresh_after_breakage<D, E>};
+  return dispatch_effects(dimension, effects, [&]<int D, class E>() {
+    InternalForceFunctions functions;
+    functions.forces = &kernel::internal_forces<D, E, false>;
+    functions.forces_and_energy = &kernel::internal_forces<D, E, true>;
+    functions.refresh_after_breakage = &kernel::refresh_after_breakage<D, E>;
+    add_energy_functions(dimension, effects, functions);  // internal_energies.cpp
+    return functions;
   });
 }
 

@@ -27,8 +27,9 @@ using PointEnergyFunction = PointEnergy (*)(const PointData&, const BondFamilies
 // The elastic energies of one point at the strain and wryness of the last evaluation
 // (kernel::elastic_energy_of_point; its stabilization is 0: see PointData::stabilization_energy).
 using ElasticEnergyFunction = PointEnergy (*)(const PointData&, const CosseratConstants&, std::size_t point);
-// Their sums over the owned points, in index order (kernel::elastic_energy_sums).
-using ElasticEnergySumFunction = PointEnergy (*)(const PointData&, const CosseratConstants&);
+// Their sums over the owned points, and the sum of the stabilization energies of the last
+// evaluation with energies: the stored energy of an energy row (kernel::stored_energy_sums).
+using StoredEnergySumFunction = PointEnergy (*)(const PointData&, const CosseratConstants&);
 
 // Damage: the forces (and energies) again after bonds broke, for the listed points whose families
 // changed (sorted) and their neighbours (kernel::refresh_after_breakage).
@@ -40,10 +41,15 @@ struct InternalForceFunctions {
   InternalForceFunction forces_and_energy = nullptr;   // also the stabilization energies
   PointEnergyFunction point_energy = nullptr;          // one point's stored energy (breakage)
   ElasticEnergyFunction elastic_energy = nullptr;      // one point's elastic energies (breakage)
-  ElasticEnergySumFunction elastic_energy_sums = nullptr;  // their totals (energy rows)
+  StoredEnergySumFunction stored_energy_sums = nullptr;  // the stored energy's totals (energy rows)
   BreakageRefreshFunction refresh_after_breakage = nullptr;
 };
 
 InternalForceFunctions internal_force_functions(int dimension, const EffectSet& effects);
+// Fills the energy entries (point_energy, elastic_energy, stored_energy_sums). They live in their
+// own file, compiled without the force kernel's fused multiply-adds: an energy is then the same
+// bits wherever it is evaluated (a row's sum, a breakage update), and a viscoplastic point that
+// stays elastic stores the elastic model's energy to the bit.
+void add_energy_functions(int dimension, const EffectSet& effects, InternalForceFunctions& functions);
 
 }  // namespace mppm::solver

@@ -149,11 +149,10 @@ void Model::set_breakage_time_step(double dt) {
 
 InternalEnergy internal_energy(const Model& model) {
   InternalEnergy e;
-  const PointData& p = model.points;
-  const PointEnergy elastic = model.kernel.elastic_energy_sums(p, model.constants);
-  e.force_stress = elastic.force_stress;
-  e.couple_stress = elastic.couple_stress;  // 0 without micropolar
-  for (std::size_t i = 0; i < p.owned; ++i) e.stabilization += p.stabilization_energy[i];
+  const PointEnergy stored = model.kernel.stored_energy_sums(model.points, model.constants);
+  e.force_stress = stored.force_stress;
+  e.couple_stress = stored.couple_stress;  // 0 without micropolar
+  e.stabilization = stored.stabilization;
   return e;
 }
 
