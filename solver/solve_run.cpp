@@ -104,8 +104,20 @@ std::string non_finite_reason(const ExplicitDynamics& dynamics) {
          std::to_string(bad->points) + " point(s) non-finite";
 }
 
-// 1-based ("3") or 0-based ("17") non-negative integers of --inject-nan.
-std::int64_t injection_integer(const std::string& part, const std::string& what, const std::string& value) {
+// The value of a test hook (--inject-nan, --inject-kick) cut at its colons.
+std::vector<std::string> hook_parts(const std::string& value) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
+    parts.push_back(value.substr(start, at - start));
+  parts.push_back(value.substr(start));
+  return parts;
+}
+
+// A 1-based ("3") or 0-based ("17") non-negative integer of a test hook; `form` says what the
+// hook expects, for the message.
+std::int64_t hook_integer(const std::string& hook, const std::string& value, const std::string& part,
+                          const std::string& what, const std::string& form) {
   std::size_t used = 0;
   long long v = -1;
   try {
@@ -114,26 +126,29 @@ std::int64_t injection_integer(const std::string& part, const std::string& what,
     used = 0;
   }
   if (used != part.size() || part.empty() || v < 0)
-    throw InputError("mppm-solve: --inject-nan " + value + ": " + what + " '" + part +
-                     "' is not a non-negative integer (expected STEP:POINT[:FIELD[:COMPONENT]], e.g. 200:17:velocity)");
+    throw InputError("mppm-solve: " + hook + " " + value + ": " + what + " '" + part + "' is not a non-negative integer" +
+                     form);
   return v;
+}
+
+// The step of a test hook, from 1.
+std::int64_t hook_step(const std::string& hook, const std::string& value, const std::string& part,
+                       const std::string& form) {
+  const std::int64_t step = hook_integer(hook, value, part, "STEP", form);
+  if (step < 1) throw InputError("mppm-solve: " + hook + " " + value + ": STEP counts from 1 (the first step)");
+  return step;
 }
 
 }  // namespace
 
 NanInjection parse_nan_injection(const std::string& value) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
-    parts.push_back(value.substr(start, at - start));
-  parts.push_back(value.substr(start));
-  if (parts.size() < 2 || parts.size() > 4)
-    throw InputError("mppm-solve: --inject-nan " + value +
-                     ": expected STEP:POINT[:FIELD[:COMPONENT]] (e.g. 200:17:velocity)");
+  const std::vector<std::string> parts = hook_parts(value);
+  const std::string hook = "--inject-nan";
+  const std::string form = " (expected STEP:POINT[:FIELD[:COMPONENT]], e.g. 200:17:velocity)";
+  if (parts.size() < 2 || parts.size() > 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
   NanInjection k;
-  k.step = injection_integer(parts[0], "STEP", value);
-  if (k.step < 1) throw InputError("mppm-solve: --inject-nan " + value + ": STEP counts from 1 (the first step)");
-  k.point = static_cast<std::size_t>(injection_integer(parts[1], "POINT", value));
+  k.step = hook_step(hook, value, parts[0], form);
+  k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
   if (parts.size() > 2) {
     using F = NanInjection::Field;
     bool known = false;
@@ -146,35 +161,19 @@ NanInjection parse_nan_injection(const std::string& value) {
       throw InputError("mppm-solve: --inject-nan " + value + ": unknown FIELD '" + parts[2] +
                        "' (expected displacement, velocity, rotation, rotation_rate or force)");
   }
-  if (parts.size() > 3) k.component = static_cast<int>(injection_integer(parts[3], "COMPONENT", value));
+  if (parts.size() > 3) k.component = static_cast<int>(hook_integer(hook, value, parts[3], "COMPONENT", form));
   return k;
 }
 
 VelocityKick parse_velocity_kick(const std::string& value) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
-    parts.push_back(value.substr(start, at - start));
-  parts.push_back(value.substr(start));
+  const std::vector<std::string> parts = hook_parts(value);
+  const std::string hook = "--inject-kick";
   const std::string form = " (expected STEP:POINT:COMPONENT:VELOCITY, e.g. 60:17:0:50)";
-  if (parts.size() != 4) throw InputError("mppm-solve: --inject-kick " + value + ":" + form);
-  auto integer = [&](const std::string& part, const char* what) {
-    std::size_t used = 0;
-    long long v = -1;
-    try {
-      v = std::stoll(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != part.size() || part.empty() || v < 0)
-      throw InputError("mppm-solve: --inject-kick " + value + ": " + what + " '" + part + "' is not a non-negative integer" + form);
-    return v;
-  };
+  if (parts.size() != 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
   VelocityKick k;
-  k.step = integer(parts[0], "STEP");
-  if (k.step < 1) throw InputError("mppm-solve: --inject-kick " + value + ": STEP counts from 1 (the first step)");
-  k.point = static_cast<std::size_t>(integer(parts[1], "POINT"));
-  k.component = static_cast<int>(integer(parts[2], "COMPONENT"));
+  k.step = hook_step(hook, value, parts[0], form);
+  k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
+  k.component = static_cast<int>(hook_integer(hook, value, parts[2], "COMPONENT", form));
   try {
     k.velocity = parse_quantity_as(parts[3], dim::velocity);
   } catch (const std::invalid_argument& e) {
