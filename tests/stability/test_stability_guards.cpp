@@ -315,35 +315,28 @@ TEST_F(StabilityGuardsEndToEnd, NanInjectedInOnePointStopsMppmSolveWithExitCode3
     all = all && ok;
   }
 
-  // The hook itself refuses what it cannot do (exit 2, nothing written).
-  const std::vector<std::pair<std::string, std::string>> bad{
-      {"0:1", "STEP"}, {"x:1", "STEP"}, {"5:100000", "POINT"}, {"5:1:pressure", "FIELD"}, {"5", "STEP:POINT"},
-      {"5:1:velocity:2", "COMPONENT"},
-      {"100000:1", "beyond"}};
-  for (const auto& [hook, word] : bad) {
-    const std::string dir = fresh_directory("nan-inject-bad");
+  // The hooks themselves refuse what they cannot do (exit 2, nothing written): --inject-nan, and
+  // --inject-kick (whose stop path is case 2). {option, value, a word the message must hold}.
+  struct BadHook {
+    std::string option, value, word;
+  };
+  const std::vector<BadHook> bad{
+      {"--inject-nan", "0:1", "STEP"},           {"--inject-nan", "x:1", "STEP"},
+      {"--inject-nan", "5:100000", "POINT"},     {"--inject-nan", "5:1:pressure", "FIELD"},
+      {"--inject-nan", "5", "STEP:POINT"},       {"--inject-nan", "5:1:velocity:2", "COMPONENT"},
+      {"--inject-nan", "100000:1", "beyond"},    {"--inject-kick", "0:1:0:5", "STEP"},
+      {"--inject-kick", "5:x:0:5", "POINT"},     {"--inject-kick", "5:100000:0:5", "POINT"},
+      {"--inject-kick", "5:1:7:5", "COMPONENT"}, {"--inject-kick", "5:1:0:5 MPa", "VELOCITY"},
+      {"--inject-kick", "5:1:0", "STEP:POINT:COMPONENT:VELOCITY"},
+      {"--inject-kick", "5:1:0:nan", "VELOCITY"}, {"--inject-kick", "100000:1:0:5", "beyond"}};
+  for (const BadHook& h : bad) {
+    const std::string dir = fresh_directory("inject-bad");
     const CommandResult r = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points",
-                                                                block_points_, "-o", dir, "--quiet", "--inject-nan", hook});
-    std::printf("--inject-nan %s: exit %d\n%s", hook.c_str(), r.exit_code, r.output.c_str());
-    EXPECT_EQ(r.exit_code, 2) << hook;
-    EXPECT_TRUE(contains(r.output, "--inject-nan")) << r.output;
-    EXPECT_TRUE(contains(r.output, word)) << r.output;
-    EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir)) << dir;
-    all = all && r.exit_code == 2;
-  }
-  // The same for --inject-kick (its stop path is case 2).
-  const std::vector<std::pair<std::string, std::string>> bad_kicks{
-      {"0:1:0:5", "STEP"},       {"5:x:0:5", "POINT"},         {"5:100000:0:5", "POINT"},
-      {"5:1:7:5", "COMPONENT"},  {"5:1:0:5 MPa", "VELOCITY"},  {"5:1:0", "STEP:POINT:COMPONENT:VELOCITY"},
-      {"5:1:0:nan", "VELOCITY"}, {"100000:1:0:5", "beyond"}};
-  for (const auto& [hook, word] : bad_kicks) {
-    const std::string dir = fresh_directory("kick-inject-bad");
-    const CommandResult r = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points",
-                                                                block_points_, "-o", dir, "--quiet", "--inject-kick", hook});
-    std::printf("--inject-kick %s: exit %d\n%s", hook.c_str(), r.exit_code, r.output.c_str());
-    EXPECT_EQ(r.exit_code, 2) << hook;
-    EXPECT_TRUE(contains(r.output, "--inject-kick")) << r.output;
-    EXPECT_TRUE(contains(r.output, word)) << r.output;
+                                                                block_points_, "-o", dir, "--quiet", h.option, h.value});
+    std::printf("%s %s: exit %d\n%s", h.option.c_str(), h.value.c_str(), r.exit_code, r.output.c_str());
+    EXPECT_EQ(r.exit_code, 2) << h.option << " " << h.value;
+    EXPECT_TRUE(contains(r.output, h.option)) << r.output;
+    EXPECT_TRUE(contains(r.output, h.word)) << r.output;
     EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir)) << dir;
     all = all && r.exit_code == 2;
   }
