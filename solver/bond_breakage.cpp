@@ -12,6 +12,7 @@
 #include <string>
 
 #include "solver/damage_calibration.hpp"
+#include "solver/parallel_policy.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -268,7 +269,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
       std::vector<double>& eigenvalue = w.candidate_eigenvalue;
       eigenvalue.assign(candidates.size(), 0.0);
       const auto count = static_cast<std::int64_t>(candidates.size());
-#pragma omp parallel for schedule(dynamic, 16) if (count >= 64)
+#pragma omp parallel for schedule(dynamic, 16) if (thread_block_loop(candidates.size()))
       for (std::int64_t k = 0; k < count; ++k) {
         const std::size_t i = candidates[static_cast<std::size_t>(k)];
         if (checked(i)) eigenvalue[static_cast<std::size_t>(k)] = point_block_eigenvalue(p, f, c, i);

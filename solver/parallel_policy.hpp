@@ -9,6 +9,8 @@ namespace mppm::solver {
 struct ParallelThresholds {
   std::size_t bonds = 100000;   // loops over bonds (force kernel, families, shape tensors, cuts)
   std::size_t points = 4096;    // loops doing a few operations per point (integrator)
+  std::size_t blocks = 64;      // loops of per-point stiffness blocks (an eigenvalue problem over
+                                // the point's bonds each: the breakage update's stability check)
 };
 
 // Process-wide thresholds; tests lower them to exercise the threaded paths on small lattices.
@@ -19,5 +21,6 @@ inline ParallelThresholds& parallel_thresholds() {
 
 inline bool thread_bond_loop(std::size_t bonds) { return bonds >= parallel_thresholds().bonds; }
 inline bool thread_point_loop(std::size_t points) { return points >= parallel_thresholds().points; }
+inline bool thread_block_loop(std::size_t blocks) { return blocks >= parallel_thresholds().blocks; }
 
 }  // namespace mppm::solver

@@ -124,7 +124,7 @@ void expect_same_results(const std::string& reference, const std::string& run) {
 
 SolveResult restart_run(const Case& c, const std::string& dir, int threads = 2) {
   const ParallelThresholds saved_thresholds = parallel_thresholds();
-  parallel_thresholds() = ParallelThresholds{1, 1};  // every loop threaded, even on these lattices
+  parallel_thresholds() = ParallelThresholds{1, 1, 1};  // every loop threaded, even on these lattices
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
   SolveResult r;

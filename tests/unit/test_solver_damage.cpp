@@ -122,7 +122,7 @@ TEST(SolverDamage, ShatteredBodyStaysFiniteAndConservesMomentum3d) { check_shatt
 // runs on two threads.
 TEST(SolverDamage, BreakageIsIdenticalOnOneAndTwoThreads) {
   const ParallelThresholds saved = parallel_thresholds();
-  parallel_thresholds() = ParallelThresholds{1, 1};
+  parallel_thresholds() = ParallelThresholds{1, 1, 1};
   omp_set_num_threads(1);
   const ShatterRun one = shatter(2, {24, 24, 1}, 10.0, 100);
   omp_set_num_threads(2);

@@ -126,7 +126,7 @@ TEST(SolverRun, WritesTheRunDirectory) {
 TEST(SolverRun, OneAndTwoThreadsGiveIdenticalFiles) {
   // Every loop threaded, also on this small lattice (see solver/parallel_policy.hpp).
   const ParallelThresholds saved_thresholds = parallel_thresholds();
-  parallel_thresholds() = ParallelThresholds{1, 1};
+  parallel_thresholds() = ParallelThresholds{1, 1, 1};
   BarCase c = bar({40, 12, 1}, 3.05);
   c.scene.time.end = 30e-6;
   c.scene.output.interval = 10e-6;

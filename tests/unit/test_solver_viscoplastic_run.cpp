@@ -198,7 +198,7 @@ TEST(SolverViscoplasticRun, RegionLimitsFlowToItsBox) {
 
 TEST(SolverViscoplasticRun, PlasticRunIsBitwiseIdenticalOnOneAndTwoThreads) {
   const ParallelThresholds saved_thresholds = parallel_thresholds();
-  parallel_thresholds() = ParallelThresholds{1, 1};  // every loop threaded, even on this lattice
+  parallel_thresholds() = ParallelThresholds{1, 1, 1};  // every loop threaded, even on this lattice
   CompressionCase c = short_case();
   c.scene.material.viscoplasticity->hardening = -20e6;  // softening: the most sensitive case
   const int saved = omp_get_max_threads();
