@@ -63,6 +63,23 @@ std::ptrdiff_t ExplicitDynamics::tracked_row(std::size_t i) const {
 }
 
 template <class Visit>
+int ExplicitDynamics::for_each_point_in(std::size_t lo, std::size_t hi, Visit&& visit) const {
+  // The tracked points are sorted: one search for the range's first, then a walk along it.
+  std::size_t k = track_all_ ? lo
+                             : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(),
+                                                                         static_cast<std::int32_t>(lo)) -
+                                                        tracked_.begin());
+  int result = 0;
+  for (std::size_t i = lo; i < hi; ++i) {
+    std::ptrdiff_t row = -1;
+    if (track_all_) row = static_cast<std::ptrdiff_t>(i);
+    else if (k < tracked_.size() && static_cast<std::size_t>(tracked_[k]) == i) row = static_cast<std::ptrdiff_t>(k++);
+    result |= visit(i, row);
+  }
+  return result;
+}
+
+template <class Visit>
 int ExplicitDynamics::for_each_point(bool threaded, Visit&& visit) const {
   const std::size_t n = model_.points.owned;
   int result = 0;
@@ -70,18 +87,7 @@ int ExplicitDynamics::for_each_point(bool threaded, Visit&& visit) const {
   {
     const auto threads = static_cast<std::size_t>(omp_get_num_threads());
     const auto thread = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t lo = n * thread / threads, hi = n * (thread + 1) / threads;
-    // The tracked points are sorted: one search for the range's first, then a walk along it.
-    std::size_t k = track_all_ ? lo
-                               : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(),
-                                                                           static_cast<std::int32_t>(lo)) -
-                                                          tracked_.begin());
-    for (std::size_t i = lo; i < hi; ++i) {
-      std::ptrdiff_t row = -1;
-      if (track_all_) row = static_cast<std::ptrdiff_t>(i);
-      else if (k < tracked_.size() && static_cast<std::size_t>(tracked_[k]) == i) row = static_cast<std::ptrdiff_t>(k++);
-      result |= visit(i, row);
-    }
+    result |= for_each_point_in(n * thread / threads, n * (thread + 1) / threads, visit);
   }
   return result;
 }
@@ -118,16 +124,10 @@ void ExplicitDynamics::evaluate_energy() {
   // thread count.
   const auto sums = ordered_point_sums<3>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi,
                                                                                  std::array<double, 3>& acc) {
-    // The tracked points are sorted: one search for the chunk's first, then a walk along it.
-    std::size_t next_tracked =
-        track_all_ ? 0
-                   : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(), static_cast<std::int32_t>(lo)) -
-                                              tracked_.begin());
-    for (std::size_t i = lo; i < hi; ++i) {
+    for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
       // A point that is not tracked has no body force.
-      const bool tracked = track_all_ || (next_tracked < tracked_.size() && static_cast<std::size_t>(tracked_[next_tracked]) == i);
-      const std::size_t row = track_all_ ? i : next_tracked;
-      if (tracked && !track_all_) ++next_tracked;
+      const bool tracked = tracked_at >= 0;
+      const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
       const unsigned fixed = conditions_.prescribed(i);
       double v2 = 0.0, t2 = 0.0;
       for (int c = 0; c < D; ++c) {
@@ -151,7 +151,8 @@ void ExplicitDynamics::evaluate_energy() {
         acc[1] += 0.5 * inertia * p.volume[i] * s2;
         acc[2] += 0.5 * inertia * p.volume[i] * r2;
       }
-    }
+      return 0;
+    });
   });
   const double kinetic = sums[0], rotational = sums[1], terms = sums[2];
   energy_.kinetic_terms = terms;

@@ -141,6 +141,9 @@ class ExplicitDynamics {
   // points per thread (threaded: in parallel); returns the OR of what visit returns.
   template <class Visit>
   int for_each_point(bool threaded, Visit&& visit) const;
+  // The same for the points lo .. hi-1, on the calling thread, in index order.
+  template <class Visit>
+  int for_each_point_in(std::size_t lo, std::size_t hi, Visit&& visit) const;
 
   Model& model_;
   const BoundaryConditions& conditions_;
