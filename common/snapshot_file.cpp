@@ -16,7 +16,11 @@ namespace {
 
 constexpr char kMagic[8] = {'M', 'P', 'P', 'M', 'S', 'N', 'A', 'P'};
 constexpr char kEnd[8] = {'M', 'P', 'P', 'M', 'E', 'N', 'D', '!'};
-constexpr std::uint32_t kVersion = 1;
+// Format 2 (CRC-32) is written; 1 (FNV-1a, runs of mppm before 2026-12-02) is still read.
+constexpr std::uint32_t kVersion = 2;
+RunningChecksum::Kind checksum_kind(std::uint32_t version) {
+  return version == 1 ? RunningChecksum::Kind::fnv1a : RunningChecksum::Kind::crc32;
+}
 
 }  // namespace
 
@@ -52,7 +56,7 @@ std::string write_snapshot_temporary(int dimension, std::int64_t step, double ti
   constexpr std::uint64_t kPointsPerChunk = kSnapshotPointsPerChunk;
   std::vector<double> chunk;
   return write_temporary(path, [&](std::ostream& out) {
-    ChecksummedWriter w(out);
+    ChecksummedWriter w(out, checksum_kind(kVersion));
     w.bytes(kMagic, sizeof kMagic);
     w.value<std::uint32_t>(kVersion);
     w.value<std::uint32_t>(static_cast<std::uint32_t>(dimension));
@@ -88,7 +92,9 @@ Snapshot read_snapshot(const std::string& path) {
   r.bytes(magic, sizeof magic, "the header");
   if (std::memcmp(magic, kMagic, sizeof magic) != 0) throw InputError(path + ": not an mppm snapshot (bad magic bytes)");
   const auto version = r.value<std::uint32_t>("the header");
-  if (version != kVersion) throw InputError(path + ": snapshot format version " + std::to_string(version) + " is not supported (this mppm reads 1)");
+  if (version != 1 && version != 2)
+    throw InputError(path + ": snapshot format version " + std::to_string(version) + " is not supported (this mppm reads 1 and 2)");
+  r.use_checksum(checksum_kind(version));
   Snapshot s;
   s.dimension = static_cast<int>(r.value<std::uint32_t>("the header"));
   if (s.dimension != 2 && s.dimension != 3) throw InputError(path + ": corrupted snapshot (dimension " + std::to_string(s.dimension) + ")");

@@ -2,11 +2,12 @@
 // postprocessor and restart (readers). One file per snapshot, written atomically.
 //
 // Layout (little-endian):
-//   "MPPMSNAP" (8 bytes), u32 format version (1), u32 dimension,
+//   "MPPMSNAP" (8 bytes), u32 format version (2), u32 dimension,
 //   i64 step, f64 time, u64 point count, u32 field count,
 //   per field: u32 name length, name bytes, u32 components, f64 data[points*components]
 //              (point-major: value of point i, component c at [i*components + c]),
-//   u64 FNV-1a checksum of every preceding byte, "MPPMEND!" (8 bytes).
+//   u64 checksum of every preceding byte, "MPPMEND!" (8 bytes): zlib's CRC-32 in format 2, FNV-1a 64
+//   in format 1 (written before 2026-12-02; still read).
 // A truncated or corrupted file fails the checksum or the end marker and is reported.
 #pragma once
 #include <cstdint>

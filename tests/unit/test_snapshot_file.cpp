@@ -1,9 +1,14 @@
 // Snapshot files: round trip, and detection of truncation and corruption.
 #include <gtest/gtest.h>
 
+#include <zlib.h>
+
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
+#include "common/checksummed_binary.hpp"
 #include "common/input_error.hpp"
 #include "common/snapshot_file.hpp"
 
@@ -71,6 +76,79 @@ TEST(SnapshotFile, TruncationAndCorruptionAreReported) {
   }
   EXPECT_THROW(read_snapshot(path), InputError);
   EXPECT_THROW(read_snapshot((temp_dir() / "missing.snap").string()), InputError);
+}
+
+namespace {
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream b;
+  b << in.rdbuf();
+  return b.str();
+}
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+}
+std::uint32_t stored_version(const std::string& bytes) {
+  std::uint32_t v;
+  std::memcpy(&v, bytes.data() + 8, sizeof v);
+  return v;
+}
+}  // namespace
+
+// Format 2 as snapshot_file.hpp documents it: the u64 before the end marker is zlib's CRC-32 of
+// every byte before it, computed here independently of the writer.
+TEST(SnapshotFile, FormatTwoEndsWithTheCrc32OfItsBytes) {
+  const auto path = (temp_dir() / "crc.snap").string();
+  write_snapshot(sample(), path);
+  const std::string bytes = file_bytes(path);
+  ASSERT_GT(bytes.size(), 16u);
+  EXPECT_EQ(stored_version(bytes), 2u);
+  const std::size_t body = bytes.size() - 16;
+  std::uint64_t stored;
+  std::memcpy(&stored, bytes.data() + body, sizeof stored);
+  const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(body));
+  EXPECT_EQ(stored, static_cast<std::uint64_t>(crc));
+  EXPECT_EQ(bytes.substr(body + 8), "MPPMEND!");
+}
+
+// Runs written before format 2 (FNV-1a 64 checksum, version 1) are still read, and checked.
+TEST(SnapshotFile, FormatOneIsStillReadAndChecked) {
+  const auto path = (temp_dir() / "v1.snap").string();
+  write_snapshot(sample(), path);
+  std::string bytes = file_bytes(path);
+  const std::size_t body = bytes.size() - 16;
+  const std::uint32_t one = 1;
+  std::memcpy(bytes.data() + 8, &one, sizeof one);
+  Fnv1a fnv;
+  fnv.add(bytes.data(), body);
+  std::memcpy(bytes.data() + body, &fnv.h, sizeof fnv.h);
+  write_bytes(path, bytes);
+  const Snapshot r = read_snapshot(path);
+  EXPECT_EQ(r.step, 42);
+  EXPECT_EQ(r.find("displacement")->data, sample().fields[0].data);
+  // The same file with a CRC-32 where format 1 has its FNV-1a: refused.
+  const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(body));
+  const auto crc64 = static_cast<std::uint64_t>(crc);
+  std::memcpy(bytes.data() + body, &crc64, sizeof crc64);
+  write_bytes(path, bytes);
+  EXPECT_THROW(read_snapshot(path), InputError);
+}
+
+TEST(SnapshotFile, UnknownFormatVersionIsNamed) {
+  const auto path = (temp_dir() / "v3.snap").string();
+  write_snapshot(sample(), path);
+  std::string bytes = file_bytes(path);
+  const std::uint32_t three = 3;
+  std::memcpy(bytes.data() + 8, &three, sizeof three);
+  write_bytes(path, bytes);
+  try {
+    read_snapshot(path);
+    FAIL() << "a snapshot of format version 3 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("format version 3 is not supported (this mppm reads 1 and 2)"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SnapshotFile, RefusesInconsistentFields) {
