@@ -6,6 +6,7 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -114,18 +115,34 @@ void record_precut_family_volumes(PointData& p, const BondFamilies& f, const std
   }
 }
 
-double family_volume_of(const PointData& p, const BondFamilies& f, std::size_t i) {
+namespace {
+
+// The family volume recorded for a point whose list a pre-crack cut (none for the others).
+std::optional<double> precut_family_volume(const PointData& p, std::size_t i) {
   const auto it = std::lower_bound(p.precut_points.begin(), p.precut_points.end(), i);
   if (it != p.precut_points.end() && *it == i) return p.precut_family_volume[static_cast<std::size_t>(it - p.precut_points.begin())];
+  return std::nullopt;
+}
+
+}  // namespace
+
+double family_volume_of(const PointData& p, const BondFamilies& f, std::size_t i) {
+  if (const auto recorded = precut_family_volume(p, i)) return *recorded;
   return list_volume(p, f, i);
 }
 
 double point_damage(const PointData& p, const BondFamilies& f, std::size_t i) {
-  const double family = family_volume_of(p, f, i);
+  // One walk over the list for the acting volume and the list's whole volume (the family volume
+  // of a point that no pre-crack cut, the same sum list_volume makes): every snapshot with the
+  // damage field visits every bond, and one walk instead of two halves that.
+  double acting = 0.0, listed = 0.0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    const double v = p.volume[f.neighbor_of(b)];
+    listed += v;
+    if (f.acting(b)) acting += v;
+  }
+  const double family = precut_family_volume(p, i).value_or(listed);
   if (!(family > 0.0)) return 0.0;
-  double acting = 0.0;
-  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-    if (f.acting(b)) acting += p.volume[static_cast<std::size_t>(f.neighbor[b])];
   return 1.0 - acting / family;
 }
 
