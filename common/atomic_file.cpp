@@ -23,32 +23,56 @@ std::string temporary_name_for(const std::string& path) {
   return (p.parent_path() / name).string();
 }
 
+namespace {
+
+[[noreturn]] void fail_and_remove(const std::string& temporary, const std::string& path, const std::string& why) {
+  std::error_code ignored;
+  std::filesystem::remove(temporary, ignored);
+  throw InputError(path + ": cannot write the file (" + why + ")");
+}
+
+// The rename is durable only once the directory entry is on disk. Best effort: some file
+// systems cannot fsync a directory, and the files themselves are already complete either way.
+void sync_directory(const std::string& directory) {
+  const int dir_fd = ::open(directory.empty() ? "." : directory.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dir_fd >= 0) {
+    (void)::fsync(dir_fd);
+    ::close(dir_fd);
+  }
+}
+
+std::string parent_of(const std::string& path) { return std::filesystem::path(path).parent_path().string(); }
+
+}  // namespace
+
 void commit_temporary(const std::string& temporary, const std::string& path) {
   // fsync the data before the rename so a crash never exposes an empty file under `path`.
   const int fd = ::open(temporary.c_str(), O_RDONLY);
   if (fd < 0 || ::fsync(fd) != 0) {
     const std::string why = std::strerror(errno);
     if (fd >= 0) ::close(fd);
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw InputError(path + ": cannot write the file (" + why + ")");
+    fail_and_remove(temporary, path, why);
   }
   ::close(fd);
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw InputError(path + ": cannot write the file (" + why + ")");
+  rename_temporary(temporary, path);
+  sync_directory(parent_of(path));
+}
+
+void rename_temporary(const std::string& temporary, const std::string& path) {
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail_and_remove(temporary, path, std::strerror(errno));
+}
+
+void make_durable(const std::vector<std::string>& paths, const std::string& directory) {
+  for (const std::string& path : paths) {
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd < 0 || ::fsync(fd) != 0) {
+      const std::string why = std::strerror(errno);
+      if (fd >= 0) ::close(fd);
+      throw InputError(path + ": cannot write the file to disk (" + why + ")");
+    }
+    ::close(fd);
   }
-  // The rename is durable only once the directory entry is on disk. Best effort: some file
-  // systems cannot fsync a directory, and the file itself is already complete either way.
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  const std::string directory = parent.empty() ? std::string(1, '.') : parent.string();  // (-Wrestrict, see above)
-  const int dir_fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY);
-  if (dir_fd >= 0) {
-    (void)::fsync(dir_fd);
-    ::close(dir_fd);
-  }
+  if (!paths.empty()) sync_directory(directory);
 }
 
 std::string write_temporary(const std::string& path, const std::function<void(std::ostream&)>& write) {

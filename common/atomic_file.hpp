@@ -4,6 +4,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace mppm {
 
@@ -22,5 +23,16 @@ std::string temporary_name_for(const std::string& path);
 
 // Renames `temporary` onto `path` after fsync; throws InputError on failure.
 void commit_temporary(const std::string& temporary, const std::string& path);
+
+// Renames `temporary` onto `path` without waiting for the disk: the file is complete under its
+// name for every process at once (the rename is atomic), and durable after make_durable. Throws
+// InputError on failure, with the temporary removed.
+void rename_temporary(const std::string& temporary, const std::string& path);
+
+// fsyncs the files (complete under their names: rename_temporary) and then their directory
+// `directory`, so that after a crash of the machine they are on disk under their names. One
+// journal commit serves them all: a batch of snapshots costs about what one did. Throws
+// InputError naming the first file that fails.
+void make_durable(const std::vector<std::string>& paths, const std::string& directory);
 
 }  // namespace mppm

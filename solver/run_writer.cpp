@@ -103,34 +103,21 @@ void RunWriter::write_reference(const PointData& p) {
   mppm::write_snapshot(p.dimension, 0, 0.0, p.owned, fields, path(run_layout::reference));
 }
 
-RunWriter::~RunWriter() {
-  if (commit_thread_.joinable()) commit_thread_.join();
-}
-
 void RunWriter::write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                                const std::vector<SnapshotFieldSource>& fields) {
-  wait_for_snapshot();
   const std::string file = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(step);
   const std::string target = path(file);
-  const std::string temporary = mppm::write_snapshot_temporary(dimension, step, time, point_count, fields, target);
-  committing_ = SnapshotRecord{file, step, time};
-  // commit_temporary removes the temporary when it fails; the error waits for wait_for_snapshot.
-  commit_thread_ = std::thread([this, temporary, target] {
-    try {
-      commit_temporary(temporary, target);
-    } catch (...) {
-      commit_error_ = std::current_exception();
-    }
-  });
+  rename_temporary(mppm::write_snapshot_temporary(dimension, step, time, point_count, fields, target), target);
+  not_yet_durable_.push_back(SnapshotRecord{file, step, time});
 }
 
-void RunWriter::wait_for_snapshot() {
-  if (commit_thread_.joinable()) commit_thread_.join();
-  if (!committing_) return;
-  const SnapshotRecord record = *committing_;
-  committing_.reset();
-  if (commit_error_) std::rethrow_exception(std::exchange(commit_error_, nullptr));
-  snapshots_.push_back(record);
+void RunWriter::make_snapshots_durable() {
+  if (not_yet_durable_.empty()) return;
+  std::vector<std::string> files;
+  for (const SnapshotRecord& r : not_yet_durable_) files.push_back(path(r.file));
+  make_durable(files, path(run_layout::snapshot_dir));
+  snapshots_.insert(snapshots_.end(), not_yet_durable_.begin(), not_yet_durable_.end());
+  not_yet_durable_.clear();
 }
 
 void RunWriter::set_load_header(const std::vector<std::string>& columns) {
@@ -148,7 +135,7 @@ void RunWriter::add_energy_row(const std::vector<double>& values) { energy_csv_ 
 void RunWriter::log(const std::string& line) { log_ += line + '\n'; }
 
 void RunWriter::flush(const RunInfo& info) {
-  wait_for_snapshot();
+  make_snapshots_durable();
   write_file_atomically(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
   write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
   write_file_atomically(path(run_layout::log), [&](std::ostream& out) { out << log_; });
