@@ -71,7 +71,8 @@ def instruction_section(rows):
     out = ["## The same costs as instructions (callgrind)\n",
            f"Instructions executed inside the time step (ExplicitDynamics::step) per bond update, 1 thread, {steps} "
            "steps of the plate before any bond breaks (count_instructions.py): the same for every run of the same "
-           "binary, so these ratios do not move with the machine's load as the wall times above do.\n",
+           "binary, so these ratios do not move with the machine's load as the wall times above do. Counted on a "
+           "build for x86-64-v3 (build-callgrind/): valgrind 3.19 cannot run the AVX-512 of the timed build.\n",
            "| effects | instructions per bond update | relative to none | relative to micropolar |",
            "|---|---|---|---|"]
     for r in rows:
