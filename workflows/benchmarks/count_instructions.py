@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Instructions per bond update of each plate effect set, counted by callgrind.
 
-usage: count_instructions.py OUT.csv --bin BIN --work DIR --scene plate.yaml [--steps 40]
+usage: count_instructions.py OUT.csv --bin BIN [--solve-bin BIN] --work DIR --scene plate.yaml [--steps 40]
 
 Wall times on a shared 2-core machine move by 10-40 % from run to run; an instruction count
 does not (it is the same for every run of the same binary, to a few parts in 1e4 from the
@@ -40,7 +40,7 @@ def count(args, points, effects, sets, run_dir):
     dt = 0.025e-6  # set below, so that the step count is exact
     end = args.steps * dt
     command = ["valgrind", "--tool=callgrind", f"--toggle-collect={TIME_STEP}", "--callgrind-out-file=/dev/null",
-               f"--log-file={log}", os.path.join(args.bin, "mppm-solve"), args.scene, "--points", points,
+               f"--log-file={log}", os.path.join(args.solve_bin or args.bin, "mppm-solve"), args.scene, "--points", points,
                "-o", run_dir, "--force", "--quiet", "--threads", "1",
                "--set", "effects=[" + ", ".join(effects) + "]", "--set", f"time.step={dt!r}", "--set", f"time.end={end!r}",
                "--set", f"output.interval={end!r}"]
@@ -65,7 +65,9 @@ def count(args, points, effects, sets, run_dir):
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv")
-    parser.add_argument("--bin", required=True)
+    parser.add_argument("--bin", required=True, help="where mppm-preprocess (and mppm-solve) are")
+    parser.add_argument("--solve-bin", help="where the mppm-solve to count is, if not in --bin (the Makefile's "
+                        "x86-64-v3 build: valgrind 3.19 cannot run AVX-512)")
     parser.add_argument("--work", required=True)
     parser.add_argument("--scene", required=True, help="the plate scene (workflows/benchmarks/scenes/plate.yaml)")
     parser.add_argument("--steps", type=int, default=40)
