@@ -11,6 +11,7 @@ its measured value with "met" or "NOT met". Exit codes: 0 written; 2 bad input.
 
 import argparse
 import csv
+import datetime
 import os
 import sys
 
@@ -92,6 +93,24 @@ def instruction_section(rows):
     return out
 
 
+# The two codes are compared only when measured back to back (the Makefile reruns LAMMPS whenever
+# it reruns mppm); CSVs written further apart than one make of the benchmarks are said to be.
+SIDE_BY_SIDE_SECONDS = 3 * 3600
+
+
+def measurement_times(mppm_csv, lammps_csv):
+    """When each CSV was written, and whether the LAMMPS comparison is side by side."""
+    if not os.path.exists(lammps_csv):
+        return "LAMMPS was not measured (no lammps.csv).\n"
+    stamp = lambda path: datetime.datetime.fromtimestamp(os.path.getmtime(path), datetime.timezone.utc)
+    mppm_time, lammps_time = stamp(mppm_csv), stamp(lammps_csv)
+    line = (f"mppm measured up to {mppm_time:%Y-%m-%d %H:%M} UTC, LAMMPS up to {lammps_time:%Y-%m-%d %H:%M} UTC")
+    if abs((mppm_time - lammps_time).total_seconds()) > SIDE_BY_SIDE_SECONDS:
+        return line + (": **not measured in the same run**, so the ratios against LAMMPS below may "
+                       "mix two states of the machine (run `make` after removing out/).\n")
+    return line + ", in the same run.\n"
+
+
 def verdict(ok):
     return "met" if ok else "**NOT met**"
 
@@ -118,6 +137,7 @@ def main(argv):
                "`wall_seconds` is the time loop only (LAMMPS: its `Loop time`), `run_seconds` the whole "
                "`mppm-solve` run; a bond update is one bond of one point in one step (bonds counted "
                "from both ends, as LAMMPS counts them).\n")
+    out.append(measurement_times(args.mppm, args.lammps))
 
     out.append("## Every run\n")
     out.append("Each row is the fastest of `repeats` runs (the thread or rank counts of a case taking "
