@@ -8,6 +8,35 @@
 include(CheckCXXCompilerFlag)
 include(CheckCXXSourceRuns)
 
+# The processor features of each level "auto" tries, highest first (names of GCC's
+# __builtin_cpu_supports).
+set(MPPM_AUTO_LEVELS x86-64-v4 x86-64-v3)
+set(MPPM_FEATURES_x86-64-v3 avx2 fma bmi2)
+set(MPPM_FEATURES_x86-64-v4 ${MPPM_FEATURES_x86-64-v3} avx512f avx512bw avx512cd avx512dq avx512vl)
+
+# mppm_auto_level(OUT): the highest level of MPPM_AUTO_LEVELS that the compiler accepts and this
+# machine's processor runs (asked by a program built without the flag), or "" for none.
+function(mppm_auto_level out)
+  foreach(level IN LISTS MPPM_AUTO_LEVELS)
+    check_cxx_compiler_flag("-march=${level}" MPPM_COMPILER_HAS_MARCH_${level})
+    if(NOT MPPM_COMPILER_HAS_MARCH_${level})
+      continue()
+    endif()
+    set(checks ${MPPM_FEATURES_${level}})
+    list(TRANSFORM checks REPLACE "(.+)" "__builtin_cpu_supports(\"\\1\")")
+    list(JOIN checks " && " condition)
+    string(MAKE_C_IDENTIFIER "${level}" id)
+    string(TOUPPER "${id}" id)
+    check_cxx_source_runs("int main() { __builtin_cpu_init(); return ${condition} ? 0 : 1; }"
+                          MPPM_MACHINE_RUNS_${id})
+    if(MPPM_MACHINE_RUNS_${id})
+      set(${out} "${level}" PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  set(${out} "" PARENT_SCOPE)
+endfunction()
+
 function(mppm_instruction_set_flags out)
   if(MPPM_ARCH STREQUAL "default" OR MPPM_ARCH STREQUAL "")
     message(STATUS "mppm instruction set: compiler default (MPPM_ARCH=default)")
@@ -15,33 +44,11 @@ function(mppm_instruction_set_flags out)
     return()
   endif()
   if(MPPM_ARCH STREQUAL "auto")
-    # The processor must run what the flag allows: ask it (programs built without the flag).
-    check_cxx_source_runs([=[
-      int main() {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-               __builtin_cpu_supports("bmi2") ? 0 : 1;
-      }]=] MPPM_MACHINE_RUNS_X86_64_V3)
-    check_cxx_source_runs([=[
-      int main() {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-               __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("avx512f") &&
-               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512cd") &&
-               __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") ? 0 : 1;
-      }]=] MPPM_MACHINE_RUNS_X86_64_V4)
-    check_cxx_compiler_flag("-march=x86-64-v4" MPPM_COMPILER_HAS_MARCH_x86-64-v4)
-    check_cxx_compiler_flag("-march=x86-64-v3" MPPM_COMPILER_HAS_MARCH_x86-64-v3)
-    if(MPPM_MACHINE_RUNS_X86_64_V4 AND MPPM_COMPILER_HAS_MARCH_x86-64-v4)
-      set(candidate "x86-64-v4")
-    elseif(MPPM_MACHINE_RUNS_X86_64_V3 AND MPPM_COMPILER_HAS_MARCH_x86-64-v3)
-      set(candidate "x86-64-v3")
-    elseif(NOT MPPM_COMPILER_HAS_MARCH_x86-64-v3)
-      message(STATUS "mppm instruction set: compiler default (the compiler does not accept -march=x86-64-v3)")
-      set(${out} "" PARENT_SCOPE)
-      return()
-    else()
-      message(STATUS "mppm instruction set: compiler default (this machine has no AVX2/FMA/BMI2)")
+    mppm_auto_level(candidate)
+    if(NOT candidate)
+      list(JOIN MPPM_AUTO_LEVELS " nor " levels)
+      message(STATUS "mppm instruction set: compiler default (neither ${levels} is both accepted by "
+                     "the compiler and run by this machine's processor)")
       set(${out} "" PARENT_SCOPE)
       return()
     endif()
