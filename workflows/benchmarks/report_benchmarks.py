@@ -102,8 +102,8 @@ def measurement_times(mppm_csv, lammps_csv):
     """When each CSV was written, and whether the LAMMPS comparison is side by side."""
     if not os.path.exists(lammps_csv):
         return "LAMMPS was not measured (no lammps.csv).\n"
-    stamp = lambda path: datetime.datetime.fromtimestamp(os.path.getmtime(path), datetime.timezone.utc)
-    mppm_time, lammps_time = stamp(mppm_csv), stamp(lammps_csv)
+    mppm_time, lammps_time = (datetime.datetime.fromtimestamp(os.path.getmtime(path), datetime.timezone.utc)
+                              for path in (mppm_csv, lammps_csv))
     line = (f"mppm measured up to {mppm_time:%Y-%m-%d %H:%M} UTC, LAMMPS up to {lammps_time:%Y-%m-%d %H:%M} UTC")
     if abs((mppm_time - lammps_time).total_seconds()) > SIDE_BY_SIDE_SECONDS:
         return line + (": **not measured in the same run**, so the ratios against LAMMPS below may "

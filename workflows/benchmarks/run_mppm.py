@@ -201,26 +201,22 @@ def main(argv):
     # made side by side, so its repeats are spread over the plate runs, one after each plate case:
     # back to back they took a minute, and one slow phase of the VM could hold all of them (12.1-12.6 s
     # in five runs in a row, 9.1-9.4 s before and after).
-    crack_runs = []
-    if args.crack_scene:
+    plate_cases = ([(name, effects, [], None) for name, effects in PLATE_SETS.items()] +
+                   [(name, effects, sets, "micropolar") for name, (effects, sets) in INACTIVE_SETS.items()] +
+                   [(name, effects, sets, None) for name, (effects, sets) in REGION_SETS.items()])
+    crack_repeats = args.repeats if args.crack_scene else 0
+    if crack_repeats:
         crack_points = os.path.join(args.work, "crack-branching", "points.vtp")
         preprocess(args, args.crack_scene, crack_points, [])
         crack_threads = max(args.threads)
         crack_dir = os.path.join(args.work, "crack-branching", f"base-{crack_threads}t")
-
-    def crack_run():
-        if args.crack_scene and len(crack_runs) < args.repeats:
+    crack_runs = []
+    for k in range(max(len(plate_cases), crack_repeats)):
+        if k < len(plate_cases):
+            timed(*plate_cases[k])
+        if k < crack_repeats:
             crack_runs.append(solve(args, args.crack_scene, crack_points, crack_dir, ["micropolar", "damage"],
                                     crack_threads, [f"time.end={args.crack_end}"]))
-
-    plate_cases = ([(name, effects, [], None) for name, effects in PLATE_SETS.items()] +
-                   [(name, effects, sets, "micropolar") for name, (effects, sets) in INACTIVE_SETS.items()] +
-                   [(name, effects, sets, None) for name, (effects, sets) in REGION_SETS.items()])
-    for name, effects, sets, check_against in plate_cases:
-        timed(name, effects, sets, check_against)
-        crack_run()
-    while args.crack_scene and len(crack_runs) < args.repeats:
-        crack_run()
     if crack_runs:
         info, peak = min(crack_runs, key=lambda run: run[0]["wall_seconds"])  # the target is the whole run's
         rows.append(row("crack-branching-base", "micropolar+damage", crack_threads, info, peak,
