@@ -1,4 +1,4 @@
-# The accuracy-cost study (issue 7, workflows/accuracy-cost): its quick form runs mppm-accuracy
+# The accuracy-cost study (workflows/accuracy-cost): its quick form runs mppm-accuracy
 # over small sweeps (about 10 s) and checks the trends: the error falls with the spacing at a
 # fixed horizon factor at the expected rate, the cost grows like dx^-(d+1). It starts from
 # scratch every time (`clean`). The verification problems it shares with the verification tests

@@ -1,4 +1,4 @@
-# Tests of solver/plasticity: the micro-polar Drucker-Prager Perzyna return map (issue 5).
+# Tests of solver/plasticity: the micro-polar Drucker-Prager Perzyna return map.
 find_package(OpenMP REQUIRED COMPONENTS CXX)
 set(MPPM_TEST_LIBS mppm_plasticity OpenMP::OpenMP_CXX GTest::gmock)
 mppm_add_gtest(test_plasticity unit

@@ -1,4 +1,4 @@
-# Tests of the preprocessor (issue 2): lattice and inside test, boundary layers, pre-cracks,
+# Tests of the preprocessor: lattice and inside test, boundary layers, pre-cracks,
 # the points file, the command line (bad input -> exit code 2) and an independent read-back
 # of POINTS.vtp with meshio's VTK XML decoder.
 set(MPPM_TEST_LIBS mppm_preprocess mppm_common OpenMP::OpenMP_CXX)

@@ -1,4 +1,4 @@
-# Reliability (issue 10): the fuzz corpus and crash reproducers replayed through the fuzzers'
+# Reliability: the fuzz corpus and crash reproducers replayed through the fuzzers'
 # entry points in the normal build, and the stages' exit code 2 on malformed input files.
 set(MPPM_TEST_LIBS mppm_common)
 mppm_add_gtest(test_reliability_corpus unit
@@ -50,7 +50,7 @@ mppm_add_gtest(test_output_safety unit unit/test_output_safety.cpp)
 set(MPPM_TEST_LIBS mppm_common VTK::IOXML VTK::CommonDataModel VTK::CommonCore)
 mppm_add_gtest(test_vtk_xml_reader unit unit/test_vtk_xml_reader.cpp)
 set(MPPM_TEST_LIBS mppm_common)
-# Checkpoint and restart (issue 10): a stopped run continued with restart() / mppm-solve --restart
+# Checkpoint and restart: a stopped run continued with restart() / mppm-solve --restart
 # gives the bytes of the uninterrupted run (elastic, damage, viscoplastic; after SIGTERM and
 # kill -9 of the real executable), a failed checkpoint write keeps the previous checkpoint, and a
 # corrupted checkpoint, a changed scene, points or tables are refused.

@@ -1,4 +1,4 @@
-# Tests of the solver (issue 3): unit tests of the model and driver, verification against
+# Tests of the solver: unit tests of the model and driver, verification against
 # analytic solutions.
 set(MPPM_TEST_LIBS mppm_solver)
 mppm_add_gtest(test_solver_unit unit

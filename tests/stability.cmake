@@ -1,4 +1,4 @@
-# The stability suite (issue 8, tests/stability/README.md). One executable; every test runs in
+# The stability suite (tests/stability/README.md). One executable; every test runs in
 # its short form in the default suite (label `stability`), and the cases with a long form run
 # again with MPPM_STABILITY_FORM=long under the labels `stability;slow` (10^5 steps). Each test
 # writes its measured margin to ${CMAKE_BINARY_DIR}/stability/<form>/<case>.json, which

@@ -1,4 +1,4 @@
-# libFuzzer targets for the untrusted-input readers of common/ (issue 10): fuzz_scene,
+# libFuzzer targets for the untrusted-input readers of common/: fuzz_scene,
 # fuzz_quantity, fuzz_snapshot, fuzz_point_cloud. Built only with -DMPPM_FUZZ=ON and clang;
 # `make -C workflows fuzz` configures build-fuzz that way and runs them (README.md here).
 option(MPPM_FUZZ "Build the libFuzzer targets (needs clang and libclang-rt-14-dev)" OFF)

@@ -1,4 +1,4 @@
-// Shared machinery of the stability suite (issue 8): the short / long form switch, the scenes
+// Shared machinery of the stability suite: the short / long form switch, the scenes
 // and the points made from them, reading a run directory back (run_info.json, energy.csv,
 // log.txt), running the stage executables for exit-code cases, and the margin records that
 // `make -C workflows stability-report` renders into tests/stability/README.md.

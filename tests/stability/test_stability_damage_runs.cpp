@@ -4,7 +4,7 @@
 //    with its tractions ramped to 30 MPa over 0.5 us instead of 8 MPa over 6.25 us: 3.75 x the
 //    stress at 46 x the rate. Hazard: the load arrives as a shock; the crack runs, branches and
 //    the zones beyond the no-fail strips shatter; points left with lopsided families make the step
-//    unstable, a NaN or energy from nothing follows. Expected (issue 8): every written value
+//    unstable, a NaN or energy from nothing follows. Expected: every written value
 //    finite, the energy balance within 0.5 %, and either completion or a stop with exit code 3 and
 //    a clear reason; measured: it completes (see the record and README.md for why), so completion
 //    is what the test requires. Short form: the plate at dx = 1 mm for 10 us; long form: the
@@ -12,7 +12,7 @@
 // 2. The 3-D notched CAD specimen (geometry/notched_specimen_3d.step, scenes/notched_impact_3d.yaml)
 //    under a Charpy-like impact with damage. Hazard: the same in 3-D, where a point needs 4
 //    non-coplanar bonds and a shattered zone under the striker leaves many nearly singular shape
-//    tensors. Expected (issue 8): finite, balance within 0.5 %, detached points reported.
+//    tensors. Expected: finite, balance within 0.5 %, detached points reported.
 //    Measured: it completes with the default energy check; breaking bonds puts 0.012 % of the
 //    work into the model in the short form, 0.13 % in the long one (28 % until the damage code
 //    detached the points whose stored energy rises by more than half when they lose bonds; 0.54 %

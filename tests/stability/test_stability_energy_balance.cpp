@@ -3,7 +3,7 @@
 // energy gradient, work of a prescribed layer or a traction integrated inconsistently, or
 // round-off accumulating over 10^5 steps shows up as energy created or lost.
 // Expected: |kinetic + rotational + elastic + stabilization - external work - initial| stays
-// below 0.5 % of the energy scale at every row of energy.csv (the tolerance), over 10^4
+// below 0.5 % of the energy scale at every row of energy.csv (the suite's tolerance), over 10^4
 // steps (short form) and 10^5 steps (long form), with the solver's own guards on.
 #include <gtest/gtest.h>
 

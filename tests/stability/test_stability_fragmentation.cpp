@@ -10,7 +10,7 @@
 // `detached` field, all three the same number), and a detached point that lost every bond moves
 // ballistically (its velocity does not change once the pulse is over); the linear momentum equals the impulse of the
 // traction pulse at every snapshot after the pulse (no other external load acts: the body is
-// free); the energy balance, with the fracture dissipation in it, stays within the 0.5 %,
+// free); the energy balance, with the fracture dissipation in it, stays within the suite's 0.5 %,
 // and the balance_error column is what the columns give.
 // Breaking bonds must take energy out of the model: the fracture dissipation must not decrease
 // (it did, by up to 1.9 x the work, until the damage code detached the points whose stored energy

@@ -144,7 +144,7 @@ TEST(StabilityGuards, LoadStartingLateIsNoFalseAlarm) {
   std::printf("load starting at steps 56-65: %d of %d runs stopped, worst balance error %.3g\n%s\n", stopped, runs, worst,
               stops.c_str());
   EXPECT_EQ(stopped, 0) << stops;
-  // An elastic run: the balance is round-off (the 0.5 % as the limit).
+  // An elastic run: the balance is round-off (the suite's 0.5 % as the limit).
   EXPECT_LT(worst, 5e-3);
   record_margin({"07c-late-load-no-false-alarm", "a load starting after the energy check's first step (steps 56-65)",
                  "no false alarm: every run completes, balance error at round-off",

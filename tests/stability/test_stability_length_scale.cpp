@@ -41,7 +41,7 @@ TEST(StabilityLengthScale, AutoStepStaysStableAndTheLimitingModeTurnsRotational)
   // Short form: 3000 steps per length. At 0.8 of the critical step the highest mode turns by
   // omega dt = 1.6 per step (a period of ~4 steps), so this is ~800 of its periods, and an
   // unstable mode growing by even 1 % per step would grow 1e13-fold from its round-off seed.
-  // Long form: 10^5 steps, the issue's length.
+  // Long form: 10^5 steps, the suite's long form.
   const std::int64_t steps = steps_for_form(3000, 100000);
   const std::vector<double> lengths{20e-3, 5e-3, 1e-3, 0.2e-3, 0.05e-3};
   std::vector<LengthScaleRun> runs;
@@ -66,7 +66,7 @@ TEST(StabilityLengthScale, AutoStepStaysStableAndTheLimitingModeTurnsRotational)
                 static_cast<long long>(r.steps), r.worst_balance_error, r.max_total_energy, r.final_external_work,
                 r.driver.c_str());
     // Energy bounded: the ringing block never holds more than the pulse's work (plus the
-    // balance tolerance of the issue, 0.5 %).
+    // balance tolerance of the suite, 0.5 %).
     const double energy_ratio = r.max_total_energy / r.final_external_work;
     const bool pass = r.status == "completed" && r.steps == steps && r.all_finite && r.worst_balance_error < 5e-3 &&
                       energy_ratio < 1.005;

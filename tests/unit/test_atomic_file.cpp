@@ -1,4 +1,4 @@
-// Write-failure safety of common/atomic_file (issue 10): a write that fails, for whatever
+// Write-failure safety of common/atomic_file: a write that fails, for whatever
 // reason, throws an InputError naming the file, leaves the previous complete file byte for byte
 // and leaves no temporary behind. The OS failure is real: RLIMIT_FSIZE makes write(2) fail with
 // EFBIG exactly as a full disk fails with ENOSPC, also for root (a chmod-500 directory does not

@@ -1,4 +1,4 @@
-// Output safety of the stages as the user runs them (issue 10):
+// Output safety of the stages as the user runs them:
 //  - a run or post directory is never overwritten silently: without --force an existing
 //    non-empty one is refused (exit 2, message naming it and --force) and left untouched; with
 //    --force it is replaced as a whole, so no snapshot or frame of the older output survives;

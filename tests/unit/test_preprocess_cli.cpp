@@ -1,4 +1,4 @@
-// mppm-preprocess as users run it: bad input of every kind named in issue 2 ends with exit
+// mppm-preprocess as users run it: bad input of every kind ends with exit
 // code 2 and one message that names the offending file and the problem, never a crash and
 // never an output file; a good scene writes the points file and the report, the same bytes for
 // any number of threads.

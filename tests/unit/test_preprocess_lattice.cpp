@@ -210,7 +210,7 @@ TEST(PreprocessLattice, BoxesGiveExactLatticeCounts) {
 
 TEST(PreprocessLattice, CurvedAndObliqueBodiesWithinOnePercent) {
   // Lattice counts of curved/oblique shapes fluctuate by about sqrt(perimeter/dx) points around
-  // area/dx^2; 1 % is the bound and several times that fluctuation here.
+  // area/dx^2; 1 % is the required bound and several times that fluctuation here.
   const auto disc = preprocess(inline_scene(2, "../geometry/disc_with_hole.geo", "mm", "0.5 mm", 3.0, ""));
   const double disc_expected = std::numbers::pi * (20.0 * 20.0 - 8.0 * 8.0) / 0.25;
   EXPECT_NEAR(static_cast<double>(disc.cloud.size()), disc_expected, 0.01 * disc_expected);

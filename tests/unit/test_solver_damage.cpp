@@ -186,7 +186,7 @@ TEST(SolverDamage, RegionHoldingTheBodyChangesNothing) {
   EXPECT_TRUE(same_bits(with.model.points.rotation, without.model.points.rotation));
 }
 
-// Issue 9: the damage effect on but inactive (an enormous G_cr) moves the body exactly as the
+// The damage effect on but inactive (an enormous G_cr) moves the body exactly as the
 // model without it, at the same time step (the damage step bound is not applied to the run
 // without damage, so the damaged run is given the same step).
 TEST(SolverDamage, EnormousCriticalEnergyGivesTheUndamagedRunBitForBit) {

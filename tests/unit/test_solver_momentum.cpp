@@ -69,7 +69,7 @@ void check_conservation(int dimension, bool micropolar, std::array<int, 3> n, do
   double moved = 0.0;
   for (double f : m.points.force) moved = std::max(moved, std::abs(f));
   ASSERT_GT(moved, 0.0);
-  // Round-off of 300 steps of sums over O(10^3) terms: ~1e-13; the bar is the 1e-10.
+  // Round-off of 300 steps of sums over O(10^3) terms: ~1e-13; the bar is 1e-10, well above it.
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(std::abs(end.linear[c] - start.linear[c]), 1e-10 * start.linear_scale)
         << "D=" << dimension << " micropolar=" << micropolar << " component " << c;

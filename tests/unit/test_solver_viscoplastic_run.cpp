@@ -1,4 +1,4 @@
-// The viscoplasticity effect in mppm-solve (issue 5): an effect that is on with an unreachable
+// The viscoplasticity effect in mppm-solve: an effect that is on with an unreachable
 // cohesion reproduces the run without it bit for bit; plastic runs are bitwise identical on 1
 // and 2 threads; the critical step stays the elastic one; plastic fields are written only with
 // the effect; a bad model name is bad input naming the key.

@@ -124,7 +124,7 @@ Curve run(const Biaxial& b, double strain_rate, double total_strain, int steps) 
   return curve;
 }
 
-// 2 % is the acceptance bound for the limit load. At the material point there is no
+// 2 % is the acceptance bound for the limit load. At the material point there is no
 // discretization error, so the only departures are the viscous overstress (f = eta * ebar',
 // hence an excess load proportional to eta) and what is left of the exponential approach.
 // The test also requires the error to fall tenfold per decade of eta while the viscous

@@ -1,4 +1,4 @@
-// Verification of the viscoplastic solver (issue 5, SPEC section 6) through the real run
+// Verification of the viscoplastic solver (SPEC section 6) through the real run
 // (solve(): scene -> run directory): plane-strain compression of a specimen with tiny eta
 // reaches the analytic Drucker-Prager (plane-strain match: Mohr-Coulomb) limit load, and the
 // energy balance with the plastic dissipation holds.
@@ -60,7 +60,7 @@ TEST(SolverViscoplasticCompression, ReachesTheAnalyticLimitLoadWithinTwoPercent)
   for (const auto& row : r.load) peak = std::max(peak, -top_layer_force(r.c, row));
   std::printf("plane-strain compression: limit %.6g N, final load %.6g N (error %+.3e), peak %.6g N\n", limit,
               final_load, (final_load - limit) / limit, peak);
-  // 2 %: the issue's bound; the departures are the viscous overstress (eta ebar' = 1e3 Pa s *
+  // 2 %: the acceptance bound; the departures are the viscous overstress (eta ebar' = 1e3 Pa s *
   // ~5/s over (1 - sin phi), 3e-3 of the limit), what is left of the exponential approach, and
   // the dynamics (measured: +0.44 %).
   EXPECT_NEAR(final_load, limit, 0.02 * limit);
@@ -110,7 +110,7 @@ TEST(SolverViscoplasticCompression, EnergyBalanceWithPlasticDissipationBelowOneP
               last[7], last[3], last[5], worst);
   // The check is on a run where dissipation dominates: most of the work went into plastic flow.
   EXPECT_GT(last[5], 0.5 * last[7]);
-  EXPECT_LT(worst, 0.01);  // the issue's bound
+  EXPECT_LT(worst, 0.01);  // the acceptance bound
   // The dissipation is the trapezoid rule of the work and the force is linear in the stresses,
   // so the balance holds to round-off (measured 2e-15 at the end of the run); 1e-9 leaves room for
   // round-off and fails for a right-point dissipation or a missing sigma_zz energy (1.5 %).
