@@ -16,6 +16,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import study  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from mppm_outputs import save_figure, write_text  # noqa: E402
+
 TARGETS = (0.01, 0.05, 0.10)
 SWEEP_PARAMETER = {"spacing": "resolution", "horizon_factor": "horizon_factor", "safety": "safety",
                    "stabilization": "stabilization"}
@@ -78,9 +81,17 @@ def write_figure(rows, path):
         ax.axis("off")
     figure.suptitle("mppm accuracy against cost (one process per run)")
     figure.tight_layout()
-    temporary = path + ".tmp.png"
-    figure.savefig(temporary, dpi=110)
-    os.replace(temporary, path)
+    save_figure(figure, path, dpi=110)
+
+
+def section_head(title, text):
+    """A section's title and its opening paragraph."""
+    return [f"## {title}\n", text]
+
+
+def table_head(*columns):
+    """The header row and rule of a Markdown table."""
+    return ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
 
 
 def fmt(value, digits=3):
@@ -100,14 +111,13 @@ def settings(r):
 
 
 def convergence_section(rows, out):
+    out += section_head("Convergence with the spacing at a fixed horizon factor",
+                        "Least-squares slope of log error against log dx over the spacing sweep (1 thread; the runs at 2 "
+                        "threads give the same errors). Expected rates: see README.md (waves: nonlocal dispersion "
+                        "O((k delta)^2) and central differences O((W dt)^2) with dt proportional to dx; cut-off: exact in "
+                        "space, central differences only; layer: faces smeared over a horizon, O(delta / h)).\n")
+    out += table_head("problem", "horizon factor", "resolution", "errors", "observed rate", "expected rate")
     groups = study.spacing_groups(rows)
-    out.append("## Convergence with the spacing at a fixed horizon factor\n")
-    out.append("Least-squares slope of log error against log dx over the spacing sweep (1 thread; the runs at 2 "
-               "threads give the same errors). Expected rates: see README.md (waves: nonlocal dispersion "
-               "O((k delta)^2) and central differences O((W dt)^2) with dt proportional to dx; cut-off: exact in "
-               "space, central differences only; layer: faces smeared over a horizon, O(delta / h)).\n")
-    out.append("| problem | horizon factor | resolution | errors | observed rate | expected rate |")
-    out.append("|---|---|---|---|---|---|")
     for (problem, dimension, threads), group in sorted(groups.items()):
         if threads != 1 or len(group) < 2:
             continue
@@ -120,8 +130,7 @@ def convergence_section(rows, out):
     if cut:
         out.append("\nThe cut-off error is the central-difference error alone: the scheme's frequency "
                    "(2 / dt) asin(W dt / 2) at the run's time step predicts it.\n")
-        out.append("| resolution | time step [us] | W dt | predicted error | measured error |")
-        out.append("|---|---|---|---|---|")
+        out += table_head("resolution", "time step [us]", "W dt", "predicted error", "measured error")
         for r in cut:
             wdt = r["analytic"] * r["time_step_s"]
             predicted = 2 / wdt * math.asin(wdt / 2) - 1
@@ -131,16 +140,16 @@ def convergence_section(rows, out):
 
 
 def cost_section(rows, out):
-    groups = study.spacing_groups(rows)
-    out.append("## Cost of a 2x finer lattice\n")
-    out.append("P wave, whole d-dimensional lattice refined (half a wavelength across the wave, so the points grow "
-               "like dx^-d). Expected: points x 2^d, time steps x 2 (the critical step is proportional to dx at a "
-               "fixed horizon factor), bonds per point unchanged: cost x 2^(d+1) = 8 in 2-D, 16 in 3-D. Wall time is "
-               "the critical-step estimate plus the time integration (the periodic family search of the test "
-               "lattices is left out: mppm-solve uses cell lists).\n")
-    out.append("| lattice | threads | resolution | points x | steps x | bond updates x | wall time x | expected x |")
-    out.append("|---|---|---|---|---|---|---|---|")
+    out += section_head("Cost of a 2x finer lattice",
+                        "P wave, whole d-dimensional lattice refined (half a wavelength across the wave, so the points grow "
+                        "like dx^-d). Expected: points x 2^d, time steps x 2 (the critical step is proportional to dx at a "
+                        "fixed horizon factor), bonds per point unchanged: cost x 2^(d+1) = 8 in 2-D, 16 in 3-D. Wall time is "
+                        "the critical-step estimate plus the time integration (the periodic family search of the test "
+                        "lattices is left out: mppm-solve uses cell lists).\n")
+    out += table_head("lattice", "threads", "resolution", "points x", "steps x", "bond updates x", "wall time x",
+                      "expected x")
     fits = []
+    groups = study.spacing_groups(rows)
     for (problem, dimension, threads), group in sorted(groups.items()):
         if problem != "p_wave":
             continue
@@ -157,9 +166,8 @@ def cost_section(rows, out):
             fits.append((dimension, threads, -study.log_slope(group, "spacing_m", "bond_updates"),
                          -study.log_slope(group, "spacing_m", "wall_seconds"), group))
     out.append("\nFitted over every level of the sweep (least squares in log-log):\n")
-    out.append("| lattice | threads | resolutions | bond updates ~ dx^-p | wall time ~ dx^-p | expected p = d + 1 | "
-               "2x finer costs (wall, from the fit) |")
-    out.append("|---|---|---|---|---|---|---|")
+    out += table_head("lattice", "threads", "resolutions", "bond updates ~ dx^-p", "wall time ~ dx^-p",
+                      "expected p = d + 1", "2x finer costs (wall, from the fit)")
     for dimension, threads, p_updates, p_wall, group in fits:
         out.append(f"| {dimension}-D | {threads} | {', '.join(str(r['resolution']) for r in group)} | {p_updates:.2f} | "
                    f"{p_wall:.2f} | {dimension + 1} | {2 ** p_wall:.1f}x |")
@@ -173,8 +181,8 @@ def cost_section(rows, out):
     if speedups:
         out.append("\nTwo threads against one on the finest lattice of each spacing sweep (wall time ratio; "
                    "throughput in bond updates per second of the time integration):\n")
-        out.append("| problem | resolution | 1 thread [s] | 2 threads [s] | speed-up | M bond updates/s (1 / 2 threads) |")
-        out.append("|---|---|---|---|---|---|")
+        out += table_head("problem", "resolution", "1 thread [s]", "2 threads [s]", "speed-up",
+                          "M bond updates/s (1 / 2 threads)")
         for problem, dimension, two, one in speedups:
             out.append(f"| {study.label(problem, dimension)} | {two['resolution']} | {fmt(one['wall_seconds'])} | "
                        f"{fmt(two['wall_seconds'])} | {one['wall_seconds'] / two['wall_seconds']:.2f} | "
@@ -197,8 +205,7 @@ def sweep_section(rows, out):
             if (r["problem"], r["dimension"]) not in problems:
                 problems.append((r["problem"], r["dimension"]))
         out.append(f"### {title}\n")
-        out.append("| " + " | ".join(["problem"] + [fmt(v) for v in values]) + " |")
-        out.append("|" + "---|" * (len(values) + 1))
+        out += table_head("problem", *[fmt(v) for v in values])
         for problem, dimension in problems:
             cells = []
             for v in values:
@@ -216,11 +223,10 @@ def sweep_section(rows, out):
 
 
 def recommendation_section(rows, out):
-    out.append("## Recommended settings for a target error\n")
-    out.append("The cheapest run (wall time) of the whole study whose error is within the target, per problem; "
-               "its settings are the recommendation, its measured cost the price.\n")
-    out.append("| problem | target | settings | error | wall time [s] | bond updates | peak memory [MiB] |")
-    out.append("|---|---|---|---|---|---|---|")
+    out += section_head("Recommended settings for a target error",
+                        "The cheapest run (wall time) of the whole study whose error is within the target, per problem; "
+                        "its settings are the recommendation, its measured cost the price.\n")
+    out += table_head("problem", "target", "settings", "error", "wall time [s]", "bond updates", "peak memory [MiB]")
     for problem, dimension in panels(study.ok(rows)):
         candidates = [r for r in study.ok(rows) if (r["problem"], r["dimension"]) == (problem, dimension)]
         for target in TARGETS:
@@ -258,10 +264,7 @@ def main():
     cost_section(rows, out)
     sweep_section(rows, out)
     recommendation_section(rows, out)
-    temporary = markdown_path + ".tmp"
-    with open(temporary, "w") as f:
-        f.write("\n".join(out))
-    os.replace(temporary, markdown_path)
+    write_text(markdown_path, "\n".join(out))
 
 
 if __name__ == "__main__":

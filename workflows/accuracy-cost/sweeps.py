@@ -13,6 +13,9 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from mppm_outputs import atomic_open  # noqa: E402
+
 DEFAULT = {"dimension": 2, "horizon-factor": 3.05, "safety": 0.8, "stabilization": 0.1, "threads": 1}
 WAVES = ["p_wave", "shear_rotation_wave", "cutoff_frequency"]
 
@@ -74,16 +77,14 @@ def main():
     header = subprocess.run([program, "--header"], check=True, capture_output=True, text=True).stdout
     environment = dict(os.environ)
     environment.setdefault("OMP_WAIT_POLICY", "passive")
-    temporary = output + ".tmp"
-    with open(temporary, "w") as csv:
+    with atomic_open(output) as csv:
         csv.write(header)
         for index, (problem, sweep, resolution, options) in enumerate(runs, 1):
             command = [program, "--problem", problem, "--sweep", sweep, "--resolution", str(resolution)]
             for key, value in options.items():
                 command += ["--" + key, str(value)]
             done = subprocess.run(command, capture_output=True, text=True, env=environment)
-            if done.returncode != 0:
-                os.remove(temporary)
+            if done.returncode != 0:  # sys.exit leaves the block: the temporary is removed
                 sys.exit(f"sweeps.py: run {index} failed (exit {done.returncode}): {' '.join(command)}\n{done.stderr}")
             row = done.stdout.strip()
             csv.write(row + "\n")
@@ -92,7 +93,6 @@ def main():
             print(f"[{index}/{len(runs)}] {problem} {sweep} resolution {resolution} "
                   f"{' '.join(f'{k}={v}' for k, v in options.items())}: error {cells[10] or '-'}, "
                   f"{cells[19] or '-'} s", flush=True)
-    os.replace(temporary, output)
 
 
 if __name__ == "__main__":

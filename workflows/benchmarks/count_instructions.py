@@ -23,9 +23,10 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 
 import run_mppm
+from mppm_outputs import run_info  # tools/, on the path run_mppm sets
+from script_exit import InputError, RunError, run_main
 
 COLUMNS = ["case", "effects", "steps", "bonds", "instructions", "instructions_per_bond_update"]
 # The function whose calls are counted (demangled name, callgrind wildcard).
@@ -49,16 +50,16 @@ def count(args, points, effects, sets, run_dir):
     print("+ " + " ".join(command), flush=True)
     result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if result.returncode != 0:
-        raise run_mppm.RunError(f"{run_dir}: callgrind run failed with exit code {result.returncode}:\n"
+        raise RunError(f"{run_dir}: callgrind run failed with exit code {result.returncode}:\n"
                                 f"{result.stderr.strip()}")
     with open(log) as stream:
         text = stream.read()
     collected = re.search(r"Collected\s*:\s*(\d+)", text)
     if not collected:
-        raise run_mppm.RunError(f"{log}: callgrind reported no 'Collected' count")
-    info = run_mppm.read_run_info(run_dir)
+        raise RunError(f"{log}: callgrind reported no 'Collected' count")
+    info = run_info(run_dir)
     if info["steps"] != args.steps:
-        raise run_mppm.RunError(f"{run_dir}: ran {info['steps']} steps, expected {args.steps}")
+        raise RunError(f"{run_dir}: ran {info['steps']} steps, expected {args.steps}")
     return int(collected.group(1)), info
 
 
@@ -73,9 +74,9 @@ def main(argv):
     parser.add_argument("--steps", type=int, default=40)
     args = parser.parse_args(argv)
     if args.steps < 1:
-        raise run_mppm.InputError("--steps: expected a positive integer")
+        raise InputError("--steps: expected a positive integer")
     if not shutil.which("valgrind"):
-        raise run_mppm.InputError("valgrind: not found (Debian package 'valgrind'; make installs it)")
+        raise InputError("valgrind: not found (Debian package 'valgrind'; make installs it)")
     points = os.path.join(args.work, "points.vtp")
     run_mppm.preprocess(args, args.scene, points, [])
     cases = dict((name, (effects, [])) for name, effects in run_mppm.PLATE_SETS.items())
@@ -93,11 +94,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except run_mppm.InputError as error:
-        print(f"count_instructions.py: {error}", file=sys.stderr)
-        sys.exit(2)
-    except run_mppm.RunError as error:
-        print(f"count_instructions.py: {error}", file=sys.stderr)
-        sys.exit(1)
+    run_main(main)

@@ -20,9 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-class InputError(Exception):
-    pass
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from mppm_outputs import save_figure, write_text  # noqa: E402
+from script_exit import InputError, run_main  # noqa: E402
 
 
 def read_rows(path, required):
@@ -251,25 +251,16 @@ def main(argv):
     ax.set_xticks([i + 0.4 - width / 2 for i in range(len(labels))])
     ax.set_xticklabels([label.replace("+", "+\n").replace("(", "\n(") for label in labels], fontsize=7, rotation=30)
     ax.set_ylabel("bond updates per second")
-    ax.set_title("crack-branching plate, 200 x 80 points, 2000 steps (time loop)")
+    ax.set_title(f"crack-branching plate, {plate[0]['points']} points, {plate[0]['steps']} steps (time loop)")
     ax.legend()
     fig.tight_layout()
-    temporary = args.figure + ".tmp.png"
-    fig.savefig(temporary, dpi=110)
-    os.replace(temporary, args.figure)
+    save_figure(fig, args.figure, dpi=110)
     out.append(f"![bond updates per second]({os.path.relpath(args.figure, os.path.dirname(os.path.abspath(args.results)))})\n")
 
-    temporary = args.results + ".tmp"
-    with open(temporary, "w") as stream:
-        stream.write("\n".join(out))
-    os.replace(temporary, args.results)
+    write_text(args.results, "\n".join(out))
     print(f"wrote {args.results} and {args.figure}")
     return 0
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except (InputError, KeyError, ValueError) as error:
-        print(f"report_benchmarks.py: {error}", file=sys.stderr)
-        sys.exit(2)
+    run_main(main, input_errors=(KeyError, ValueError))

@@ -17,11 +17,14 @@ Exit codes: 0 success; 2 bad input; 1 a run failed or an inactive effect changed
 import argparse
 import csv
 import filecmp
-import json
 import os
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from mppm_outputs import atomic_open, run_info  # noqa: E402
+from script_exit import InputError, RunError, run_main  # noqa: E402
 
 CSV_COLUMNS = ["case", "effects", "threads", "points", "bonds", "steps", "wall_seconds",
                "bond_updates_per_second", "peak_memory_bytes", "run_seconds", "wall_seconds_max", "repeats"]
@@ -50,14 +53,6 @@ REGION_SETS = {
     "micropolar+damage(region)": (["micropolar", "damage"],
                                   ["material.damage.region={box: [[45 mm, 8 mm], [101 mm, 32 mm]]}"]),
 }
-
-
-class InputError(Exception):
-    """Reported with exit code 2."""
-
-
-class RunError(Exception):
-    """Reported with exit code 1."""
 
 
 def parse_arguments(argv):
@@ -109,27 +104,20 @@ def preprocess(args, scene, points, extra_sets):
     if os.path.exists(points):
         return
     os.makedirs(os.path.dirname(points), exist_ok=True)
-    command = [os.path.join(args.bin, "mppm-preprocess"), scene, "-o", points + ".tmp.vtp"]
+    # mppm-preprocess writes its file atomically: a points file is there only when complete.
+    command = [os.path.join(args.bin, "mppm-preprocess"), scene, "-o", points]
     for s in extra_sets:
         command += ["--set", s]
     run(command, f"mppm-preprocess {scene}")
-    os.replace(points + ".tmp.vtp", points)
 
 
 def write_csv(path, columns, rows):
-    """The rows as a CSV file, written to a temporary and renamed (never half-written)."""
-    temporary = path + ".tmp"
-    with open(temporary, "w", newline="") as stream:
+    """The rows as a CSV file, written atomically (never half-written)."""
+    with atomic_open(path, newline="") as stream:
         writer = csv.DictWriter(stream, fieldnames=columns)
         writer.writeheader()
         writer.writerows(rows)
-    os.replace(temporary, path)
     print(f"wrote {path} ({len(rows)} rows)")
-
-
-def read_run_info(run_dir):
-    with open(os.path.join(run_dir, "run_info.json")) as stream:
-        return json.load(stream)
 
 
 def solve(args, scene, points, run_dir, effects, threads, extra_sets):
@@ -143,7 +131,7 @@ def solve(args, scene, points, run_dir, effects, threads, extra_sets):
     peak = [line for line in result.stderr.splitlines() if line.startswith("peak_rss_kib ")]
     if not peak:
         raise RunError(f"{run_dir}: GNU time printed no peak memory")
-    info = read_run_info(run_dir)
+    info = run_info(run_dir)
     if info.get("status") != "completed":
         raise RunError(f"{run_dir}: status {info.get('status')}: {info.get('message')}")
     return info, int(peak[-1].split()[1]) * 1024
@@ -236,11 +224,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except InputError as error:
-        print(f"run_mppm.py: {error}", file=sys.stderr)
-        sys.exit(2)
-    except RunError as error:
-        print(f"run_mppm.py: {error}", file=sys.stderr)
-        sys.exit(1)
+    run_main(main)

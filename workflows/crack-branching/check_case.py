@@ -2,11 +2,12 @@
 """Physics checks of the crack-branching case (CASES.md case 2, issue 6).
 
 usage: check_case.py --out OUT --base base --rate-runs rate-2.5us rate-6.25us rate-12.5us
-         [--notch-tip 0.05,0.02] [--max-balance-error 0.02]
+         [--notch-tip X,Y] [--max-balance-error 0.02]
 
 Checks (one line each, exit 1 if any fails, 2 if an output is missing):
 - base run: the crack grows from the notch tip: the first points that join the crack path
-  (damage >= 0.35) beyond the pre-crack lie within two horizons of the notch tip;
+  (the postprocessor's damage threshold) beyond the pre-crack lie within two horizons of the
+  notch tip (the inner end of the pre-crack in the base run's points file, unless --notch-tip);
 - base run: the crack branches (crack_branch_time_s is not null);
 - rate study: crack start, branching and end times all exist and increase strictly with t0;
 - every run: the largest tip speed is below the Rayleigh wave speed of the material
@@ -25,7 +26,7 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--base", required=True)
     ap.add_argument("--rate-runs", nargs="+", required=True)
-    ap.add_argument("--notch-tip", default="0.05,0.02", help="x,y of the pre-crack tip [m]")
+    ap.add_argument("--notch-tip", help="x,y of the pre-crack tip [m] (default: from the base run's points file)")
     ap.add_argument("--max-balance-error", type=float, default=0.02)
     args = ap.parse_args()
     failures = 0
@@ -40,23 +41,25 @@ def main():
         summaries = {r: crack_case.summary(args.out, r) for r in runs}
         energies = {r: crack_case.energy_rows(args.out, r) for r in runs}
         base_frames = crack_case.frames(args.out, args.base)
-    except (OSError, ValueError) as e:
+        tip = (tuple(float(v) for v in args.notch_tip.split(",")) if args.notch_tip
+               else crack_case.precrack_tip(args.out, args.base))
+    except (crack_case.RunOutputError, OSError, ValueError) as e:
         print(f"check_case: cannot read the case outputs: {e} (run make first)", file=sys.stderr)
         return 2
 
     # The crack starts at the notch tip.
     base = summaries[args.base]
-    tip = tuple(float(v) for v in args.notch_tip.split(","))
     horizon = base["horizon_m"]
-    pre = crack_case.crack_points(base_frames[0][1])
+    threshold = crack_case.crack_damage_threshold(base)
+    pre = crack_case.crack_points(base_frames[0][1], threshold)
     first_new, when = set(), None
     for time, path in base_frames[1:]:
-        new = crack_case.crack_points(path) - pre
+        new = crack_case.crack_points(path, threshold) - pre
         if new:
             first_new, when = new, time
             break
     if not first_new:
-        report(False, "base run: no point joins the crack path (damage >= 0.35) beyond the pre-crack")
+        report(False, f"base run: no point joins the crack path (damage >= {threshold:g}) beyond the pre-crack")
     else:
         far = max(math.dist(p, tip) for p in first_new)
         report(far <= 2 * horizon, f"base run: the crack grows from the notch tip: the {len(first_new)} points that join "

@@ -1,32 +1,81 @@
-"""Shared reading of the crack-branching case outputs (check_case.py, report_case.py)."""
-import csv
-import json
+"""Shared reading of the crack-branching case outputs (check_case.py, report_case.py).
+
+A run folder OUT/RUN/ holds points.vtp (its copy of the case's points file), run/ and post/.
+Set-up values (plate, lattice, pre-crack, loading) come from these files, never from a copy.
+"""
 import math
 import os
-import xml.etree.ElementTree as ET
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+import mppm_outputs  # noqa: E402
+from mppm_outputs import RunOutputError  # noqa: E402,F401  (the readers' error, for the scripts)
+
+# The postprocessor's crack path (postprocess/crack_metrics.hpp, CrackSettings::damage_threshold):
+# points with damage >= this. summary.json does not carry it yet; crack_damage_threshold()
+# prefers the summary's value when it does.
+POSTPROCESSOR_DAMAGE_THRESHOLD = 0.35
 
 
 def summary(out, run):
-    with open(os.path.join(out, run, "post", "summary.json")) as f:
-        return json.load(f)
+    return mppm_outputs.summary(os.path.join(out, run, "post"))
 
 
 def energy_rows(out, run):
-    with open(os.path.join(out, run, "run", "energy.csv"), newline="") as f:
-        return list(csv.DictReader(f))
+    return mppm_outputs.energy_rows(os.path.join(out, run, "run"))
 
 
 def load_rows(out, run):
-    with open(os.path.join(out, run, "run", "load.csv"), newline="") as f:
-        return list(csv.DictReader(f))
+    return mppm_outputs.load_rows(os.path.join(out, run, "run"))
+
+
+def run_info(out, run):
+    return mppm_outputs.run_info(os.path.join(out, run, "run"))
 
 
 def frames(out, run):
     """(time, path) of every frame of the run's ParaView series, in time order."""
-    post = os.path.join(out, run, "post")
-    tree = ET.parse(os.path.join(post, "results.pvd"))
-    series = [(float(d.get("timestep")), os.path.join(post, d.get("file"))) for d in tree.iter("DataSet")]
-    return sorted(series)
+    return mppm_outputs.frames(os.path.join(out, run, "post"))
+
+
+def crack_damage_threshold(run_summary):
+    return run_summary.get("crack_damage_threshold", POSTPROCESSOR_DAMAGE_THRESHOLD)
+
+
+def lattice(out, run):
+    """(width, height, nx, ny) of the run's plate: the points file's cell-centred lattice."""
+    points_file = os.path.join(out, run, "points.vtp")
+    spacing = mppm_outputs.vtk_field_array(points_file, "spacing")[0]
+    xyz = mppm_outputs.vtk_field_array(points_file, "Points")
+    xs, ys = xyz[0::3], xyz[1::3]
+    width, height = max(xs) - min(xs) + spacing, max(ys) - min(ys) + spacing
+    return width, height, round(width / spacing), round(height / spacing)
+
+
+def precrack_tip(out, run):
+    """(x, y) of the pre-crack's tip: of the ends of the pre-crack polyline the points file
+    holds (precrack_vertices, the scene's geometry.precracks as the preprocessor cut them), the
+    one deepest inside the lattice's bounding box (an edge crack's inner end)."""
+    points_file = os.path.join(out, run, "points.vtp")
+    vertices = mppm_outputs.vtk_field_array(points_file, "precrack_vertices")
+    ends = {}
+    for k in range(0, len(vertices), 3):  # each end appears once, every inner vertex twice
+        key = (round(vertices[k], 12), round(vertices[k + 1], 12))
+        ends[key] = ends.get(key, 0) + 1
+    ends = [p for p, n in ends.items() if n == 1]
+    if not ends:
+        raise RunOutputError(f"{points_file}: no pre-crack")
+    xyz = mppm_outputs.vtk_field_array(points_file, "Points")
+    xs, ys = xyz[0::3], xyz[1::3]
+    depth = lambda p: min(p[0] - min(xs), max(xs) - p[0], p[1] - min(ys), max(ys) - p[1])  # noqa: E731
+    return max(ends, key=depth)
+
+
+def traction(out, run, boundary="top"):
+    """Largest |traction| [Pa] of the run's condition on BOUNDARY (its resolved history)."""
+    scene = mppm_outputs.resolved_scene(os.path.join(out, run, "run"))
+    condition = next(bc for bc in scene["boundary_conditions"] if bc["name"] == boundary)
+    return max(math.hypot(*value) for _, value in condition["history"])
 
 
 def rayleigh_speed(material):
@@ -36,7 +85,7 @@ def rayleigh_speed(material):
     lam, mu = material["lambda"], material["mu"]
     cs, cp = math.sqrt(mu / rho), math.sqrt((lam + 2 * mu) / rho)
     k = (cs / cp) ** 2
-    f = lambda x: (2 - x * x) ** 2 - 4 * math.sqrt(1 - x * x) * math.sqrt(1 - k * x * x)
+    f = lambda x: (2 - x * x) ** 2 - 4 * math.sqrt(1 - x * x) * math.sqrt(1 - k * x * x)  # noqa: E731
     # f < 0 just above the trivial root 0 and up to c_R, f > 0 from there to c_s (f(1) = 1): for
     # Poisson ratios in [0, 0.5) the root lies in [0.87, 0.96] c_s, which [0.5, 1) brackets.
     lo, hi = 0.5, 1.0
@@ -49,7 +98,7 @@ def rayleigh_speed(material):
     return 0.5 * (lo + hi) * cs
 
 
-def crack_points(path, threshold=0.35):
+def crack_points(path, threshold):
     """Body points (region 0) with damage >= threshold of one frame: a set of (x, y) rounded to
     a micrometre (the lattice is exact in the files up to round-off)."""
     import meshio  # Debian python3-meshio, under /usr/bin/python3

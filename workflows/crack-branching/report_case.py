@@ -10,9 +10,7 @@ and copies the base run's damage and micro-rotation pictures (rendered by mppm-p
 """
 import argparse
 import glob
-import json
 import os
-import shutil
 import sys
 
 import matplotlib
@@ -20,6 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import crack_case  # noqa: E402
+from mppm_outputs import copy_file, save_figure, write_text  # noqa: E402  (crack_case puts tools/ on the path)
 
 
 def us(value):
@@ -31,13 +30,6 @@ def snapshot_interval(summary):
     if summary["snapshots"] < 2:
         return "-"
     return f"{(summary['last_time_s'] - summary['first_time_s']) / (summary['snapshots'] - 1) * 1e6:.3g}"
-
-
-def write_atomically(path, text):
-    tmp = path + ".tmp"
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
 
 
 def main():
@@ -53,8 +45,7 @@ def main():
     rows, curves = [], {}
     for run in runs:
         s = crack_case.summary(args.out, run)
-        with open(os.path.join(args.out, run, "run", "run_info.json")) as f:
-            info = json.load(f)
+        info = crack_case.run_info(args.out, run)
         energy = crack_case.energy_rows(args.out, run)
         ramp = s["boundary_conditions"][0]["history"][1][0]
         rows.append((run, s, info, ramp, max(abs(float(r["balance_error"])) for r in energy),
@@ -79,22 +70,24 @@ def main():
         ax.legend(fontsize=8)
     fig.tight_layout()
     curve_png = os.path.join(args.figures, "loading_curves.png")
-    fig.savefig(curve_png + ".tmp.png", dpi=110)
-    os.replace(curve_png + ".tmp.png", curve_png)
+    save_figure(fig, curve_png, dpi=110)
 
     pictures = sorted(glob.glob(os.path.join(args.out, args.base, "post", "figures", "*.png")))
     copied = []
     for p in pictures:
         target = os.path.join(args.figures, "base_" + os.path.basename(p))
-        shutil.copyfile(p, target + ".tmp")
-        os.replace(target + ".tmp", target)
+        copy_file(p, target)
         copied.append(os.path.basename(target))
 
     base = rows[0]
+    width, height, nx, ny = crack_case.lattice(args.out, args.base)
+    spacing, horizon = base[1]["spacing_m"], base[1]["horizon_m"]
     lines = ["# Crack branching (CASES.md case 2): results", "",
-             "Written by `make report` from the run outputs under `out/` (nothing typed in). Plate 100 x 40 mm, "
-             "200 x 80 points (dx = 0.5 mm), horizon factor 4.05, pre-crack from the left edge to the centre, "
-             "traction 8 MPa on top and bottom ramped over t0; see README.md for the set-up and the methods.", "",
+             "Written by `make report` from the run outputs under `out/` (nothing typed in). "
+             f"Plate {width * 1e3:.4g} x {height * 1e3:.4g} mm, {nx} x {ny} points (dx = {spacing * 1e3:g} mm), "
+             f"horizon factor {horizon / spacing:.4g}, pre-crack from the left edge to the centre, traction "
+             f"{crack_case.traction(args.out, args.base) / 1e6:.4g} MPa on top and bottom ramped over t0; see README.md "
+             "for the set-up and the methods.", "",
              "| run | solid fraction | t0 [us] | crack start [us] | branching [us] | end [us] | end reason | "
              "largest tip speed [m/s] | Rayleigh speed [m/s] | crack length [mm] | max balance error | snapshot interval [us] | steps | threads | wall time [s] |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -112,12 +105,13 @@ def main():
     damage = [c for c in copied if "damage" in c]
     rotation = [c for c in copied if "rotation" in c]
     if damage:
-        lines += ["## Damage on the deformed plate (base run; crack path = damage >= 0.35)", ""]
+        lines += [f"## Damage on the deformed plate (base run; crack path = damage >= "
+                  f"{crack_case.crack_damage_threshold(base[1]):g})", ""]
         lines += [f"![{c}](figures/{c})" for c in damage] + [""]
     if rotation:
         lines += ["## Micro-rotation (base run)", ""]
         lines += [f"![{c}](figures/{c})" for c in rotation] + [""]
-    write_atomically(args.results, "\n".join(lines))
+    write_text(args.results, "\n".join(lines))
     print(f"report: {os.path.abspath(args.results)}")
     return 0
 

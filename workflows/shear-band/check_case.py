@@ -30,7 +30,8 @@ import sys
 import numpy as np
 
 from band_measures import BandRegions, bands_of
-from shear_band_fields import LastSnapshot, RunOutputError, parse_run_name, read_csv_columns, read_json
+from shear_band_fields import LastSnapshot, parse_run_name
+from mppm_outputs import RunOutputError, read_csv_columns, read_json  # tools/, on the path shear_band_fields sets
 
 MAX_BALANCE_ERROR = 0.01  # the issue: no run with an energy balance error above 1 %
 MIN_ROTATION_RATIO = 3.0  # the issue: mean |w| inside the bands >= 3x outside
@@ -46,8 +47,15 @@ MIN_STRAIN_CONTRAST = 2.0
 # error of dx/2 over 60 mm is 1.2 deg at dx = 2.5 mm; the postprocessor's own error on the
 # case lattice with noise is 1.5 deg (tests/unit/test_post_shear_band.cpp). Sum: 3 deg.
 MAX_RIDGE_DIFFERENCE_DEG = 3.0
-FRICTION_SWEEP_DILATANCY = 15.0  # deg, CASES.md
-DILATANCY_SWEEP_FRICTION = 35.0  # deg, CASES.md
+
+
+def sweep_centre(names):
+    """(friction, dilatancy) [deg] where the two sweeps of CASES.md cross, from the run names:
+    the friction sweep keeps the dilatancy most runs share and the dilatancy sweep the friction
+    most runs share (the scene's angles: phi35-psi15 belongs to both sweeps)."""
+    angles = [parse_run_name(name) for name in names]
+    most_shared = lambda values: max(values, key=values.count)  # noqa: E731  (ties: the first run's)
+    return most_shared([a[0] for a in angles]), most_shared([a[1] for a in angles])
 
 
 def run_measures(folder):
@@ -126,10 +134,11 @@ def check(out, runs, report, quick=False):
         ok = all(x is not None for _, x in values) and all(a[1] < b[1] for a, b in zip(values, values[1:]))
         report(ok, f"{label} (strictly): {text}")
 
-    sweep(0, DILATANCY_SWEEP_FRICTION, 1, lambda m: m["summary"].get("shear_band_angle_deg"),
-          f"band angle grows with the dilatancy angle at friction {DILATANCY_SWEEP_FRICTION:g} deg", "deg")
-    sweep(1, FRICTION_SWEEP_DILATANCY, 0, lambda m: m["summary"].get("peak_load_N"),
-          f"peak load grows with the friction angle at dilatancy {FRICTION_SWEEP_DILATANCY:g} deg", "N")
+    friction, dilatancy = sweep_centre(runs)
+    sweep(0, friction, 1, lambda m: m["summary"].get("shear_band_angle_deg"),
+          f"band angle grows with the dilatancy angle at friction {friction:g} deg", "deg")
+    sweep(1, dilatancy, 0, lambda m: m["summary"].get("peak_load_N"),
+          f"peak load grows with the friction angle at dilatancy {dilatancy:g} deg", "N")
     return results
 
 

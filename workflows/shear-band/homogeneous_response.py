@@ -41,9 +41,9 @@ def biaxial_response(material, confinement, axial_strain_end, steps=4000):
     lam, mu = float(material["lambda"]), float(material["mu"])
     vp = material["viscoplasticity"]
     m_phi, m_psi, kc = cone_coefficients(float(vp["friction_angle"]), float(vp["dilatancy_angle"]),
-                                         vp.get("cone_match", "triaxial-compression"))
+                                         vp["cone_match"])
     c0, h = float(vp["cohesion"]), float(vp["hardening"])
-    c_res = float(vp.get("residual_cohesion", 0.01 * c0))
+    c_res = float(vp["residual_cohesion"])
     bulk = lam + 2 * mu / 3
 
     def update(strain, plastic, ebar):

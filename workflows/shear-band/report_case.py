@@ -26,10 +26,10 @@ import numpy as np  # noqa: E402
 
 import check_case  # noqa: E402
 from homogeneous_response import biaxial_response, homogeneous_peak  # noqa: E402
-from shear_band_fields import LastSnapshot, RunOutputError, parse_run_name, read_csv_columns  # noqa: E402
-
-FRICTION_SWEEP_DILATANCY = check_case.FRICTION_SWEEP_DILATANCY
-DILATANCY_SWEEP_FRICTION = check_case.DILATANCY_SWEEP_FRICTION
+from shear_band_fields import LastSnapshot, parse_run_name  # noqa: E402
+# mppm_outputs is in tools/, which shear_band_fields puts on the path.
+from mppm_outputs import (RunOutputError, prescribed_displacement, read_csv_columns, resolved_scene,  # noqa: E402
+                          save_figure, write_text)
 
 
 class Run:
@@ -47,7 +47,8 @@ class Run:
         if abs(self.phi - self.phi_name) > 1e-6 or abs(self.psi - self.psi_name) > 1e-6:
             raise RunOutputError(f"{self.folder}: the run's resolved angles ({self.phi:g}, {self.psi:g} deg) "
                                  "do not match its name")
-        self.cone_match = vp.get("cone_match", "triaxial-compression")
+        self.cone_match = vp["cone_match"]
+        self.scene = resolved_scene(os.path.join(self.folder, "run"))
         self.snapshot = None
 
     def last_snapshot(self):
@@ -66,20 +67,23 @@ class Run:
         """Largest platen displacement of the run [m]."""
         return float(np.max(np.abs(self.curve["top_uy_m"])))
 
+    def prescribed_travel(self):
+        """How far the top platen is driven [m]: its resolved velocity history integrated over
+        the run (speed x time until it stops)."""
+        return abs(prescribed_displacement(self.scene, "top", 1))
+
+    def loading_times(self):
+        """(time the top platen stops, end of the run) [s], from the resolved scene."""
+        history = next(bc for bc in self.scene["boundary_conditions"] if bc["name"] == "top")["history"]
+        moving = [float(t) for t, velocity in history if any(velocity)]
+        return max(moving), float(self.scene["time"]["end"])
+
     def specimen_size(self):
         """(width, height) of the specimen [m], from the body points of the last snapshot."""
         snap = self.last_snapshot()
         body = snap.reference[snap.body]
         width = body[:, 0].max() - body[:, 0].min() + self.summary["spacing_m"]
         return width, body[:, 1].max() - body[:, 1].min() + self.summary["spacing_m"]
-
-
-def save(fig, path, dpi):
-    """Writes the figure under a temporary name and renames it: never a half-written PNG."""
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=dpi)
-    plt.close(fig)
-    os.replace(tmp, path)
 
 
 def fmt(value, spec, missing="none"):
@@ -170,10 +174,15 @@ def check_lines(out, names, quick=False):
 
 
 def sweeps(runs):
-    return [([r for r in runs if r.psi_name == FRICTION_SWEEP_DILATANCY],
-             f"friction sweep (dilatancy {FRICTION_SWEEP_DILATANCY:g} deg)", lambda r: f"phi = {r.phi:g} deg"),
-            ([r for r in runs if r.phi_name == DILATANCY_SWEEP_FRICTION],
-             f"dilatancy sweep (friction {DILATANCY_SWEEP_FRICTION:g} deg)", lambda r: f"psi = {r.psi:g} deg")]
+    friction, dilatancy = check_case.sweep_centre([r.name for r in runs])
+    return [([r for r in runs if r.psi_name == dilatancy],
+             f"friction sweep (dilatancy {dilatancy:g} deg)", lambda r: f"phi = {r.phi:g} deg"),
+            ([r for r in runs if r.phi_name == friction],
+             f"dilatancy sweep (friction {friction:g} deg)", lambda r: f"psi = {r.psi:g} deg")]
+
+
+def mm(length):
+    return f"{1e3 * length:g} mm"
 
 
 def plot_load_curves(case_runs, long_runs, path):
@@ -185,9 +194,9 @@ def plot_load_curves(case_runs, long_runs, path):
             longer = long_by_angles.get((r.phi, r.psi))
             if longer is not None:
                 ax.plot(np.abs(longer.curve["top_uy_m"]) * 1e3, np.abs(longer.curve["top_Fy_N"]) / 1e3,
-                        color=colour, lw=0.9, ls="--", label=f"{label(r)}, long (9 mm)")
+                        color=colour, lw=0.9, ls="--", label=f"{label(r)}, long ({mm(LONG_TRAVEL)})")
             ax.plot(np.abs(r.curve["top_uy_m"]) * 1e3, np.abs(r.curve["top_Fy_N"]) / 1e3, color=colour, lw=1.6,
-                    label=f"{label(r)}, case (4.5 mm)")
+                    label=f"{label(r)}, case ({mm(CASE_TRAVEL)})")
         ax.axvline(1e3 * CASE_TRAVEL, color="0.5", lw=0.8, ls=":")
         ax.set_title(title)
         ax.set_xlabel("top platen displacement [mm]")
@@ -197,7 +206,7 @@ def plot_load_curves(case_runs, long_runs, path):
     fig.suptitle("Load on the top platen against its displacement (the bottom platen moves the same the other way)",
                  fontsize=9)
     fig.tight_layout()
-    save(fig, path, 110)
+    save_figure(fig, path, 110)
 
 
 def plot_cone_match(plane_strain, triaxial, path):
@@ -215,7 +224,7 @@ def plot_cone_match(plane_strain, triaxial, path):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    save(fig, path, 110)
+    save_figure(fig, path, 110)
 
 
 def plot_contours(runs, path, title):
@@ -251,15 +260,16 @@ def plot_contours(runs, path, title):
     fig.suptitle(f"{title}: last snapshot (t = {runs[0].last_snapshot().time:g} s), body points; dashed: the "
                  "postprocessor's band centre lines", fontsize=9)
     fig.tight_layout()
-    save(fig, path, 100)
+    save_figure(fig, path, 100)
 
 
-CASE_TRAVEL = 4.5e-3  # set from the case runs in main()
-CASE_THICKNESS = 0.01  # set from the case runs in main()
+CASE_TRAVEL = None  # platen travel of the case runs [m], set from their resolved scenes in main()
+LONG_TRAVEL = None  # the same for the long runs
+CASE_THICKNESS = None  # the scene's thickness [m], set from the case runs' resolved scenes in main()
 
 
 def main():
-    global CASE_TRAVEL, CASE_THICKNESS
+    global CASE_TRAVEL, LONG_TRAVEL, CASE_THICKNESS
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", required=True)
     ap.add_argument("--runs", nargs="+", required=True, help="the case's runs")
@@ -272,8 +282,9 @@ def main():
         case = [Run(args.out, n) for n in args.runs]
         long_runs = [Run(args.out, n) for n in args.long_runs]
         cone = Run(args.out, args.cone_run)
-        CASE_TRAVEL = case[0].travel()
-        CASE_THICKNESS = case_thickness_from_scene(case[0])
+        CASE_TRAVEL = case[0].prescribed_travel()
+        LONG_TRAVEL = long_runs[0].prescribed_travel()
+        CASE_THICKNESS = float(case[0].scene["thickness"])
         case_checks, case_failures = check_lines(args.out, args.runs)
         long_checks, long_failures = check_lines(args.out, args.long_runs)
     except (RunOutputError, KeyError, ValueError) as e:
@@ -290,12 +301,13 @@ def main():
     figures = {k: os.path.join(args.figures, f"{k}.png") for k in ("load_curves", "contours_case", "contours_long",
                                                                     "cone_match")}
     plot_load_curves(case, long_runs, figures["load_curves"])
-    plot_contours(case, figures["contours_case"], "The case as given (4.5 mm per platen)")
-    plot_contours(long_runs, figures["contours_long"], "Long runs (9 mm per platen)")
+    plot_contours(case, figures["contours_case"], f"The case as given ({mm(CASE_TRAVEL)} per platen)")
+    plot_contours(long_runs, figures["contours_long"], f"Long runs ({mm(LONG_TRAVEL)} per platen)")
     plot_cone_match(reference, cone, figures["cone_match"])
 
     vp = case[0].material["viscoplasticity"]
     width, height = case[0].specimen_size()
+    long_stop, long_end = long_runs[0].loading_times()
     total = case_wall_time(args.out, case)
     if total is None:
         wall = ("not measured: the points and the five runs did not all come from one `make` invocation "
@@ -333,7 +345,7 @@ def main():
         "",
     ] + case_checks + [
         "",
-        "## Long runs: the same runs with 9 mm per platen (0.18 s, hold until 0.2 s)",
+        f"## Long runs: the same runs with {mm(LONG_TRAVEL)} per platen ({long_stop:g} s, hold until {long_end:g} s)",
         "",
     ] + run_table(long_runs, with_homogeneous=False) + [
         "",
@@ -344,7 +356,7 @@ def main():
         "Textbook band angles (formulas, not run outputs): Roscoe 45 + psi/2, Arthur 45 + (phi + psi)/4, "
         "Coulomb 45 + phi/2 [deg], against the measured mean angle:",
         "",
-        "| run | Roscoe | Arthur | Coulomb | case (4.5 mm) | long (9 mm) |",
+        f"| run | Roscoe | Arthur | Coulomb | case ({mm(CASE_TRAVEL)}) | long ({mm(LONG_TRAVEL)}) |",
         "|---|---|---|---|---|---|",
     ]
     long_by_angles = {(r.phi, r.psi): r for r in long_runs}
@@ -362,7 +374,7 @@ def main():
         f"![load curves]({rel(figures['load_curves'])})",
         "",
         "Solid: the case (the drop at the end is the relaxation during the hold); dashed: the long runs, "
-        "which are the same runs up to 4.5 mm (dotted line).",
+        f"which are the same runs up to {mm(CASE_TRAVEL)} (dotted line).",
         "",
         "## Plastic shear strain and micro-rotation on the deformed configuration",
         "",
@@ -397,25 +409,9 @@ def main():
         "outside it.",
         "",
     ]
-    tmp = args.results + ".tmp"
-    with open(tmp, "w") as f:
-        f.write("\n".join(lines))
-    os.replace(tmp, args.results)
+    write_text(args.results, "\n".join(lines))
     print(f"wrote {args.results} and {', '.join(figures.values())}")
     return 0
-
-
-def case_thickness_from_scene(run):
-    """The scene's thickness [m] from the run's resolved scene."""
-    path = os.path.join(run.folder, "run", "scene.resolved.yaml")
-    try:
-        with open(path) as f:
-            for line in f:
-                if line.startswith("thickness:"):
-                    return float(line.split(":", 1)[1].split("#")[0])
-    except OSError as e:
-        raise RunOutputError(f"{path}: {e}") from e
-    raise RunOutputError(f"{path}: no thickness")
 
 
 if __name__ == "__main__":

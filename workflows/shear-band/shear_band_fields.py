@@ -5,42 +5,14 @@ comes from those files: post/summary.json, post/load_curve.csv, run/energy.csv,
 run/run_info.json and the last snapshot post/results/*.vtu (through post/results.pvd, so the
 frame order is the postprocessor's).
 """
-import csv
-import json
 import os
 import re
-import xml.etree.ElementTree as ElementTree
+import sys
 
 import numpy as np
 
-
-class RunOutputError(Exception):
-    """A run's outputs are missing or unreadable (the message names the file)."""
-
-
-def read_json(path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, json.JSONDecodeError) as e:
-        raise RunOutputError(f"{path}: {e}") from e
-
-
-def read_csv_columns(path):
-    """Columns of a CSV file with a header row, as float arrays keyed by name."""
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
-    except OSError as e:
-        raise RunOutputError(f"{path}: {e}") from e
-    if len(rows) < 2:
-        raise RunOutputError(f"{path}: no data rows")
-    header, data = rows[0], rows[1:]
-    try:
-        values = np.array([[float(v) for v in row] for row in data if row])
-    except ValueError as e:
-        raise RunOutputError(f"{path}: {e}") from e
-    return {name: values[:, i] for i, name in enumerate(header)}
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from mppm_outputs import RunOutputError, frames  # noqa: E402
 
 
 def parse_run_name(name):
@@ -58,20 +30,12 @@ class LastSnapshot:
     def __init__(self, post_dir, horizon):
         import meshio  # imported here so the table-only paths do not need it
 
-        pvd = os.path.join(post_dir, "results.pvd")
-        try:
-            frames = ElementTree.parse(pvd).getroot().findall(".//DataSet")
-        except (OSError, ElementTree.ParseError) as e:
-            raise RunOutputError(f"{pvd}: {e}") from e
-        if not frames:
-            raise RunOutputError(f"{pvd}: no frames")
-        path = os.path.join(post_dir, frames[-1].get("file"))
+        self.time, path = frames(post_dir)[-1]
         try:
             mesh = meshio.read(path)
         except Exception as e:  # meshio raises several types on a bad file
             raise RunOutputError(f"{path}: {e}") from e
         self.path = path
-        self.time = float(frames[-1].get("timestep"))
         data = mesh.point_data
         for name in ("region", "boundary_id", "displacement", "rotation", "plastic_shear_strain"):
             if name not in data:

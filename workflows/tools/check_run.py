@@ -5,17 +5,14 @@ Usage: check_run.py RUN_DIR [--max-balance-error 0.01] [--mirror top:bottom:y] [
 Prints one line per check and exits 1 if any fails (2 if the run directory is unusable).
 """
 import argparse
-import csv
-import json
-import os
 import sys
 
+from mppm_outputs import RunOutputError, energy_rows, load_rows, run_info
 
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+
+def nonempty(rows, name):
     if not rows:
-        raise ValueError(f"{path}: no rows")
+        raise RunOutputError(f"{name}: no rows")
     return rows
 
 
@@ -30,10 +27,10 @@ def main():
                     help="A:+y or A:-x: boundary A ends displaced in that direction")
     args = ap.parse_args()
     try:
-        info = json.load(open(os.path.join(args.run_dir, "run_info.json")))
-        energy = read_csv(os.path.join(args.run_dir, "energy.csv"))
-        load = read_csv(os.path.join(args.run_dir, "load.csv"))
-    except (OSError, ValueError, json.JSONDecodeError) as e:
+        info = run_info(args.run_dir)
+        energy = nonempty(energy_rows(args.run_dir), f"{args.run_dir}/energy.csv")
+        load = nonempty(load_rows(args.run_dir), f"{args.run_dir}/load.csv")
+    except RunOutputError as e:
         print(f"check: cannot read the run directory: {e}", file=sys.stderr)
         return 2
     failures = 0

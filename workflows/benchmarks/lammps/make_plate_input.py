@@ -31,14 +31,13 @@ import json
 import math
 import os
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from mppm_outputs import write_text  # noqa: E402
+from script_exit import InputError  # noqa: E402
 
 # mppm's family tolerance (SPEC.md section 1): lattice points on the horizon sphere are in.
 FAMILY_TOLERANCE_IN_SPACINGS = 1e-9
-
-
-class InputError(Exception):
-    """A bad command-line value; reported with exit code 2."""
 
 
 def positive(name, value):
@@ -132,19 +131,6 @@ def pmb_micromodulus(lame_lambda, mu, thickness, delta):
     Energy density of an isotropic stretch s: (1/4) c s^2 t int_0^delta xi 2 pi xi dxi
     = pi c t delta^3 s^2 / 6, equal to 2 (lambda + mu) s^2."""
     return 12.0 * (lame_lambda + mu) / (math.pi * thickness * delta ** 3)
-
-
-def write_atomically(path, text):
-    directory = os.path.dirname(os.path.abspath(path))
-    handle, temporary = tempfile.mkstemp(prefix=".tmp-", dir=directory)
-    try:
-        with os.fdopen(handle, "w") as stream:
-            stream.write(text)
-        os.replace(temporary, path)
-    except BaseException:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-        raise
 
 
 def lammps_input(args, model, constants):
@@ -259,14 +245,14 @@ def main(argv):
     try:
         for model in args.models:
             name = f"in.plate-{model}"
-            write_atomically(os.path.join(out_dir, name), lammps_input(args, model, constants))
+            write_text(os.path.join(out_dir, name), lammps_input(args, model, constants))
             entry = {"input": name, "effects": f"peri/{model}", "case": f"plate-lammps-{model}"}
             if model == "lps":
                 entry.update(bulk_modulus_Pa=bulk, shear_modulus_Pa=shear)
             else:
                 entry.update(micromodulus_N_per_m6=constants["micromodulus"])
             summary["models"][model] = entry
-        write_atomically(os.path.join(out_dir, "plate.json"), json.dumps(summary, indent=2) + "\n")
+        write_text(os.path.join(out_dir, "plate.json"), json.dumps(summary, indent=2) + "\n")
     except OSError as error:
         print(f"make_plate_input.py: cannot write into {out_dir}: {error}", file=sys.stderr)
         return 1

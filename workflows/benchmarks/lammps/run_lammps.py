@@ -21,19 +21,14 @@ import shlex
 import shutil
 import subprocess
 import sys
-import tempfile
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from mppm_outputs import write_text  # noqa: E402
+from script_exit import InputError, RunError, run_main  # noqa: E402
 
 CSV_HEADER = ("case,effects,threads,points,bonds,steps,wall_seconds,"
               "bond_updates_per_second,peak_memory_bytes,wall_seconds_max,repeats")
-
-
-class InputError(Exception):
-    """Reported with exit code 2."""
-
-
-class RunError(Exception):
-    """Reported with exit code 1."""
 
 
 def parse_arguments(argv):
@@ -229,17 +224,8 @@ def append_rows(csv_path, rows):
             existing += "\n"
     text = existing or CSV_HEADER + "\n"
     text += "".join(",".join(row) + "\n" for row in rows)
-    directory = os.path.dirname(os.path.abspath(csv_path))
-    os.makedirs(directory, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(prefix=".tmp-", dir=directory)
-    try:
-        with os.fdopen(handle, "w") as stream:
-            stream.write(text)
-        os.replace(temporary, csv_path)
-    except BaseException:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-        raise
+    os.makedirs(os.path.dirname(os.path.abspath(csv_path)), exist_ok=True)
+    write_text(csv_path, text)
 
 
 def main(argv):
@@ -301,8 +287,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv[1:]))
-    except InputError as error:
-        print(f"run_lammps.py: {error}", file=sys.stderr)
-        sys.exit(2)
+    run_main(main)
