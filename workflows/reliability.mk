@@ -1,4 +1,4 @@
-# Reliability targets (issue 10), included by workflows/Makefile (`include reliability.mk`):
+# Reliability targets, included by workflows/Makefile (`include reliability.mk`):
 #   make -C workflows fuzz       libFuzzer targets built with clang in build-fuzz, each run for
 #                                FUZZ_SECONDS (default 60); summary in out/fuzz_summary.txt
 #   make -C workflows sanitize   the `sanitize` preset (address + undefined behaviour) built in

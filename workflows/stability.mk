@@ -1,4 +1,4 @@
-# Stability report (issue 8), included by workflows/Makefile (`include stability.mk`):
+# Stability report, included by workflows/Makefile (`include stability.mk`):
 #   make -C workflows stability-report   runs every stability case (short forms and the long
 #                                        forms, 10^5 steps) and regenerates the margins table
 #                                        of tests/stability/README.md from the measured results

@@ -1,4 +1,4 @@
-# LAMMPS yardstick of the benchmarks (issue 9, part c). `make lammps` installs Debian's lammps
+# LAMMPS yardstick of the benchmarks. `make lammps` installs Debian's lammps
 # (with its MPI launcher and GNU time) if missing, writes the crack-branching plate inputs for
 # peri/lps and peri/pmb, runs each at 1 and 2 MPI ranks and writes $(OUT)/lammps.csv.
 # Included by workflows/benchmarks/Makefile: set OUT there *before* the include (default: out).

@@ -5,7 +5,7 @@ Reads out/benchmarks.csv (run_mppm.py) and, when present, out/lammps.csv (run_la
 writes results.md with: every run; the cost of each effect relative to the plain elastic
 (non-polar) model; the inactive-effect runs against the run without the effect; mppm against
 LAMMPS peri/lps and peri/pmb at equal process count; the two-thread efficiency; the
-crack-branching base case's wall time; memory per bond. Each target of issue 9 is stated next to
+crack-branching base case's wall time; memory per bond. Each performance target is stated next to
 its measured value with "met" or "NOT met". Exit codes: 0 written; 2 bad input.
 """
 
@@ -201,7 +201,7 @@ def main(argv):
                            f"{r['wall_seconds'] / everywhere['wall_seconds']:.2f} |")
         out.append("")
 
-    out.append("## Targets of issue 9 (measured in this run)\n")
+    out.append("## Performance targets (measured in this run)\n")
     out.append("| target | measured | |")
     out.append("|---|---|---|")
     # (mppm effect set, LAMMPS case, target ratio of bond updates per second, what is compared)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Runs mppm-solve on the benchmark scenes and appends benchmark rows to a CSV.
 
-Owns: the effect sets of the plate (issue 9: none, micropolar, micropolar+damage,
+Owns: the effect sets of the plate (none, micropolar, micropolar+damage,
 micropolar+viscoplasticity, all) at each thread count, the inactive-effect runs (damage with an
 enormous G_cr, viscoplasticity with an unreachable cohesion) and their bitwise comparison with
 the run without the effect, damage limited to a region around the crack path, the 3-D block, per-run peak memory (GNU time), and the CSV rows
@@ -29,7 +29,7 @@ from script_exit import InputError, RunError, run_main  # noqa: E402
 CSV_COLUMNS = ["case", "effects", "threads", "points", "bonds", "steps", "wall_seconds",
                "bond_updates_per_second", "peak_memory_bytes", "run_seconds", "wall_seconds_max", "repeats"]
 
-# The plate's effect sets (issue 9) and the two inactive variants.
+# The plate's effect sets and the two inactive variants.
 PLATE_SETS = {
     "none": [],
     "micropolar": ["micropolar"],

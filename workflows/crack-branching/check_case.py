@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Physics checks of the crack-branching case (CASES.md case 2, issue 6).
+"""Physics checks of the crack-branching case (workflows/crack-branching/README.md).
 
 usage: check_case.py --out OUT --base base --rate-runs rate-2.5us rate-6.25us rate-12.5us
          [--notch-tip X,Y] [--max-balance-error 0.02]

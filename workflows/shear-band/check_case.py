@@ -33,8 +33,8 @@ from band_measures import BandRegions, bands_of
 from shear_band_fields import LastSnapshot, parse_run_name
 from mppm_outputs import RunOutputError, read_csv_columns, read_json  # tools/, on the path shear_band_fields sets
 
-MAX_BALANCE_ERROR = 0.01  # the issue: no run with an energy balance error above 1 %
-MIN_ROTATION_RATIO = 3.0  # the issue: mean |w| inside the bands >= 3x outside
+MAX_BALANCE_ERROR = 0.01  # the case's criterion: no run with an energy balance error above 1 %
+MIN_ROTATION_RATIO = 3.0  # the case's criterion: mean |w| inside the bands >= 3x outside
 # A band carries at least twice the strain of the rest of the specimen. Inside a band by the
 # postprocessor's definition (the full width at half maximum), the strain is above half the
 # band's peak; a mean twice the outside mean says the outside is not a plateau at that level,

@@ -1,4 +1,4 @@
-// Benchmarks (issue 9): a 100 x 100 x 100 mm block, in MILLIMETRES. At dx = 1 mm the lattice
+// Benchmarks: a 100 x 100 x 100 mm block, in MILLIMETRES. At dx = 1 mm the lattice
 // has 100^3 = 1 million points.
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 100, 100, 100};
