@@ -1,10 +1,9 @@
 // The postprocessing driver: checks the run directory, streams the snapshots one at a time
-// (ParaView frames, crack tracking), then writes the load curve, the summary and the figures.
+// (ParaView frames, crack tracking), then writes the load curve and the summary, and has the
+// pictures made (pictures.hpp).
 // Outputs are committed atomically; results.pvd is rewritten after every frame so that an
 // interrupted postprocess (or a truncated snapshot) leaves a readable partial series.
 #include "postprocess/postprocess_run.hpp"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,9 +24,8 @@
 #include "postprocess/boundary_layer_mask.hpp"
 #include "postprocess/crack_metrics.hpp"
 #include "postprocess/derived_fields.hpp"
-#include "postprocess/external_tools.hpp"
-#include "postprocess/field_units.hpp"
 #include "postprocess/load_curve.hpp"
+#include "postprocess/pictures.hpp"
 #include "postprocess/run_directory_reader.hpp"
 #include "postprocess/shear_band_metrics.hpp"
 #include "postprocess/yaml_to_json.hpp"
@@ -37,23 +35,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kPlotScript = "mppm_plot_load_curve.py";
-constexpr const char* kFigureScript = "mppm_figures_pvbatch.py";
 constexpr const char* kVtuDirectory = "results";
 
 void write_text(const std::string& path, const std::string& text) {
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
-// A temporary name that keeps the extension (matplotlib and ParaView choose the format by it).
-std::string temporary_with_extension(const fs::path& path) {
-  // Built by appending: GCC 12 warns falsely (-Wrestrict, PR105329) on "." + std::string.
-  std::string name(1, '.');
-  name += path.stem().string();
-  name += ".tmp-";
-  name += std::to_string(::getpid());
-  name += path.extension().string();
-  return (path.parent_path() / name).string();
 }
 
 std::string frame_file_name(std::int64_t step) {
@@ -450,113 +435,6 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
   }
 }
 
-// load_curve.png through matplotlib.
-void plot_load_curve(const PostprocessOptions& options, const fs::path& post, const std::string& main_boundary) {
-  const std::string script = companion_script(kPlotScript, options.script_directory);
-  const std::string python = "/usr/bin/python3";
-  if (::access(python.c_str(), X_OK) != 0)
-    throw ExternalToolError("/usr/bin/python3 is missing: install the Debian packages python3 and python3-matplotlib");
-  const fs::path png = post / "load_curve.png";
-  const std::string temporary = temporary_with_extension(png);
-  const int status = run_program({python, script, (post / "load_curve.csv").string(), temporary,
-                                  main_boundary}, true);
-  if (status != 0 || !fs::exists(temporary)) {
-    std::error_code ec;
-    fs::remove(temporary, ec);
-    throw ExternalToolError("plotting load_curve.png failed (" + python + " " + script + " exited with " +
-                            std::to_string(status) + "; is python3-matplotlib installed?)");
-  }
-  commit_temporary(temporary, png.string());
-}
-
-// What pvbatch renders: the figure script's JSON spec, and the images as (temporary, final) paths.
-struct FigureJob {
-  JsonValue spec;
-  std::vector<std::pair<std::string, std::string>> outputs;
-};
-
-FigureJob figure_job(const PostprocessOptions& options, const RunDirectory& run, const std::vector<PvdEntry>& entries,
-                     const std::vector<std::string>& fields, const std::vector<std::size_t>& frames) {
-  const fs::path post(options.output_directory);
-  const fs::path figures = post / "figures";
-  FigureJob job;
-  job.spec = JsonValue::object();
-  job.spec.set("spacing", run.spacing);
-  job.spec.set("dimension", run.info.dimension);
-  job.spec.set("warp_scale", options.warp_scale);
-  auto images = JsonValue::array();
-  for (std::size_t k : frames)
-    for (const auto& field : fields) {
-      char name[160];
-      std::snprintf(name, sizeof name, "%s_%06lld.png", field.c_str(), static_cast<long long>(run.info.snapshots[k].step));
-      const fs::path final_path = figures / name;
-      const std::string temporary = temporary_with_extension(final_path);
-      std::string unit = field_unit(field);
-      auto image = JsonValue::object();
-      image.set("vtu", fs::absolute(post / entries[k].file).string());
-      image.set("field", field);
-      image.set("title", field + (unit.empty() ? std::string() : " [" + unit + "]"));
-      image.set("time_label", format_time(run.info.snapshots[k].time));
-      image.set("output", fs::absolute(temporary).string());
-      images.push(image);
-      job.outputs.emplace_back(temporary, final_path.string());
-    }
-  job.spec.set("images", images);
-  return job;
-}
-
-// pvbatch under xvfb-run if there is one, else offscreen.
-std::vector<std::string> pvbatch_command(const std::string& pvbatch, const std::optional<std::string>& xvfb,
-                                         const std::string& script, const std::string& spec_path) {
-  // xvfb-run -a starts its search at display 99, so concurrent runs race for the same display;
-  // starting from a number derived from the process id avoids that. 24-bit: OpenGL needs it.
-  // -noreset: Xvfb otherwise resets when pvbatch's first (probing) connection closes, and a
-  // connection made during the reset fails ("bad X server connection") on a loaded machine.
-  const std::string display = std::to_string(100 + ::getpid() % 800);
-  if (xvfb) return {*xvfb, "-a", "-n", display, "-s", "-screen 0 1920x1080x24 -nolisten tcp -noreset", pvbatch, script, spec_path};
-  return {pvbatch, "--force-offscreen-rendering", script, spec_path};
-}
-
-// PNG contour images through ParaView's pvbatch into POST_DIR/figures; returns their paths.
-std::vector<std::string> render_figures(const PostprocessOptions& options, const RunDirectory& run,
-                                        const std::vector<PvdEntry>& entries, const std::vector<std::string>& fields,
-                                        const std::vector<std::size_t>& frames) {
-  const std::string script = companion_script(kFigureScript, options.script_directory);
-  const auto pvbatch = find_program("pvbatch");
-  if (!pvbatch)
-    throw ExternalToolError("--figures needs ParaView's pvbatch, which is not on PATH: install the Debian "
-                            "packages paraview, xvfb and xauth");
-  const auto xvfb = find_program("xvfb-run");
-  const std::vector<std::string> environment = paraview_python_environment();
-  const fs::path figures = fs::path(options.output_directory) / "figures";
-  std::error_code ec;
-  fs::create_directories(figures, ec);
-  if (ec) throw InputError(figures.string() + ": cannot create (" + ec.message() + ")");
-  const FigureJob job = figure_job(options, run, entries, fields, frames);
-  const std::string spec_path = (figures / (".figures.tmp-" + std::to_string(::getpid()) + ".json")).string();
-  write_text(spec_path, job.spec.dump());
-  const std::vector<std::string> command = pvbatch_command(*pvbatch, xvfb, script, spec_path);
-  // One retry: under load, Xvfb is sometimes not ready when pvbatch connects ("bad X server
-  // connection", SIGABRT); a second attempt on a fresh server succeeds.
-  int status = run_program(command, true, environment);
-  if (status != 0 && xvfb) status = run_program(command, true, environment);
-  fs::remove(spec_path, ec);
-  bool complete = status == 0;
-  for (const auto& [temporary, final_path] : job.outputs)
-    if (!fs::exists(temporary)) complete = false;
-  if (!complete) {
-    for (const auto& output : job.outputs) fs::remove(output.first, ec);
-    throw ExternalToolError("rendering the figures failed (pvbatch exited with " + std::to_string(status) +
-                            (xvfb ? "" : "; xvfb-run is missing: install xvfb and xauth") + ")");
-  }
-  std::vector<std::string> written;
-  for (const auto& [temporary, final_path] : job.outputs) {
-    commit_temporary(temporary, final_path);
-    written.push_back(final_path);
-  }
-  return written;
-}
-
 }  // namespace
 
 PostprocessResult postprocess_run(const PostprocessOptions& options) {
@@ -588,8 +466,14 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   write_text((post / "summary.json").string(), summary.dump());
   result.summary = summary;
 
-  if (options.plot_load_curve) plot_load_curve(options, post, peak.boundary);
-  if (options.figures) result.figures = render_figures(options, run, series.entries, figure_fields, frames_for_figures);
+  if (options.plot_load_curve) plot_load_curve(options.output_directory, peak.boundary, options.script_directory);
+  if (options.figures) {
+    std::vector<FigureFrame> frames;
+    for (std::size_t k : frames_for_figures)
+      frames.push_back({series.entries[k].file, run.info.snapshots[k].step, format_time(run.info.snapshots[k].time)});
+    const FigureSettings settings{run.spacing, run.info.dimension, options.warp_scale, options.script_directory};
+    result.figures = render_figures(options.output_directory, settings, frames, figure_fields);
+  }
   return result;
 }
 
