@@ -49,18 +49,8 @@ vtkNew<vtkDoubleArray> scalar_field(const char* name, double value) {
   return array;
 }
 
-}  // namespace
-
-void write_point_cloud(const PointCloud& cloud, const std::string& path) {
-  const auto n = static_cast<vtkIdType>(cloud.size());
-  vtkNew<vtkPolyData> poly;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
-  for (vtkIdType i = 0; i < n; ++i) points->SetPoint(i, cloud.x[i], cloud.y[i], cloud.z[i]);
-  poly->SetPoints(points);
-
-  // One vertex cell per point so that ParaView shows the points without a glyph filter.
+// One vertex cell per point so that ParaView shows the points without a glyph filter.
+void add_vertex_cells(vtkPolyData* poly, vtkIdType n) {
   vtkNew<vtkIdTypeArray> offsets, connectivity;
   offsets->SetNumberOfValues(n + 1);
   connectivity->SetNumberOfValues(n);
@@ -69,7 +59,10 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   vtkNew<vtkCellArray> vertices;
   vertices->SetData(offsets, connectivity);
   poly->SetVerts(vertices);
+}
 
+// volume, region, boundary_id and normal of each point.
+void add_point_arrays(vtkPolyData* poly, const PointCloud& cloud, vtkIdType n) {
   vtkNew<vtkDoubleArray> volume;
   volume->SetName("volume");
   volume->SetNumberOfValues(n);
@@ -92,15 +85,10 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   poly->GetPointData()->AddArray(region);
   poly->GetPointData()->AddArray(boundary_id);
   poly->GetPointData()->AddArray(normal);
+}
 
-  vtkFieldData* field = poly->GetFieldData();
-  vtkNew<vtkIntArray> dimension;
-  dimension->SetName("dimension");
-  dimension->InsertNextValue(cloud.dimension);
-  field->AddArray(dimension);
-  field->AddArray(scalar_field("spacing", cloud.spacing));
-  field->AddArray(scalar_field("horizon", cloud.horizon));
-  field->AddArray(scalar_field("thickness", cloud.thickness));
+// boundary_count, then (if there are boundaries) one value per boundary in each boundary_* array.
+void add_boundary_arrays(vtkFieldData* field, const std::vector<BoundaryInfo>& boundaries) {
   vtkNew<vtkStringArray> names, types;
   names->SetName("boundary_names");
   types->SetName("boundary_types");
@@ -112,7 +100,7 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   selectors->SetName("boundary_selectors");
   vtkNew<vtkDoubleArray> depths;
   depths->SetName("boundary_depths");
-  for (const BoundaryInfo& b : cloud.boundaries) {
+  for (const BoundaryInfo& b : boundaries) {
     names->InsertNextValue(b.name);
     types->InsertNextValue(b.type);
     areas->InsertNextValue(b.area);
@@ -122,9 +110,9 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   }
   vtkNew<vtkIntArray> boundary_count;
   boundary_count->SetName("boundary_count");
-  boundary_count->InsertNextValue(static_cast<int>(cloud.boundaries.size()));
+  boundary_count->InsertNextValue(static_cast<int>(boundaries.size()));
   field->AddArray(boundary_count);
-  if (!cloud.boundaries.empty()) {
+  if (!boundaries.empty()) {
     field->AddArray(names);
     field->AddArray(types);
     field->AddArray(areas);
@@ -132,6 +120,19 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
     field->AddArray(selectors);
     field->AddArray(depths);
   }
+}
+
+// The cloud's scalars, its boundaries and the pre-crack vertices, as field data.
+void add_field_data(vtkPolyData* poly, const PointCloud& cloud) {
+  vtkFieldData* field = poly->GetFieldData();
+  vtkNew<vtkIntArray> dimension;
+  dimension->SetName("dimension");
+  dimension->InsertNextValue(cloud.dimension);
+  field->AddArray(dimension);
+  field->AddArray(scalar_field("spacing", cloud.spacing));
+  field->AddArray(scalar_field("horizon", cloud.horizon));
+  field->AddArray(scalar_field("thickness", cloud.thickness));
+  add_boundary_arrays(field, cloud.boundaries);
   vtkNew<vtkDoubleArray> precrack;
   precrack->SetName("precrack_vertices");
   precrack->SetNumberOfComponents(3);
@@ -139,6 +140,21 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   for (std::size_t i = 0; i < cloud.precrack_vertices.size(); ++i)
     precrack->SetValue(static_cast<vtkIdType>(i), cloud.precrack_vertices[i]);
   field->AddArray(precrack);
+}
+
+}  // namespace
+
+void write_point_cloud(const PointCloud& cloud, const std::string& path) {
+  const auto n = static_cast<vtkIdType>(cloud.size());
+  vtkNew<vtkPolyData> poly;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  for (vtkIdType i = 0; i < n; ++i) points->SetPoint(i, cloud.x[i], cloud.y[i], cloud.z[i]);
+  poly->SetPoints(points);
+  add_vertex_cells(poly, n);
+  add_point_arrays(poly, cloud, n);
+  add_field_data(poly, cloud);
 
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(poly);
@@ -198,6 +214,120 @@ const std::vector<std::string>& string_array(const VtkPolyDataArrays& file, cons
   return array->strings;
 }
 
+// dimension, spacing, horizon and thickness.
+void read_cloud_scalars(const VtkPolyDataArrays& file, const std::string& path, PointCloud& cloud) {
+  const double dimension = field_scalar(file, "dimension", path);
+  if (dimension != 2 && dimension != 3) fail(path, "field 'dimension' must be 2 or 3");
+  cloud.dimension = static_cast<int>(dimension);
+  cloud.spacing = field_scalar(file, "spacing", path);
+  cloud.horizon = field_scalar(file, "horizon", path);
+  cloud.thickness = field_scalar(file, "thickness", path);
+  if (!(cloud.spacing > 0)) fail(path, "field 'spacing' must be positive");
+  if (!(cloud.horizon >= cloud.spacing))
+    fail(path, "field 'horizon' must be at least the spacing");
+  if (!(cloud.thickness > 0)) fail(path, "field 'thickness' must be positive");
+}
+
+std::vector<BoundaryInfo> read_boundaries(const VtkPolyDataArrays& file, const std::string& path) {
+  const double boundary_count_value = field_scalar(file, "boundary_count", path);
+  if (boundary_count_value < 0 || boundary_count_value > 1e6 || boundary_count_value != std::floor(boundary_count_value))
+    fail(path, "field 'boundary_count' must be a whole number from 0 to 1000000");
+  const auto boundary_count = static_cast<std::int32_t>(boundary_count_value);
+  std::vector<BoundaryInfo> boundaries;
+  if (boundary_count == 0) return boundaries;
+  const auto& names = string_array(file, "boundary_names", boundary_count, "name", path);
+  const auto& types = string_array(file, "boundary_types", boundary_count, "type", path);
+  const VtkArray& areas =
+      required_array(file.field("boundary_areas"), "boundary_areas", boundary_count, 1, path, "field data");
+  const VtkArray& counts = required_array(file.field("boundary_point_counts"), "boundary_point_counts",
+                                          boundary_count, 1, path, "field data");
+  // Optional (files from before they were stored): what each layer was made from.
+  const bool has_origin = file.field("boundary_selectors") || file.field("boundary_depths");
+  const std::vector<std::string>* selectors =
+      has_origin ? &string_array(file, "boundary_selectors", boundary_count, "selection", path) : nullptr;
+  const VtkArray* depths = has_origin ? &required_array(file.field("boundary_depths"), "boundary_depths",
+                                                        boundary_count, 1, path, "field data")
+                                      : nullptr;
+  for (std::int32_t k = 0; k < boundary_count; ++k) {
+    BoundaryInfo info;
+    info.name = names[static_cast<std::size_t>(k)];
+    info.type = types[static_cast<std::size_t>(k)];
+    if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" &&
+        info.type != "pressure")
+      fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
+    info.area = finite_value(areas, k, 0, path);
+    const double point_count = finite_value(counts, k, 0, path);
+    if (point_count < 0 || point_count > 9e15 || point_count != std::floor(point_count))
+      fail(path, "boundary '" + info.name + "' has a bad point count");
+    info.point_count = static_cast<std::int64_t>(point_count);
+    if (has_origin) {
+      info.selector = (*selectors)[static_cast<std::size_t>(k)];
+      info.depth = finite_value(*depths, k, 0, path);
+      if (info.depth < 0) fail(path, "boundary '" + info.name + "' has a negative depth");
+    }
+    boundaries.push_back(info);
+  }
+  return boundaries;
+}
+
+// The per-point arrays of the file, checked for their length.
+struct PointArrays {
+  const VtkArray& volume;
+  const VtkArray& region;
+  const VtkArray& boundary_id;
+  const VtkArray& normal;
+};
+
+// Positions and point arrays into the (sized) cloud, each value checked; regions and boundary
+// ids against the cloud's boundaries.
+void read_points(const VtkArray& points, const PointArrays& arrays, const std::string& path, PointCloud& cloud) {
+  const auto n = static_cast<std::int64_t>(cloud.size());
+  const auto boundary_count = static_cast<std::int32_t>(cloud.boundaries.size());
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const double p[3] = {points.numbers[3 * u], points.numbers[3 * u + 1], points.numbers[3 * u + 2]};
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      fail(path, "point " + std::to_string(i) + " has a non-finite coordinate");
+    if (cloud.dimension == 2 && p[2] != 0.0)
+      fail(path, "point " + std::to_string(i) + " has z != 0 in a 2-D cloud");
+    cloud.x[u] = p[0];
+    cloud.y[u] = p[1];
+    cloud.z[u] = p[2];
+    cloud.volume[u] = finite_value(arrays.volume, i, 0, path);
+    if (!(cloud.volume[u] > 0)) fail(path, "point " + std::to_string(i) + " has volume <= 0");
+    cloud.region[u] = integer_value(arrays.region, i, path);
+    cloud.boundary_id[u] = integer_value(arrays.boundary_id, i, path);
+    if (cloud.region[u] < 0 || cloud.region[u] > boundary_count)
+      fail(path, "point " + std::to_string(i) + " has region " + std::to_string(cloud.region[u]) +
+                     " (expected 0.." + std::to_string(boundary_count) + ")");
+    if (cloud.boundary_id[u] < 0 || cloud.boundary_id[u] > boundary_count)
+      fail(path, "point " + std::to_string(i) + " has boundary_id " +
+                     std::to_string(cloud.boundary_id[u]) + " (expected 0.." +
+                     std::to_string(boundary_count) + ")");
+    if (cloud.region[u] > 0 && cloud.boundary_id[u] != cloud.region[u])
+      fail(path, "layer point " + std::to_string(i) + " has boundary_id != region");
+    cloud.normal_x[u] = finite_value(arrays.normal, i, 0, path);
+    cloud.normal_y[u] = finite_value(arrays.normal, i, 1, path);
+    cloud.normal_z[u] = finite_value(arrays.normal, i, 2, path);
+  }
+}
+
+void read_precrack_vertices(const VtkPolyDataArrays& file, const std::string& path, PointCloud& cloud) {
+  const VtkArray* precrack = file.field("precrack_vertices");
+  if (!precrack) return;
+  if (precrack->is_string() || precrack->components != 3)
+    fail(path, "field 'precrack_vertices' must have 3 components");
+  const std::int64_t vertices = precrack->tuples;
+  if (vertices % cloud.precrack_vertices_per_element() != 0)
+    fail(path, "field 'precrack_vertices' is not a whole number of " +
+                   std::string(cloud.dimension == 2 ? "segments" : "triangles"));
+  cloud.precrack_vertices.resize(static_cast<std::size_t>(vertices) * 3);
+  for (std::int64_t v = 0; v < vertices; ++v)
+    for (int c = 0; c < 3; ++c)
+      cloud.precrack_vertices[static_cast<std::size_t>(v) * 3 + static_cast<std::size_t>(c)] =
+          finite_value(*precrack, v, c, path);
+}
+
 }  // namespace
 
 // The file is parsed by our own strict reader (vtk_xml_reader.hpp), not by VTK's XML reader,
@@ -209,106 +339,17 @@ PointCloud read_point_cloud(const std::string& path) {
   const VtkPolyDataArrays file = read_vtk_polydata_arrays(path);
 
   PointCloud cloud;
-  const double dimension = field_scalar(file, "dimension", path);
-  if (dimension != 2 && dimension != 3) fail(path, "field 'dimension' must be 2 or 3");
-  cloud.dimension = static_cast<int>(dimension);
-  cloud.spacing = field_scalar(file, "spacing", path);
-  cloud.horizon = field_scalar(file, "horizon", path);
-  cloud.thickness = field_scalar(file, "thickness", path);
-  if (!(cloud.spacing > 0)) fail(path, "field 'spacing' must be positive");
-  if (!(cloud.horizon >= cloud.spacing))
-    fail(path, "field 'horizon' must be at least the spacing");
-  if (!(cloud.thickness > 0)) fail(path, "field 'thickness' must be positive");
-
+  read_cloud_scalars(file, path, cloud);
   const std::int64_t n = file.point_count;
   if (n <= 0) fail(path, "no points");
   cloud.resize(static_cast<std::size_t>(n));
-  const VtkArray& volume = required_array(file.point("volume"), "volume", n, 1, path, "point");
-  const VtkArray& region = required_array(file.point("region"), "region", n, 1, path, "point");
-  const VtkArray& boundary_id = required_array(file.point("boundary_id"), "boundary_id", n, 1, path, "point");
-  const VtkArray& normal = required_array(file.point("normal"), "normal", n, 3, path, "point");
-
-  const double boundary_count_value = field_scalar(file, "boundary_count", path);
-  if (boundary_count_value < 0 || boundary_count_value > 1e6 || boundary_count_value != std::floor(boundary_count_value))
-    fail(path, "field 'boundary_count' must be a whole number from 0 to 1000000");
-  const auto boundary_count = static_cast<std::int32_t>(boundary_count_value);
-  if (boundary_count > 0) {
-    const auto& names = string_array(file, "boundary_names", boundary_count, "name", path);
-    const auto& types = string_array(file, "boundary_types", boundary_count, "type", path);
-    const VtkArray& areas =
-        required_array(file.field("boundary_areas"), "boundary_areas", boundary_count, 1, path, "field data");
-    const VtkArray& counts = required_array(file.field("boundary_point_counts"), "boundary_point_counts",
-                                            boundary_count, 1, path, "field data");
-    // Optional (files from before they were stored): what each layer was made from.
-    const bool has_origin = file.field("boundary_selectors") || file.field("boundary_depths");
-    const std::vector<std::string>* selectors =
-        has_origin ? &string_array(file, "boundary_selectors", boundary_count, "selection", path) : nullptr;
-    const VtkArray* depths = has_origin ? &required_array(file.field("boundary_depths"), "boundary_depths",
-                                                          boundary_count, 1, path, "field data")
-                                        : nullptr;
-    for (std::int32_t k = 0; k < boundary_count; ++k) {
-      BoundaryInfo info;
-      info.name = names[static_cast<std::size_t>(k)];
-      info.type = types[static_cast<std::size_t>(k)];
-      if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" &&
-          info.type != "pressure")
-        fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
-      info.area = finite_value(areas, k, 0, path);
-      const double point_count = finite_value(counts, k, 0, path);
-      if (point_count < 0 || point_count > 9e15 || point_count != std::floor(point_count))
-        fail(path, "boundary '" + info.name + "' has a bad point count");
-      info.point_count = static_cast<std::int64_t>(point_count);
-      if (has_origin) {
-        info.selector = (*selectors)[static_cast<std::size_t>(k)];
-        info.depth = finite_value(*depths, k, 0, path);
-        if (info.depth < 0) fail(path, "boundary '" + info.name + "' has a negative depth");
-      }
-      cloud.boundaries.push_back(info);
-    }
-  }
-
-  const VtkArray& points = file.points;
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    const double p[3] = {points.numbers[3 * u], points.numbers[3 * u + 1], points.numbers[3 * u + 2]};
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      fail(path, "point " + std::to_string(i) + " has a non-finite coordinate");
-    if (cloud.dimension == 2 && p[2] != 0.0)
-      fail(path, "point " + std::to_string(i) + " has z != 0 in a 2-D cloud");
-    cloud.x[u] = p[0];
-    cloud.y[u] = p[1];
-    cloud.z[u] = p[2];
-    cloud.volume[u] = finite_value(volume, i, 0, path);
-    if (!(cloud.volume[u] > 0)) fail(path, "point " + std::to_string(i) + " has volume <= 0");
-    cloud.region[u] = integer_value(region, i, path);
-    cloud.boundary_id[u] = integer_value(boundary_id, i, path);
-    if (cloud.region[u] < 0 || cloud.region[u] > boundary_count)
-      fail(path, "point " + std::to_string(i) + " has region " + std::to_string(cloud.region[u]) +
-                     " (expected 0.." + std::to_string(boundary_count) + ")");
-    if (cloud.boundary_id[u] < 0 || cloud.boundary_id[u] > boundary_count)
-      fail(path, "point " + std::to_string(i) + " has boundary_id " +
-                     std::to_string(cloud.boundary_id[u]) + " (expected 0.." +
-                     std::to_string(boundary_count) + ")");
-    if (cloud.region[u] > 0 && cloud.boundary_id[u] != cloud.region[u])
-      fail(path, "layer point " + std::to_string(i) + " has boundary_id != region");
-    cloud.normal_x[u] = finite_value(normal, i, 0, path);
-    cloud.normal_y[u] = finite_value(normal, i, 1, path);
-    cloud.normal_z[u] = finite_value(normal, i, 2, path);
-  }
-
-  if (const VtkArray* precrack = file.field("precrack_vertices")) {
-    if (precrack->is_string() || precrack->components != 3)
-      fail(path, "field 'precrack_vertices' must have 3 components");
-    const std::int64_t vertices = precrack->tuples;
-    if (vertices % cloud.precrack_vertices_per_element() != 0)
-      fail(path, "field 'precrack_vertices' is not a whole number of " +
-                     std::string(cloud.dimension == 2 ? "segments" : "triangles"));
-    cloud.precrack_vertices.resize(static_cast<std::size_t>(vertices) * 3);
-    for (std::int64_t v = 0; v < vertices; ++v)
-      for (int c = 0; c < 3; ++c)
-        cloud.precrack_vertices[static_cast<std::size_t>(v) * 3 + static_cast<std::size_t>(c)] =
-            finite_value(*precrack, v, c, path);
-  }
+  const PointArrays arrays{required_array(file.point("volume"), "volume", n, 1, path, "point"),
+                           required_array(file.point("region"), "region", n, 1, path, "point"),
+                           required_array(file.point("boundary_id"), "boundary_id", n, 1, path, "point"),
+                           required_array(file.point("normal"), "normal", n, 3, path, "point")};
+  cloud.boundaries = read_boundaries(file, path);
+  read_points(file.points, arrays, path, cloud);
+  read_precrack_vertices(file, path, cloud);
   return cloud;
 }
 

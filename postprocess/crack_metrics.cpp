@@ -29,6 +29,152 @@ std::size_t find_root(std::vector<std::size_t>& parent, std::size_t i) {
   return i;
 }
 
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+struct Points {
+  const std::vector<double>& x;
+  const std::vector<double>& y;
+  const std::vector<double>& z;
+};
+
+// The body points at or above the damage threshold, and the pre-crack, in index order.
+std::vector<std::size_t> cracked_points(const std::vector<char>& include, const std::vector<double>& damage,
+                                        double threshold, const std::vector<std::size_t>& precrack) {
+  const std::size_t n = include.size();
+  std::vector<char> in_crack(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (include[i] && damage[i] >= threshold) in_crack[i] = 1;
+  for (std::size_t i : precrack) in_crack[i] = 1;  // damage never heals; be safe anyway
+  std::vector<std::size_t> nodes;
+  for (std::size_t i = 0; i < n; ++i)
+    if (in_crack[i]) nodes.push_back(i);
+  return nodes;
+}
+
+// Shortest paths from the pre-crack through the cracked points; per node (index into the
+// cracked points) unless said otherwise.
+struct CrackPaths {
+  std::vector<std::size_t> local;     // per point: its node, kNone if not cracked
+  std::vector<double> distance;       // path length; infinite if not reached
+  std::vector<std::size_t> previous;  // the node before it on its path; kNone on the pre-crack
+};
+
+// Dijkstra through the cracked `nodes`, with links up to `link`.
+CrackPaths shortest_paths(const Points& p, const std::vector<std::size_t>& nodes,
+                          const std::vector<std::size_t>& precrack, double link) {
+  PointGrid grid(p.x, p.y, p.z, nodes, link);
+  CrackPaths paths;
+  paths.local.assign(p.x.size(), kNone);
+  for (std::size_t k = 0; k < nodes.size(); ++k) paths.local[nodes[k]] = k;
+  paths.distance.assign(nodes.size(), kInfinity);
+  paths.previous.assign(nodes.size(), kNone);
+  std::vector<double>& distance = paths.distance;
+  using Entry = std::pair<double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (std::size_t i : precrack) {
+    distance[paths.local[i]] = 0.0;
+    queue.emplace(0.0, paths.local[i]);
+  }
+  while (!queue.empty()) {
+    const auto [d, k] = queue.top();
+    queue.pop();
+    if (d > distance[k]) continue;
+    const std::size_t i = nodes[k];
+    grid.for_each_within(p.x[i], p.y[i], p.z[i], link, [&](std::size_t j) {
+      const std::size_t m = paths.local[j];
+      const double candidate =
+          d + std::sqrt((p.x[j] - p.x[i]) * (p.x[j] - p.x[i]) + (p.y[j] - p.y[i]) * (p.y[j] - p.y[i]) +
+                        (p.z[j] - p.z[i]) * (p.z[j] - p.z[i]));
+      if (candidate < distance[m]) {
+        distance[m] = candidate;
+        paths.previous[m] = k;
+        queue.emplace(candidate, m);
+      }
+    });
+  }
+  return paths;
+}
+
+// Tip candidates: reached points advanced at least 2 delta and farthest along the crack within
+// one horizon.
+std::vector<std::size_t> tip_candidates(const Points& p, const std::vector<std::size_t>& reached,
+                                        const CrackPaths& paths, double delta) {
+  PointGrid reached_grid(p.x, p.y, p.z, reached, delta);
+  std::vector<std::size_t> candidates;
+  for (std::size_t i : reached) {
+    const double s = paths.distance[paths.local[i]];
+    if (s < 2.0 * delta) continue;
+    bool is_max = true;
+    reached_grid.for_each_within(p.x[i], p.y[i], p.z[i], delta, [&](std::size_t j) {
+      if (paths.distance[paths.local[j]] > s) is_max = false;
+    });
+    if (is_max) candidates.push_back(i);
+  }
+  return candidates;
+}
+
+// Single-linkage clusters of the candidates at 2 delta; each cluster's farthest point is one
+// tip. Returns the tips (points), in the order of their clusters' roots.
+std::vector<std::size_t> farthest_of_clusters(const Points& p, const std::vector<std::size_t>& candidates,
+                                              const CrackPaths& paths, double delta) {
+  std::vector<std::size_t> parent(candidates.size());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  {
+    std::vector<std::size_t> candidate_index(p.x.size(), kNone);
+    for (std::size_t c = 0; c < candidates.size(); ++c) candidate_index[candidates[c]] = c;
+    PointGrid candidate_grid(p.x, p.y, p.z, candidates, 2.0 * delta);
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const std::size_t i = candidates[c];
+      candidate_grid.for_each_within(p.x[i], p.y[i], p.z[i], 2.0 * delta, [&](std::size_t j) {
+        const std::size_t a = find_root(parent, c), b = find_root(parent, candidate_index[j]);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      });
+    }
+  }
+  std::vector<std::size_t> best(candidates.size(), kNone);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const std::size_t root = find_root(parent, c);
+    if (best[root] == kNone ||
+        paths.distance[paths.local[candidates[c]]] > paths.distance[paths.local[candidates[best[root]]]])
+      best[root] = c;
+  }
+  std::vector<std::size_t> tips;
+  for (std::size_t root = 0; root < candidates.size(); ++root)
+    if (best[root] != kNone) tips.push_back(candidates[best[root]]);
+  return tips;
+}
+
+// Grown length: the leading tip's path, plus each further tip's path up to where it comes
+// within 2 dx of a path already counted (the crack band is several points wide, so paths of
+// two tips may run side by side instead of sharing nodes), plus that last gap.
+double grown_length(const Points& p, std::vector<std::size_t> tip_nodes, const std::vector<std::size_t>& nodes,
+                    const CrackPaths& paths, double dx) {
+  const std::vector<double>& distance = paths.distance;
+  const std::vector<std::size_t>& previous = paths.previous;
+  std::sort(tip_nodes.begin(), tip_nodes.end(),
+            [&](std::size_t a, std::size_t b) { return distance[a] > distance[b]; });
+  double length = 0;
+  std::vector<std::size_t> counted;  // global indices of the counted path nodes
+  for (std::size_t t = 0; t < tip_nodes.size(); ++t) {
+    PointGrid counted_grid(p.x, p.y, p.z, counted, 2.0 * dx);
+    for (std::size_t k = tip_nodes[t];; k = previous[k]) {
+      const std::size_t i = nodes[k];
+      double gap = kInfinity;
+      counted_grid.for_each_within(p.x[i], p.y[i], p.z[i], 2.0 * dx, [&](std::size_t j) {
+        gap = std::min(gap, std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i], p.z[j] - p.z[i]));
+      });
+      if (gap < kInfinity) {
+        length += gap;
+        break;
+      }
+      counted.push_back(i);
+      if (previous[k] == kNone) break;
+      length += distance[k] - distance[previous[k]];
+    }
+  }
+  return length;
+}
+
 }  // namespace
 
 CrackTracker::CrackTracker(std::vector<double> x, std::vector<double> y, std::vector<double> z,
@@ -72,14 +218,7 @@ void CrackTracker::add_frame(double time, const std::vector<double>& damage) {
     throw std::invalid_argument("CrackTracker: frames must be in increasing time");
   CrackFrame frame;
   frame.time = time;
-
-  std::vector<char> in_crack(n, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    if (include_[i] && damage[i] >= settings_.damage_threshold) in_crack[i] = 1;
-  for (std::size_t i : precrack_) in_crack[i] = 1;  // damage never heals; be safe anyway
-  std::vector<std::size_t> nodes;
-  for (std::size_t i = 0; i < n; ++i)
-    if (in_crack[i]) nodes.push_back(i);
+  const std::vector<std::size_t> nodes = cracked_points(include_, damage, settings_.damage_threshold, precrack_);
   frame.cracked_points = nodes.size();
 
   if (!have_reference_) {
@@ -92,109 +231,22 @@ void CrackTracker::add_frame(double time, const std::vector<double>& damage) {
     return;
   }
 
-  // Shortest path lengths from the pre-crack through cracked points (Dijkstra).
   const double dx = settings_.spacing, delta = settings_.horizon;
-  const double link = kLinkRadiusInSpacings * dx;
-  PointGrid grid(x_, y_, z_, nodes, link);
-  std::vector<std::size_t> local(n, std::numeric_limits<std::size_t>::max());
-  for (std::size_t k = 0; k < nodes.size(); ++k) local[nodes[k]] = k;
-  std::vector<double> distance(nodes.size(), kInfinity);
-  std::vector<std::size_t> previous(nodes.size(), std::numeric_limits<std::size_t>::max());
-  using Entry = std::pair<double, std::size_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  for (std::size_t i : precrack_) {
-    distance[local[i]] = 0.0;
-    queue.emplace(0.0, local[i]);
-  }
-  while (!queue.empty()) {
-    const auto [d, k] = queue.top();
-    queue.pop();
-    if (d > distance[k]) continue;
-    const std::size_t i = nodes[k];
-    grid.for_each_within(x_[i], y_[i], z_[i], link, [&](std::size_t j) {
-      const std::size_t m = local[j];
-      const double candidate =
-          d + std::sqrt((x_[j] - x_[i]) * (x_[j] - x_[i]) + (y_[j] - y_[i]) * (y_[j] - y_[i]) +
-                        (z_[j] - z_[i]) * (z_[j] - z_[i]));
-      if (candidate < distance[m]) {
-        distance[m] = candidate;
-        previous[m] = k;
-        queue.emplace(candidate, m);
-      }
-    });
-  }
+  const Points points{x_, y_, z_};
+  const CrackPaths paths = shortest_paths(points, nodes, precrack_, kLinkRadiusInSpacings * dx);
   std::vector<std::size_t> reached;
   for (std::size_t k = 0; k < nodes.size(); ++k)
-    if (distance[k] < kInfinity) {
+    if (paths.distance[k] < kInfinity) {
       reached.push_back(nodes[k]);
-      frame.lead_path_length = std::max(frame.lead_path_length, distance[k]);
+      frame.lead_path_length = std::max(frame.lead_path_length, paths.distance[k]);
     }
-
-  // Tip candidates: advanced at least 2 delta and farthest along the crack within one horizon.
-  PointGrid reached_grid(x_, y_, z_, reached, delta);
-  std::vector<std::size_t> candidates;
-  for (std::size_t i : reached) {
-    const double s = distance[local[i]];
-    if (s < 2.0 * delta) continue;
-    bool is_max = true;
-    reached_grid.for_each_within(x_[i], y_[i], z_[i], delta, [&](std::size_t j) {
-      if (distance[local[j]] > s) is_max = false;
-    });
-    if (is_max) candidates.push_back(i);
-  }
-  // Single-linkage clusters at 2 delta; each cluster's farthest point is one tip.
-  std::vector<std::size_t> parent(candidates.size());
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
-  {
-    std::vector<std::size_t> candidate_index(n, std::numeric_limits<std::size_t>::max());
-    for (std::size_t c = 0; c < candidates.size(); ++c) candidate_index[candidates[c]] = c;
-    PointGrid candidate_grid(x_, y_, z_, candidates, 2.0 * delta);
-    for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const std::size_t i = candidates[c];
-      candidate_grid.for_each_within(x_[i], y_[i], z_[i], 2.0 * delta, [&](std::size_t j) {
-        const std::size_t a = find_root(parent, c), b = find_root(parent, candidate_index[j]);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-      });
-    }
-  }
-  std::vector<std::size_t> best(candidates.size(), std::numeric_limits<std::size_t>::max());
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    const std::size_t root = find_root(parent, c);
-    if (best[root] == std::numeric_limits<std::size_t>::max() ||
-        distance[local[candidates[c]]] > distance[local[candidates[best[root]]]])
-      best[root] = c;
-  }
   std::vector<std::size_t> tip_nodes;
-  for (std::size_t root = 0; root < candidates.size(); ++root) {
-    if (best[root] == std::numeric_limits<std::size_t>::max()) continue;
-    const std::size_t i = candidates[best[root]];
-    frame.tips.push_back(CrackTip{x_[i], y_[i], z_[i], distance[local[i]]});
-    tip_nodes.push_back(local[i]);
+  for (std::size_t i : farthest_of_clusters(points, tip_candidates(points, reached, paths, delta), paths, delta)) {
+    frame.tips.push_back(CrackTip{x_[i], y_[i], z_[i], paths.distance[paths.local[i]]});
+    tip_nodes.push_back(paths.local[i]);
     if (near_boundary_[i]) frame.tip_at_boundary = true;
   }
-  // Grown length: the leading tip's path, plus each further tip's path up to where it comes
-  // within 2 dx of a path already counted (the crack band is several points wide, so paths of
-  // two tips may run side by side instead of sharing nodes), plus that last gap.
-  std::sort(tip_nodes.begin(), tip_nodes.end(),
-            [&](std::size_t a, std::size_t b) { return distance[a] > distance[b]; });
-  std::vector<std::size_t> counted;  // global indices of the counted path nodes
-  for (std::size_t t = 0; t < tip_nodes.size(); ++t) {
-    PointGrid counted_grid(x_, y_, z_, counted, 2.0 * dx);
-    for (std::size_t k = tip_nodes[t];; k = previous[k]) {
-      const std::size_t i = nodes[k];
-      double gap = kInfinity;
-      counted_grid.for_each_within(x_[i], y_[i], z_[i], 2.0 * dx, [&](std::size_t j) {
-        gap = std::min(gap, std::hypot(x_[j] - x_[i], y_[j] - y_[i], z_[j] - z_[i]));
-      });
-      if (gap < kInfinity) {
-        frame.crack_length += gap;
-        break;
-      }
-      counted.push_back(i);
-      if (previous[k] == std::numeric_limits<std::size_t>::max()) break;
-      frame.crack_length += distance[k] - distance[previous[k]];
-    }
-  }
+  frame.crack_length = grown_length(points, tip_nodes, nodes, paths, dx);
   std::sort(frame.tips.begin(), frame.tips.end(),
             [](const CrackTip& a, const CrackTip& b) { return a.path_length > b.path_length; });
   frames_.push_back(std::move(frame));

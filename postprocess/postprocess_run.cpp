@@ -1,10 +1,9 @@
 // The postprocessing driver: checks the run directory, streams the snapshots one at a time
-// (ParaView frames, crack tracking), then writes the load curve, the summary and the figures.
+// (ParaView frames, crack tracking), then writes the load curve and the summary, and has the
+// pictures made (pictures.hpp).
 // Outputs are committed atomically; results.pvd is rewritten after every frame so that an
 // interrupted postprocess (or a truncated snapshot) leaves a readable partial series.
 #include "postprocess/postprocess_run.hpp"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,9 +24,8 @@
 #include "postprocess/boundary_layer_mask.hpp"
 #include "postprocess/crack_metrics.hpp"
 #include "postprocess/derived_fields.hpp"
-#include "postprocess/external_tools.hpp"
-#include "postprocess/field_units.hpp"
 #include "postprocess/load_curve.hpp"
+#include "postprocess/pictures.hpp"
 #include "postprocess/run_directory_reader.hpp"
 #include "postprocess/shear_band_metrics.hpp"
 #include "postprocess/yaml_to_json.hpp"
@@ -37,23 +35,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kPlotScript = "mppm_plot_load_curve.py";
-constexpr const char* kFigureScript = "mppm_figures_pvbatch.py";
 constexpr const char* kVtuDirectory = "results";
 
 void write_text(const std::string& path, const std::string& text) {
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
-// A temporary name that keeps the extension (matplotlib and ParaView choose the format by it).
-std::string temporary_with_extension(const fs::path& path) {
-  // Built by appending: GCC 12 warns falsely (-Wrestrict, PR105329) on "." + std::string.
-  std::string name(1, '.');
-  name += path.stem().string();
-  name += ".tmp-";
-  name += std::to_string(::getpid());
-  name += path.extension().string();
-  return (path.parent_path() / name).string();
 }
 
 std::string frame_file_name(std::int64_t step) {
@@ -196,40 +181,44 @@ std::vector<std::size_t> figure_frames(const std::vector<std::string>& times, co
   return frames;
 }
 
-}  // namespace
+// The first snapshot, read before anything is written: the options that name fields are
+// checked against it, and every later frame must have its fields.
+struct FirstSnapshot {
+  Snapshot snapshot;
+  std::vector<std::pair<std::string, int>> layout;  // (name, components) of its fields
+  std::vector<std::string> array_names;             // the arrays of a frame, derived ones included
+};
 
-PostprocessResult postprocess_run(const PostprocessOptions& options) {
-  PostprocessResult result;
-  RunDirectory run = open_run_directory(options.run_directory, options.allow_unfinished);
-  std::vector<std::string>& notes = result.notes;
-  notes.insert(notes.end(), run.notes.begin(), run.notes.end());
-  const auto& snapshots = run.info.snapshots;
-  const std::size_t n = run.reference.point_count;
-  const int dimension = run.info.dimension;
+FirstSnapshot read_first_snapshot(const RunDirectory& run) {
+  FirstSnapshot first;
+  first.snapshot = read_snapshot(run.info.snapshots.front().path);
+  check_snapshot(first.snapshot, run, run.info.snapshots.front(), {});
+  for (const auto& field : first.snapshot.fields) first.layout.emplace_back(field.name, field.components);
+  std::vector<std::string> ignored;
+  for (const auto& a : frame_arrays(first.snapshot, ignored).arrays) first.array_names.push_back(a.name);
+  return first;
+}
 
-  // Read the first snapshot before writing anything: options that name fields are checked.
-  Snapshot first = read_snapshot(snapshots.front().path);
-  check_snapshot(first, run, snapshots.front(), {});
-  std::vector<std::pair<std::string, int>> layout;
-  for (const auto& field : first.fields) layout.emplace_back(field.name, field.components);
-  std::vector<std::string> array_names;
-  {
-    std::vector<std::string> ignored;
-    for (const auto& a : frame_arrays(first, ignored).arrays) array_names.push_back(a.name);
-  }
-  std::vector<std::string> figure_fields = options.figure_fields;
+// --fields, each checked against the arrays of a frame; by default those of damage,
+// plastic_shear_strain and rotation the run has, else displacement.
+std::vector<std::string> choose_figure_fields(const std::vector<std::string>& requested, const FirstSnapshot& first) {
+  std::vector<std::string> figure_fields = requested;
   if (figure_fields.empty())
     for (const char* name : {"damage", "plastic_shear_strain", "rotation"})
-      if (first.find(name)) figure_fields.emplace_back(name);
-  if (figure_fields.empty() && first.find("displacement")) figure_fields.emplace_back("displacement");
+      if (first.snapshot.find(name)) figure_fields.emplace_back(name);
+  if (figure_fields.empty() && first.snapshot.find("displacement")) figure_fields.emplace_back("displacement");
+  const std::vector<std::string>& array_names = first.array_names;
   for (const auto& name : figure_fields)
     if (std::find(array_names.begin(), array_names.end(), name) == array_names.end()) {
       std::string available;
       for (const auto& a : array_names) available += (available.empty() ? "" : ", ") + a;
       throw InputError("--fields: the run has no field '" + name + "' (available: " + available + ")");
     }
-  const std::vector<std::size_t> frames_for_figures = figure_frames(options.figure_times, snapshots);
+  return figure_fields;
+}
 
+// Creates (or with --force replaces) the post directory and its results/ folder.
+void prepare_post_directory(const PostprocessOptions& options) {
   const fs::path post(options.output_directory);
   std::error_code ec;
   // --force replaces the whole directory: it must not hold the run being read.
@@ -246,40 +235,67 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
                            {"post directory", "-o POST_DIR", {"results.pvd", "summary.json", "load_curve.csv", kVtuDirectory}});
   fs::create_directories(post / kVtuDirectory, ec);
   if (ec) throw InputError(options.output_directory + ": cannot create the output directory (" + ec.message() + ")");
+}
 
-  // Geometry for the metrics.
-  const SnapshotField* position = run.reference.find("position");
-  std::vector<double> x(n), y(n), z(n);
+// Reference positions and tags of the points, for the metrics.
+struct PointGeometry {
+  std::vector<double> x, y, z;
+  std::vector<int> region, boundary_id;
+  std::vector<char> body;  // region 0
+};
+
+PointGeometry point_geometry(const Snapshot& reference) {
+  const std::size_t n = reference.point_count;
+  const SnapshotField* position = reference.find("position");
+  PointGeometry points;
+  points.x.resize(n);
+  points.y.resize(n);
+  points.z.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    x[i] = position->data[3 * i];
-    y[i] = position->data[3 * i + 1];
-    z[i] = position->data[3 * i + 2];
+    points.x[i] = position->data[3 * i];
+    points.y[i] = position->data[3 * i + 1];
+    points.z[i] = position->data[3 * i + 2];
   }
-  const std::vector<int> region = integer_field(run.reference, "region");
-  const std::vector<int> boundary_id = integer_field(run.reference, "boundary_id");
-  std::vector<char> body(n);
-  for (std::size_t i = 0; i < n; ++i) body[i] = region[i] == 0;
+  points.region = integer_field(reference, "region");
+  points.boundary_id = integer_field(reference, "boundary_id");
+  points.body.resize(n);
+  for (std::size_t i = 0; i < n; ++i) points.body[i] = points.region[i] == 0;
+  return points;
+}
 
-  const bool has_damage = first.find("damage") != nullptr;
-  const bool track_crack = has_damage && dimension == 2;
+// Crack tracking on the body points, if `track` (a 2-D run with a damage field).
+std::optional<CrackTracker> crack_tracker(const RunDirectory& run, const PointGeometry& points, bool track) {
   std::optional<CrackTracker> crack;
-  if (track_crack) {
+  if (track) {
     CrackSettings settings;
     settings.spacing = run.spacing;
     settings.horizon = run.horizon;
-    crack.emplace(x, y, z, body, settings);
+    crack.emplace(points.x, points.y, points.z, points.body, settings);
   }
+  return crack;
+}
 
-  // Frames.
-  VtuSeriesWriter writer(run.reference, options.compression);
+// The frames written, and the last plastic shear strain field (for the shear-band metrics).
+struct SeriesResult {
   std::vector<PvdEntry> entries;
   std::vector<double> last_plastic_shear;
   double last_plastic_time = 0.0;
+};
+
+// Streams the snapshots one at a time into results/*.vtu and results.pvd, feeding the crack
+// tracker. The first snapshot is taken over from `first` (and its memory released).
+SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const PostprocessOptions& options,
+                          std::optional<CrackTracker>& crack, std::vector<std::string>& notes) {
+  const auto& snapshots = run.info.snapshots;
+  const fs::path post(options.output_directory);
+  VtuSeriesWriter writer(run.reference, options.compression);
+  SeriesResult series;
+  std::vector<PvdEntry>& entries = series.entries;
   Progress progress("postprocess", static_cast<std::int64_t>(snapshots.size()), options.quiet);
   for (std::size_t k = 0; k < snapshots.size(); ++k) {
-    Snapshot snapshot = k == 0 ? std::move(first) : read_snapshot(snapshots[k].path);
-    if (k == 0) first = Snapshot{};
-    check_snapshot(snapshot, run, snapshots[k], layout);
+    Snapshot snapshot = k == 0 ? std::move(first.snapshot) : read_snapshot(snapshots[k].path);
+    if (k == 0) first.snapshot = Snapshot{};
+    check_snapshot(snapshot, run, snapshots[k], first.layout);
     const FrameArrays arrays = frame_arrays(snapshot, notes);
     const std::string file = frame_file_name(snapshots[k].step);
     writer.write_frame((post / kVtuDirectory / file).string(), snapshot.time, snapshot.step, arrays.arrays);
@@ -291,33 +307,43 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
       write_text((post / "results.pvd").string(), pvd_text(entries));
     if (crack) crack->add_frame(snapshot.time, snapshot.find("damage")->data);
     if (const SnapshotField* e = snapshot.find("plastic_shear_strain"); e && e->components == 1) {
-      last_plastic_shear = e->data;
-      last_plastic_time = snapshot.time;
+      series.last_plastic_shear = e->data;
+      series.last_plastic_time = snapshot.time;
     }
     progress.update(static_cast<std::int64_t>(k + 1), format_time(snapshot.time));
   }
   progress.finish();
-  result.frames = entries.size();
+  return series;
+}
 
-  // Load curve.
-  const LoadTable table = read_load_table((fs::path(run.path) / run_layout::load).string());
-  notes.insert(notes.end(), table.notes.begin(), table.notes.end());
-  const LoadCurve curve = make_load_curve(table);
-  write_text((post / "load_curve.csv").string(), load_curve_csv(curve));
+// Names of the velocity and displacement boundaries of the scene.
+std::vector<std::string> kinematic_boundary_names(const YAML::Node& scene) {
   std::vector<std::string> kinematic;
-  if (const YAML::Node bcs = run.scene["boundary_conditions"]; bcs && bcs.IsSequence())
+  if (const YAML::Node bcs = scene["boundary_conditions"]; bcs && bcs.IsSequence())
     for (const auto& bc : bcs) {
       const std::string type = bc["type"] ? bc["type"].as<std::string>() : "";
       if ((type == "velocity" || type == "displacement") && bc["name"]) kinematic.push_back(bc["name"].as<std::string>());
     }
-  const PeakLoad peak = find_peak_load(curve, kinematic);
+  return kinematic;
+}
 
-  // Summary.
+// Writes load_curve.csv; returns the peak load of the main kinematic boundary.
+PeakLoad write_load_curve(const RunDirectory& run, const fs::path& post, std::vector<std::string>& notes) {
+  const LoadTable table = read_load_table((fs::path(run.path) / run_layout::load).string());
+  notes.insert(notes.end(), table.notes.begin(), table.notes.end());
+  const LoadCurve curve = make_load_curve(table);
+  write_text((post / "load_curve.csv").string(), load_curve_csv(curve));
+  return find_peak_load(curve, kinematic_boundary_names(run.scene));
+}
+
+// The run's counts, material, boundary conditions and peak load: the first part of summary.json.
+JsonValue run_summary(const RunDirectory& run, std::size_t frames, const std::vector<std::string>& array_names,
+                      const PeakLoad& peak) {
   JsonValue summary = JsonValue::object();
   summary.set("run_directory", fs::absolute(run.path).lexically_normal().string());
   summary.set("status", run.info.status);
   if (!run.info.message.empty()) summary.set("message", run.info.message);
-  summary.set("dimension", dimension);
+  summary.set("dimension", run.info.dimension);
   summary.set("points", run.info.points);
   summary.set("bonds", run.info.bonds);
   summary.set("steps", run.info.steps);
@@ -327,9 +353,9 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   for (const auto& e : run.info.effects) effects.push(e);
   summary.set("effects", effects);
   summary.set("detached_points", run.info.detached_points);
-  summary.set("snapshots", static_cast<std::int64_t>(entries.size()));
-  summary.set("first_time_s", snapshots.front().time);
-  summary.set("last_time_s", snapshots.back().time);
+  summary.set("snapshots", static_cast<std::int64_t>(frames));
+  summary.set("first_time_s", run.info.snapshots.front().time);
+  summary.set("last_time_s", run.info.snapshots.back().time);
   summary.set("spacing_m", run.spacing);
   summary.set("horizon_m", run.horizon);
   auto fields = JsonValue::array();
@@ -343,44 +369,58 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   summary.set("peak_load_N", peak.peak_load_N);
   summary.set("displacement_at_peak_m", peak.displacement_at_peak_m);
   summary.set("time_at_peak_s", peak.time_at_peak_s);
+  return summary;
+}
 
-  const bool has_plastic = !last_plastic_shear.empty();
-  if (has_plastic && dimension == 2) {
-    const std::vector<char> interior = points_away_from_boundaries(x, y, z, region, boundary_id, 2.0 * run.horizon);
+void set_shear_band_entries(JsonValue& summary, const ShearBandResult& bands, double time) {
+  auto angles = JsonValue::array(), widths = JsonValue::array();
+  for (const auto& b : bands.bands) {
+    angles.push(b.angle_deg);
+    widths.push(b.width_m);
+  }
+  summary.set("shear_band_time_s", time);
+  summary.set("shear_band_count", static_cast<std::int64_t>(bands.bands.size()));
+  summary.set("shear_band_angle_deg", bands.mean_angle_deg);
+  summary.set("shear_band_angles_deg", angles);
+  summary.set("shear_band_width_m", bands.mean_width_m);
+  summary.set("shear_band_widths_m", widths);
+  // Each band's centre line as well, so a check can tell conjugate bands (one of positive,
+  // one of negative slope) and find the points inside a band.
+  auto details = JsonValue::array();
+  for (const auto& b : bands.bands) {
+    auto band = JsonValue::object();
+    band.set("angle_deg", b.angle_deg);
+    band.set("direction_deg", b.direction_deg);
+    auto centre = JsonValue::array();
+    centre.push(b.centre_x);
+    centre.push(b.centre_y);
+    band.set("centre_m", centre);
+    band.set("width_m", b.width_m);
+    band.set("points", static_cast<std::uint64_t>(b.points));
+    details.push(band);
+  }
+  summary.set("shear_bands", details);
+}
+
+// Shear bands of the last plastic shear strain field (2-D runs), away from the boundary layers.
+void add_shear_band_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
+                            const PointGeometry& points, const SeriesResult& series) {
+  const bool has_plastic = !series.last_plastic_shear.empty();
+  if (has_plastic && run.info.dimension == 2) {
+    const std::vector<char> interior = points_away_from_boundaries(points.x, points.y, points.z, points.region,
+                                                                   points.boundary_id, 2.0 * run.horizon);
     ShearBandSettings settings;
     settings.spacing = run.spacing;
-    const ShearBandResult bands = measure_shear_bands(x, y, last_plastic_shear, interior, settings);
-    auto angles = JsonValue::array(), widths = JsonValue::array();
-    for (const auto& b : bands.bands) {
-      angles.push(b.angle_deg);
-      widths.push(b.width_m);
-    }
-    summary.set("shear_band_time_s", last_plastic_time);
-    summary.set("shear_band_count", static_cast<std::int64_t>(bands.bands.size()));
-    summary.set("shear_band_angle_deg", bands.mean_angle_deg);
-    summary.set("shear_band_angles_deg", angles);
-    summary.set("shear_band_width_m", bands.mean_width_m);
-    summary.set("shear_band_widths_m", widths);
-    // Each band's centre line as well, so a check can tell conjugate bands (one of positive,
-    // one of negative slope) and find the points inside a band.
-    auto details = JsonValue::array();
-    for (const auto& b : bands.bands) {
-      auto band = JsonValue::object();
-      band.set("angle_deg", b.angle_deg);
-      band.set("direction_deg", b.direction_deg);
-      auto centre = JsonValue::array();
-      centre.push(b.centre_x);
-      centre.push(b.centre_y);
-      band.set("centre_m", centre);
-      band.set("width_m", b.width_m);
-      band.set("points", static_cast<std::uint64_t>(b.points));
-      details.push(band);
-    }
-    summary.set("shear_bands", details);
+    const ShearBandResult bands = measure_shear_bands(points.x, points.y, series.last_plastic_shear, interior, settings);
+    set_shear_band_entries(summary, bands, series.last_plastic_time);
     if (!bands.note.empty()) notes.push_back("shear bands: " + bands.note);
   } else if (has_plastic) {
     notes.push_back("shear-band metrics are measured in 2-D runs only");
   }
+}
+
+void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
+                       const std::optional<CrackTracker>& crack, bool has_damage) {
   if (crack) {
     const CrackMetrics m = crack->finish();
     summary.set("crack_start_time_s", m.start_time_s);
@@ -391,94 +431,48 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
     summary.set("crack_length_m", m.crack_length_m);
     if (!m.note.empty()) notes.push_back("crack: " + m.note);
   } else if (has_damage || std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
-    if (dimension != 2) notes.push_back("crack metrics are measured in 2-D runs only");
+    if (run.info.dimension != 2) notes.push_back("crack metrics are measured in 2-D runs only");
   }
+}
+
+}  // namespace
+
+PostprocessResult postprocess_run(const PostprocessOptions& options) {
+  PostprocessResult result;
+  RunDirectory run = open_run_directory(options.run_directory, options.allow_unfinished);
+  std::vector<std::string>& notes = result.notes;
+  notes.insert(notes.end(), run.notes.begin(), run.notes.end());
+
+  // Everything the options name is checked before anything is written.
+  FirstSnapshot first = read_first_snapshot(run);
+  const std::vector<std::string> figure_fields = choose_figure_fields(options.figure_fields, first);
+  const std::vector<std::size_t> frames_for_figures = figure_frames(options.figure_times, run.info.snapshots);
+  prepare_post_directory(options);
+  const fs::path post(options.output_directory);
+
+  const PointGeometry points = point_geometry(run.reference);
+  const bool has_damage = first.snapshot.find("damage") != nullptr;
+  std::optional<CrackTracker> crack = crack_tracker(run, points, has_damage && run.info.dimension == 2);
+  const SeriesResult series = write_series(run, first, options, crack, notes);
+  result.frames = series.entries.size();
+
+  const PeakLoad peak = write_load_curve(run, post, notes);
+  JsonValue summary = run_summary(run, series.entries.size(), first.array_names, peak);
+  add_shear_band_metrics(summary, notes, run, points, series);
+  add_crack_metrics(summary, notes, run, crack, has_damage);
   auto note_array = JsonValue::array();
   for (const auto& note : notes) note_array.push(note);
   summary.set("notes", note_array);
   write_text((post / "summary.json").string(), summary.dump());
   result.summary = summary;
 
-  // Load-curve plot (matplotlib).
-  if (options.plot_load_curve) {
-    const std::string script = companion_script(kPlotScript, options.script_directory);
-    const std::string python = "/usr/bin/python3";
-    if (::access(python.c_str(), X_OK) != 0)
-      throw ExternalToolError("/usr/bin/python3 is missing: install the Debian packages python3 and python3-matplotlib");
-    const fs::path png = post / "load_curve.png";
-    const std::string temporary = temporary_with_extension(png);
-    const int status = run_program({python, script, (post / "load_curve.csv").string(), temporary,
-                                    peak.boundary}, true);
-    if (status != 0 || !fs::exists(temporary)) {
-      fs::remove(temporary, ec);
-      throw ExternalToolError("plotting load_curve.png failed (" + python + " " + script + " exited with " +
-                              std::to_string(status) + "; is python3-matplotlib installed?)");
-    }
-    commit_temporary(temporary, png.string());
-  }
-
-  // Figures (ParaView pvbatch under xvfb-run).
+  if (options.plot_load_curve) plot_load_curve(options.output_directory, peak.boundary, options.script_directory);
   if (options.figures) {
-    const std::string script = companion_script(kFigureScript, options.script_directory);
-    const auto pvbatch = find_program("pvbatch");
-    if (!pvbatch)
-      throw ExternalToolError("--figures needs ParaView's pvbatch, which is not on PATH: install the Debian "
-                              "packages paraview, xvfb and xauth");
-    const auto xvfb = find_program("xvfb-run");
-    const std::vector<std::string> environment = paraview_python_environment();
-    const fs::path figures = post / "figures";
-    fs::create_directories(figures, ec);
-    if (ec) throw InputError(figures.string() + ": cannot create (" + ec.message() + ")");
-    JsonValue spec = JsonValue::object();
-    spec.set("spacing", run.spacing);
-    spec.set("dimension", dimension);
-    spec.set("warp_scale", options.warp_scale);
-    auto images = JsonValue::array();
-    std::vector<std::pair<std::string, std::string>> outputs;  // temporary, final
+    std::vector<FigureFrame> frames;
     for (std::size_t k : frames_for_figures)
-      for (const auto& field : figure_fields) {
-        char name[160];
-        std::snprintf(name, sizeof name, "%s_%06lld.png", field.c_str(), static_cast<long long>(snapshots[k].step));
-        const fs::path final_path = figures / name;
-        const std::string temporary = temporary_with_extension(final_path);
-        std::string unit = field_unit(field);
-        auto image = JsonValue::object();
-        image.set("vtu", fs::absolute(post / entries[k].file).string());
-        image.set("field", field);
-        image.set("title", field + (unit.empty() ? std::string() : " [" + unit + "]"));
-        image.set("time_label", format_time(snapshots[k].time));
-        image.set("output", fs::absolute(temporary).string());
-        images.push(image);
-        outputs.emplace_back(temporary, final_path.string());
-      }
-    spec.set("images", images);
-    const std::string spec_path = (figures / (".figures.tmp-" + std::to_string(::getpid()) + ".json")).string();
-    write_text(spec_path, spec.dump());
-    std::vector<std::string> command;
-    // xvfb-run -a starts its search at display 99, so concurrent runs race for the same display;
-    // starting from a number derived from the process id avoids that. 24-bit: OpenGL needs it.
-    // -noreset: Xvfb otherwise resets when pvbatch's first (probing) connection closes, and a
-    // connection made during the reset fails ("bad X server connection") on a loaded machine.
-    const std::string display = std::to_string(100 + ::getpid() % 800);
-    if (xvfb) command = {*xvfb, "-a", "-n", display, "-s", "-screen 0 1920x1080x24 -nolisten tcp -noreset", *pvbatch, script, spec_path};
-    else command = {*pvbatch, "--force-offscreen-rendering", script, spec_path};
-    // One retry: under load, Xvfb is sometimes not ready when pvbatch connects ("bad X server
-    // connection", SIGABRT); a second attempt on a fresh server succeeds.
-    int status = run_program(command, true, environment);
-    if (status != 0 && xvfb) status = run_program(command, true, environment);
-    fs::remove(spec_path, ec);
-    bool complete = status == 0;
-    for (const auto& [temporary, final_path] : outputs)
-      if (!fs::exists(temporary)) complete = false;
-    if (!complete) {
-      for (const auto& output : outputs) fs::remove(output.first, ec);
-      throw ExternalToolError("rendering the figures failed (pvbatch exited with " + std::to_string(status) +
-                              (xvfb ? "" : "; xvfb-run is missing: install xvfb and xauth") + ")");
-    }
-    for (const auto& [temporary, final_path] : outputs) {
-      commit_temporary(temporary, final_path);
-      result.figures.push_back(final_path);
-    }
+      frames.push_back({series.entries[k].file, run.info.snapshots[k].step, format_time(run.info.snapshots[k].time)});
+    const FigureSettings settings{run.spacing, run.info.dimension, options.warp_scale, options.script_directory};
+    result.figures = render_figures(options.output_directory, settings, frames, figure_fields);
   }
   return result;
 }

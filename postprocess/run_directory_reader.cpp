@@ -91,9 +91,10 @@ RunInfo read_run_info(const std::string& path) {
   return info;
 }
 
-RunDirectory open_run_directory(const std::string& path, bool allow_unfinished) {
-  RunDirectory run;
-  run.path = path;
+namespace {
+
+// Throws unless `dir` is a non-empty directory with a run_info.json; returns that file's path.
+fs::path run_info_path(const std::string& path) {
   const fs::path dir(path);
   std::error_code ec;
   if (!fs::exists(dir, ec)) throw InputError(path + ": no such run directory");
@@ -105,7 +106,11 @@ RunDirectory open_run_directory(const std::string& path, bool allow_unfinished) 
   if (!fs::exists(info_path))
     throw InputError(path + ": not a run directory: " + run_layout::run_info +
                      " is missing (expected the output directory of mppm-solve)");
-  run.info = read_run_info(info_path.string());
+  return info_path;
+}
+
+// A run that did not complete is postprocessed with a note (a running one only if allowed).
+void check_run_status(RunDirectory& run, const fs::path& info_path, bool allow_unfinished) {
   const std::string& status = run.info.status;
   if (status == "running") {
     if (!allow_unfinished)
@@ -122,20 +127,27 @@ RunDirectory open_run_directory(const std::string& path, bool allow_unfinished) 
     throw InputError(info_path.string() + ": unknown status '" + status +
                      "' (expected completed, numerical_failure, interrupted or running)");
   }
-  if (run.info.snapshots.empty())
+}
+
+// Snapshot paths resolved against the run directory, each file present, times increasing.
+void check_snapshot_list(RunInfo& info, const fs::path& dir, const fs::path& info_path) {
+  if (info.snapshots.empty())
     throw InputError(info_path.string() + ": the run lists no snapshots (nothing to postprocess)");
-  for (auto& entry : run.info.snapshots) {
+  for (auto& entry : info.snapshots) {
     const fs::path file = fs::path(entry.path).is_absolute() ? fs::path(entry.path) : dir / entry.path;
     entry.path = file.string();
     if (!fs::exists(file))
       throw InputError(entry.path + ": snapshot listed in " + std::string(run_layout::run_info) +
                        " is missing");
   }
-  for (std::size_t k = 1; k < run.info.snapshots.size(); ++k)
-    if (!(run.info.snapshots[k].time > run.info.snapshots[k - 1].time))
+  for (std::size_t k = 1; k < info.snapshots.size(); ++k)
+    if (!(info.snapshots[k].time > info.snapshots[k - 1].time))
       throw InputError(info_path.string() + ": snapshot times are not increasing (snapshot " +
                        std::to_string(k) + ")");
+}
 
+// scene.resolved.yaml, and the spacing, horizon and thickness from it.
+void read_resolved_scene(RunDirectory& run, const fs::path& dir) {
   const fs::path scene_path = dir / run_layout::resolved_scene;
   try {
     run.scene = YAML::LoadFile(scene_path.string());
@@ -154,7 +166,10 @@ RunDirectory open_run_directory(const std::string& path, bool allow_unfinished) 
     throw InputError(scene_file + ": geometry.spacing and geometry.horizon_factor must be positive");
   if (run.scene["thickness"])
     run.thickness = scene_quantity(run.scene["thickness"], "thickness", dim::length, scene_file);
+}
 
+// reference.snap, checked against run_info.json and for the fields the postprocessor needs.
+void read_reference(RunDirectory& run, const fs::path& dir) {
   const fs::path reference_path = dir / run_layout::reference;
   if (!fs::exists(reference_path))
     throw InputError(reference_path.string() + ": missing (the reference points of the run)");
@@ -176,6 +191,20 @@ RunDirectory open_run_directory(const std::string& path, bool allow_unfinished) 
       throw InputError(reference_file + ": field '" + name + "' has " + std::to_string(field->components) +
                        " components (expected " + std::to_string(components) + ")");
   }
+}
+
+}  // namespace
+
+RunDirectory open_run_directory(const std::string& path, bool allow_unfinished) {
+  RunDirectory run;
+  run.path = path;
+  const fs::path dir(path);
+  const fs::path info_path = run_info_path(path);
+  run.info = read_run_info(info_path.string());
+  check_run_status(run, info_path, allow_unfinished);
+  check_snapshot_list(run.info, dir, info_path);
+  read_resolved_scene(run, dir);
+  read_reference(run, dir);
   return run;
 }
 

@@ -7,23 +7,25 @@
 #include "common/scene.hpp"
 #include "preprocess/preprocessor.hpp"
 
+namespace {
+
+const char* kUsage =
+    "Usage: mppm-preprocess SCENE.yaml -o POINTS.vtp [options]\n"
+    "Turns the scene's geometry (.geo .msh .step .stp .brep .stl, read with gmsh) into a\n"
+    "uniform lattice of material points with boundary layers and pre-crack geometry.\n"
+    "Options:\n"
+    "  -o POINTS.vtp        output points file (VTK XML PolyData; written atomically)\n"
+    "  --set key.path=value override a scene entry (repeatable), e.g. --set geometry.spacing=1mm\n"
+    "  --threads N          threads for the inside test and the layers (gmsh meshes on one)\n"
+    "  --verbose            show gmsh's own log\n"
+    "  --quiet              no report\n"
+    "  --help, --version\n"
+    "Exit codes: 0 success, 2 bad input (scene, geometry), 1 anything else.\n";
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  mppm::CommandLineSpec spec;
-  spec.program = "mppm-preprocess";
-  spec.usage =
-      "Usage: mppm-preprocess SCENE.yaml -o POINTS.vtp [options]\n"
-      "Turns the scene's geometry (.geo .msh .step .stp .brep .stl, read with gmsh) into a\n"
-      "uniform lattice of material points with boundary layers and pre-crack geometry.\n"
-      "Options:\n"
-      "  -o POINTS.vtp        output points file (VTK XML PolyData; written atomically)\n"
-      "  --set key.path=value override a scene entry (repeatable), e.g. --set geometry.spacing=1mm\n"
-      "  --threads N          threads for the inside test and the layers (gmsh meshes on one)\n"
-      "  --verbose            show gmsh's own log\n"
-      "  --quiet              no report\n"
-      "  --help, --version\n"
-      "Exit codes: 0 success, 2 bad input (scene, geometry), 1 anything else.\n";
-  spec.value_options = {"-o"};
-  spec.flag_options = {"--verbose"};
+  const mppm::CommandLineSpec spec{"mppm-preprocess", kUsage, {"-o"}, {"--verbose"}};
   return mppm::run_stage(argc, argv, spec, [&](const mppm::CommandLine& cl) {
     if (cl.positional.size() != 1)
       throw mppm::InputError("mppm-preprocess: expected one scene file (see --help)");

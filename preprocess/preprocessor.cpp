@@ -36,47 +36,25 @@ std::string boundary_label(const BoundaryCondition& bc, std::size_t index) {
   return "bc" + std::to_string(index + 1);
 }
 
-}  // namespace
-
-std::int64_t lattice_neighbour_count(int dimension, double horizon_factor) {
-  const auto reach = static_cast<std::int64_t>(std::floor(horizon_factor + 1e-9));
-  const double limit = (horizon_factor + 1e-9) * (horizon_factor + 1e-9);
-  std::int64_t count = 0;
-  const std::int64_t kz = dimension == 3 ? reach : 0;
-  for (std::int64_t k = -kz; k <= kz; ++k)
-    for (std::int64_t j = -reach; j <= reach; ++j)
-      for (std::int64_t i = -reach; i <= reach; ++i)
-        if ((i || j || k) && static_cast<double>(i * i + j * j + k * k) <= limit) ++count;
-  return count;
-}
-
-PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options) {
+GeometryRequest geometry_request(const Scene& scene, const PreprocessOptions& options) {
   const int d = scene.dimension;
-  const double dx = scene.geometry.spacing;
-  const double horizon = scene.geometry.horizon();
-  if (!(dx > 0) || !(horizon >= dx))
-    throw InputError(scene.path + ": geometry.spacing and geometry.horizon_factor must give "
-                                  "dx > 0 and a horizon of at least dx");
-  PreprocessResult result;
-  PreprocessReport& report = result.report;
-  auto clock = std::chrono::steady_clock::now();
-
   GeometryRequest request;
   request.file = scene.geometry.file;
   request.dimension = d;
   request.unit = scene.geometry.unit;
   const double factor = options.facet_size_factor > 0 ? options.facet_size_factor : (d == 2 ? 0.25 : 3.0);
-  request.facet_size = factor * dx;
+  request.facet_size = factor * scene.geometry.spacing;
   request.verbose = options.verbose;
-  const GeometryModel model = read_geometry(request);
-  FacetMesh boundary = model.body_boundary();
-  validate_and_orient_boundary(boundary, model.file);
-  report.geometry_note = model.note;
-  report.boundary_facets = boundary.facet_count();
-  report.seconds_geometry = seconds_since(clock);
+  return request;
+}
 
-  // Bounding box of the body from the boundary vertices (exact file coordinates; CAD bounding
-  // boxes are padded by the kernel's tolerance).
+struct Box {
+  Vec3 low, high;
+};
+
+// Bounding box of the body from the boundary vertices (exact file coordinates; CAD bounding
+// boxes are padded by the kernel's tolerance).
+Box body_box(const FacetMesh& boundary, const GeometryModel& model, int d, double facet_size) {
   Vec3 low{HUGE_VAL, HUGE_VAL, HUGE_VAL}, high{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (std::size_t f = 0; f < boundary.facet_count(); ++f)
     for (int c = 0; c < d; ++c)
@@ -91,70 +69,75 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
     bool agrees = true;
     for (int a = 0; a < d; ++a)
       agrees = agrees && model.cad_low[a] <= low[a] && model.cad_high[a] >= high[a] &&
-               low[a] - model.cad_low[a] <= request.facet_size &&
-               model.cad_high[a] - high[a] <= request.facet_size;
+               low[a] - model.cad_low[a] <= facet_size &&
+               model.cad_high[a] - high[a] <= facet_size;
     if (agrees)
       for (int a = 0; a < d; ++a) {
         low[a] = model.cad_low[a];
         high[a] = model.cad_high[a];
       }
   }
-  report.body_low = low;
-  report.body_high = high;
+  return {low, high};
+}
+
+void check_body_wider_than_spacing(const Scene& scene, const GeometryModel& model, const Box& box) {
+  const double dx = scene.geometry.spacing;
   static const char* axes = "xyz";
-  for (int a = 0; a < d; ++a)
-    if (high[a] - low[a] < dx) {
+  for (int a = 0; a < scene.dimension; ++a)
+    if (box.high[a] - box.low[a] < dx) {
       std::ostringstream s;
       s << scene.path << ": geometry.spacing (dx = " << dx << " m) is larger than the body "
-        << model.file << " (extent " << high[a] - low[a] << " m along " << axes[a]
+        << model.file << " (extent " << box.high[a] - box.low[a] << " m along " << axes[a]
         << "): choose dx smaller than the body";
       throw InputError(s.str());
     }
+}
 
-  // Selections first, so that a bad name is reported before the expensive work.
+// The facets each boundary condition selects, and the layers they make: kinematic boundaries
+// one horizon deep outside the body, loaded ones traction_depth (default dx) deep inside it.
+struct BoundaryLayers {
+  std::vector<std::vector<std::size_t>> selected;  // per boundary condition
   std::vector<LayerRequest> kinematic, loaded;
-  std::vector<std::vector<std::size_t>> selected(scene.boundary_conditions.size());
+};
+
+BoundaryLayers select_boundaries(const Scene& scene, const GeometryModel& model, const FacetMesh& boundary) {
+  const double dx = scene.geometry.spacing;
+  const double horizon = scene.geometry.horizon();
+  BoundaryLayers layers;
+  layers.selected.resize(scene.boundary_conditions.size());
   for (std::size_t b = 0; b < scene.boundary_conditions.size(); ++b) {
     const BoundaryCondition& bc = scene.boundary_conditions[b];
-    selected[b] = select_boundary_facets(bc.selector, model, boundary, scene_context(scene, bc, b));
+    layers.selected[b] = select_boundary_facets(bc.selector, model, boundary, scene_context(scene, bc, b));
     LayerRequest layer;
     layer.boundary = static_cast<std::int32_t>(b + 1);
-    layer.facets = selected[b];
+    layer.facets = layers.selected[b];
     if (is_kinematic(bc.type)) {
       layer.depth = horizon;
-      kinematic.push_back(layer);
+      layers.kinematic.push_back(layer);
     } else {
       layer.depth = bc.traction_depth > 0 ? bc.traction_depth : dx;
-      loaded.push_back(layer);
+      layers.loaded.push_back(layer);
     }
   }
-  PointCloud& cloud = result.cloud;
-  cloud.dimension = d;
-  cloud.spacing = dx;
-  cloud.horizon = horizon;
-  cloud.thickness = d == 2 ? scene.thickness : 1.0;
+  return layers;
+}
+
+std::vector<double> precrack_vertices(const Scene& scene, const GeometryModel& model) {
+  std::vector<double> vertices;
   for (std::size_t p = 0; p < scene.geometry.precracks.size(); ++p) {
     const std::vector<double> v = select_precrack_vertices(
         scene.geometry.precracks[p], model,
         scene.path + ": geometry.precracks[" + std::to_string(p) + "]");
-    cloud.precrack_vertices.insert(cloud.precrack_vertices.end(), v.begin(), v.end());
+    vertices.insert(vertices.end(), v.begin(), v.end());
   }
+  return vertices;
+}
 
-  clock = std::chrono::steady_clock::now();
-  const int padding = kinematic.empty() ? 0 : static_cast<int>(std::ceil(horizon / dx - 1e-9)) + 1;
-  const LatticeGrid grid = lattice_for_box(low, high, dx, d, padding);
-  report.lattice = grid.count;
-  const std::vector<std::uint8_t> inside = classify_inside(grid, boundary);
-  report.seconds_inside = seconds_since(clock);
-
-  clock = std::chrono::steady_clock::now();
-  LayerTags layers = assign_layers(grid, inside, boundary, kinematic, false);
-  if (!kinematic.empty()) drop_points_nearer_to_other_facets(layers, grid, boundary, horizon);
-  const LayerTags tractions = assign_layers(grid, inside, boundary, loaded, true);
-  report.seconds_layers = seconds_since(clock);
-
-  // Body points first (lattice order), then each layer k in turn: the solver finds the body
-  // as a prefix and every layer as a contiguous block.
+// Points of the body (region 0) and of each layer k; throws if the body has none. Returns the
+// total.
+std::int64_t count_points_per_region(const Scene& scene, const GeometryModel& model,
+                                     const std::vector<std::uint8_t>& inside, const LayerTags& layers,
+                                     PreprocessReport& report) {
   const std::size_t nb = scene.boundary_conditions.size();
   report.points_per_region.assign(nb + 1, 0);
   for (std::size_t g = 0; g < inside.size(); ++g) {
@@ -163,13 +146,24 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
   }
   if (report.points_per_region[0] == 0)
     throw InputError(scene.path + ": no lattice point falls inside the body of " + model.file +
-                     " (dx = " + std::to_string(dx) + " m is too coarse for it)");
+                     " (dx = " + std::to_string(scene.geometry.spacing) + " m is too coarse for it)");
   std::int64_t total = 0;
   for (auto c : report.points_per_region) total += c;
+  return total;
+}
+
+// Body points first (lattice order), then each layer k in turn: the solver finds the body
+// as a prefix and every layer as a contiguous block. Loaded body points carry their
+// boundary's id and the normal of their nearest facet; each boundary counts its points.
+void place_points(PointCloud& cloud, const LatticeGrid& grid, const std::vector<std::uint8_t>& inside,
+                  const LayerTags& layers, const LayerTags& tractions, const FacetMesh& boundary,
+                  const std::vector<std::int64_t>& points_per_region, std::int64_t total) {
+  const std::size_t nb = points_per_region.size() - 1;
+  const double dx = cloud.spacing;
   cloud.resize(static_cast<std::size_t>(total));
-  const double volume = d == 2 ? dx * dx * cloud.thickness : dx * dx * dx;
+  const double volume = cloud.dimension == 2 ? dx * dx * cloud.thickness : dx * dx * dx;
   std::vector<std::int64_t> next(nb + 1, 0);
-  for (std::size_t r = 1; r <= nb; ++r) next[r] = next[r - 1] + report.points_per_region[r - 1];
+  for (std::size_t r = 1; r <= nb; ++r) next[r] = next[r - 1] + points_per_region[r - 1];
   cloud.boundaries.resize(nb);
   for (std::size_t g = 0; g < inside.size(); ++g) {
     const std::int32_t region = inside[g] ? 0 : layers.boundary[g];
@@ -192,7 +186,14 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
     }
     if (cloud.boundary_id[i] > 0) ++cloud.boundaries[static_cast<std::size_t>(cloud.boundary_id[i] - 1)].point_count;
   }
-  for (std::size_t b = 0; b < nb; ++b) {
+}
+
+// Name, type, selection, depth and area of each boundary; throws for one that got no point.
+void describe_boundaries(const Scene& scene, const GeometryModel& model, const FacetMesh& boundary,
+                         const std::vector<std::vector<std::size_t>>& selected, PointCloud& cloud) {
+  const double dx = scene.geometry.spacing;
+  const double horizon = scene.geometry.horizon();
+  for (std::size_t b = 0; b < scene.boundary_conditions.size(); ++b) {
     const BoundaryCondition& bc = scene.boundary_conditions[b];
     BoundaryInfo& info = cloud.boundaries[b];
     info.name = boundary_label(bc, b);
@@ -201,54 +202,125 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
     info.depth = is_kinematic(bc.type) ? horizon : (bc.traction_depth > 0 ? bc.traction_depth : dx);
     double measure = 0.0;
     for (std::size_t f : selected[b]) measure += facet_measure(boundary, f);
-    info.area = d == 2 ? measure * cloud.thickness : measure;
+    info.area = scene.dimension == 2 ? measure * cloud.thickness : measure;
     if (info.point_count == 0)
       throw InputError(scene_context(scene, bc, b) + ": " + bc.selector.describe() + " of " +
                        model.file + " gets no lattice point (the selected boundary is too small "
                        "for dx = " + std::to_string(dx) + " m)");
   }
+}
 
-  // A lattice point exactly on a zero-width pre-crack loses every bond that touches the crack
-  // (precrack_crossing.hpp): almost certainly not what the user meant, so say so.
-  if (!cloud.precrack_vertices.empty()) {
-    FacetMesh cracks;
-    cracks.dimension = d;
-    for (std::size_t v = 0; v + 2 < cloud.precrack_vertices.size(); v += 3)
-      cracks.vertices.push_back({cloud.precrack_vertices[v], cloud.precrack_vertices[v + 1],
-                                 cloud.precrack_vertices[v + 2]});
-    for (std::size_t e = 0; e < cracks.vertices.size() / static_cast<std::size_t>(d); ++e) {
-      std::int64_t corners[3] = {static_cast<std::int64_t>(e) * d, static_cast<std::int64_t>(e) * d + 1,
-                                 static_cast<std::int64_t>(e) * d + 2};
-      cracks.add_facet(corners, 0);
-    }
-    LayerRequest on_crack;
-    on_crack.boundary = 1;
-    on_crack.depth = 0.0;  // assign_layers adds its 1e-9 dx slack
-    for (std::size_t f = 0; f < cracks.facet_count(); ++f) on_crack.facets.push_back(f);
-    const LayerTags touching = assign_layers(grid, inside, cracks, {on_crack}, true);
-    std::int64_t count = 0;
-    for (auto b : touching.boundary) count += b != 0;
-    if (count > 0)
-      report.warnings.push_back(std::to_string(count) +
-                                " lattice point(s) lie exactly on a pre-crack and will lose every "
-                                "bond that touches it; move the pre-crack between lattice rows");
+// A lattice point exactly on a zero-width pre-crack loses every bond that touches the crack
+// (precrack_crossing.hpp): almost certainly not what the user meant, so say so.
+void warn_points_on_precracks(const PointCloud& cloud, const LatticeGrid& grid,
+                              const std::vector<std::uint8_t>& inside, PreprocessReport& report) {
+  if (cloud.precrack_vertices.empty()) return;
+  const int d = cloud.dimension;
+  FacetMesh cracks;
+  cracks.dimension = d;
+  for (std::size_t v = 0; v + 2 < cloud.precrack_vertices.size(); v += 3)
+    cracks.vertices.push_back({cloud.precrack_vertices[v], cloud.precrack_vertices[v + 1],
+                               cloud.precrack_vertices[v + 2]});
+  for (std::size_t e = 0; e < cracks.vertices.size() / static_cast<std::size_t>(d); ++e) {
+    std::int64_t corners[3] = {static_cast<std::int64_t>(e) * d, static_cast<std::int64_t>(e) * d + 1,
+                               static_cast<std::int64_t>(e) * d + 2};
+    cracks.add_facet(corners, 0);
   }
+  LayerRequest on_crack;
+  on_crack.boundary = 1;
+  on_crack.depth = 0.0;  // assign_layers adds its 1e-9 dx slack
+  for (std::size_t f = 0; f < cracks.facet_count(); ++f) on_crack.facets.push_back(f);
+  const LayerTags touching = assign_layers(grid, inside, cracks, {on_crack}, true);
+  std::int64_t count = 0;
+  for (auto b : touching.boundary) count += b != 0;
+  if (count > 0)
+    report.warnings.push_back(std::to_string(count) +
+                              " lattice point(s) lie exactly on a pre-crack and will lose every "
+                              "bond that touches it; move the pre-crack between lattice rows");
+}
 
-  report.lattice_neighbours = lattice_neighbour_count(d, scene.geometry.horizon_factor);
+// What mppm-solve will need (common/memory_estimate.hpp: the solver's arrays per point and
+// per bond, one snapshot, the program), next to what this machine has available.
+void estimate_solver_needs(const Scene& scene, const PointCloud& cloud, std::int64_t total, PreprocessReport& report) {
+  report.lattice_neighbours = lattice_neighbour_count(scene.dimension, scene.geometry.horizon_factor);
   report.estimated_bonds = static_cast<double>(total) * static_cast<double>(report.lattice_neighbours);
-  // What mppm-solve will need (common/memory_estimate.hpp: the solver's arrays per point and
-  // per bond, one snapshot, the program), next to what this machine has available.
   MemoryEstimateInput memory;
   memory.points = static_cast<std::uint64_t>(total);
   memory.bonds = static_cast<std::uint64_t>(report.estimated_bonds);
-  memory.dimension = d;
+  memory.dimension = scene.dimension;
   memory.effects = scene.effects.names();
   memory.snapshot_fields = scene.output.fields;
   memory.damping = scene.numerics.damping != 0.0;
   for (std::size_t i = 0; i < cloud.size(); ++i) memory.boundary_points += cloud.region[i] > 0 || cloud.boundary_id[i] > 0;
   report.estimated_memory_bytes = static_cast<double>(estimate_run_memory(memory).total_bytes);
   report.available_memory_bytes = available_memory_bytes();
+}
+
+}  // namespace
+
+PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options) {
+  const int d = scene.dimension;
+  const double dx = scene.geometry.spacing;
+  const double horizon = scene.geometry.horizon();
+  if (!(dx > 0) || !(horizon >= dx))
+    throw InputError(scene.path + ": geometry.spacing and geometry.horizon_factor must give "
+                                  "dx > 0 and a horizon of at least dx");
+  PreprocessResult result;
+  PreprocessReport& report = result.report;
+  auto clock = std::chrono::steady_clock::now();
+
+  const GeometryRequest request = geometry_request(scene, options);
+  const GeometryModel model = read_geometry(request);
+  FacetMesh boundary = model.body_boundary();
+  validate_and_orient_boundary(boundary, model.file);
+  report.geometry_note = model.note;
+  report.boundary_facets = boundary.facet_count();
+  report.seconds_geometry = seconds_since(clock);
+  const Box box = body_box(boundary, model, d, request.facet_size);
+  report.body_low = box.low;
+  report.body_high = box.high;
+  check_body_wider_than_spacing(scene, model, box);
+
+  // Selections first, so that a bad name is reported before the expensive work.
+  const BoundaryLayers selections = select_boundaries(scene, model, boundary);
+  PointCloud& cloud = result.cloud;
+  cloud.dimension = d;
+  cloud.spacing = dx;
+  cloud.horizon = horizon;
+  cloud.thickness = d == 2 ? scene.thickness : 1.0;
+  cloud.precrack_vertices = precrack_vertices(scene, model);
+
+  clock = std::chrono::steady_clock::now();
+  const int padding = selections.kinematic.empty() ? 0 : static_cast<int>(std::ceil(horizon / dx - 1e-9)) + 1;
+  const LatticeGrid grid = lattice_for_box(box.low, box.high, dx, d, padding);
+  report.lattice = grid.count;
+  const std::vector<std::uint8_t> inside = classify_inside(grid, boundary);
+  report.seconds_inside = seconds_since(clock);
+
+  clock = std::chrono::steady_clock::now();
+  LayerTags layers = assign_layers(grid, inside, boundary, selections.kinematic, false);
+  if (!selections.kinematic.empty()) drop_points_nearer_to_other_facets(layers, grid, boundary, horizon);
+  const LayerTags tractions = assign_layers(grid, inside, boundary, selections.loaded, true);
+  report.seconds_layers = seconds_since(clock);
+
+  const std::int64_t total = count_points_per_region(scene, model, inside, layers, report);
+  place_points(cloud, grid, inside, layers, tractions, boundary, report.points_per_region, total);
+  describe_boundaries(scene, model, boundary, selections.selected, cloud);
+  warn_points_on_precracks(cloud, grid, inside, report);
+  estimate_solver_needs(scene, cloud, total, report);
   return result;
+}
+
+std::int64_t lattice_neighbour_count(int dimension, double horizon_factor) {
+  const auto reach = static_cast<std::int64_t>(std::floor(horizon_factor + 1e-9));
+  const double limit = (horizon_factor + 1e-9) * (horizon_factor + 1e-9);
+  std::int64_t count = 0;
+  const std::int64_t kz = dimension == 3 ? reach : 0;
+  for (std::int64_t k = -kz; k <= kz; ++k)
+    for (std::int64_t j = -reach; j <= reach; ++j)
+      for (std::int64_t i = -reach; i <= reach; ++i)
+        if ((i || j || k) && static_cast<double>(i * i + j * j + k * k) <= limit) ++count;
+  return count;
 }
 
 std::string format_report(const Scene& scene, const PreprocessResult& result,

@@ -21,15 +21,19 @@ using namespace mppm::post::testing;
 // handful (background, antialiased text). 64 separates the two with a wide margin.
 constexpr const char* kMinimumColours = "64";
 
-void require_paraview() {
-  ASSERT_TRUE(mppm::post::find_program("pvbatch").has_value())
-      << "pvbatch not found: install the Debian package paraview (make deps does)";
-  ASSERT_TRUE(mppm::post::find_program("xvfb-run").has_value())
-      << "xvfb-run not found: install the Debian packages xvfb and xauth (make deps does)";
+// An assertion result, not ASSERT_* in a helper: those would return from the helper only,
+// and the test would go on without ParaView.
+::testing::AssertionResult paraview_installed() {
+  if (!mppm::post::find_program("pvbatch"))
+    return ::testing::AssertionFailure() << "pvbatch not found: install the Debian package paraview (make deps does)";
+  if (!mppm::post::find_program("xvfb-run"))
+    return ::testing::AssertionFailure()
+           << "xvfb-run not found: install the Debian packages xvfb and xauth (make deps does)";
+  return ::testing::AssertionSuccess();
 }
 
 TEST(PostParaView, PvbatchRendersTheSeriesWarpedAndColouredByDamage) {
-  require_paraview();
+  ASSERT_TRUE(paraview_installed());
   const std::string dir = scratch_directory("pvbatch");
   write_run_directory(dir + "/run", RunFixture{});
   const auto post = run_command({postprocess_executable(), dir + "/run", "-o", dir + "/post", "--quiet", "--no-plot"});
@@ -56,7 +60,7 @@ TEST(PostParaView, PvbatchRendersTheSeriesWarpedAndColouredByDamage) {
 }
 
 TEST(PostParaView, FiguresOptionWritesContourImagesOfChosenFieldsAndTimes) {
-  require_paraview();
+  ASSERT_TRUE(paraview_installed());
   const std::string dir = scratch_directory("figures");
   write_run_directory(dir + "/run", RunFixture{});
   const auto post = run_command({postprocess_executable(), dir + "/run", "-o", dir + "/post", "--quiet", "--no-plot",
