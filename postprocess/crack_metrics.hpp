@@ -58,6 +58,8 @@ class CrackTracker {
   void add_frame(double time, const std::vector<double>& damage);
 
   CrackMetrics finish() const;
+  // The damage at and above which a body point belongs to the crack path.
+  double damage_threshold() const { return settings_.damage_threshold; }
 
  private:
   std::vector<double> x_, y_, z_;

@@ -429,6 +429,7 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
     summary.set("crack_end_reason", m.end_reason.empty() ? JsonValue() : JsonValue(m.end_reason));
     summary.set("crack_tip_speed_max_m_per_s", m.tip_speed_max_m_per_s);
     summary.set("crack_length_m", m.crack_length_m);
+    summary.set("crack_damage_threshold", crack->damage_threshold());
     if (!m.note.empty()) notes.push_back("crack: " + m.note);
   } else if (has_damage || std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
     if (run.info.dimension != 2) notes.push_back("crack metrics are measured in 2-D runs only");

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/snapshot_file.hpp"
+#include "postprocess/crack_metrics.hpp"
 #include "test_post_command.hpp"
 #include "test_post_run_fixture.hpp"
 
@@ -169,6 +170,8 @@ TEST(PostOutput, SummaryCarriesRunCountsResolvedBlocksAndMetrics) {
   // 20/3 mm per us, quantized by dx at both ends of a 1 us window: +-2 dx / (6.67 mm) = 30%.
   EXPECT_NEAR(summary["crack_tip_speed_max_m_per_s"].as<double>(), 20.0 / 3.0 * 1e3, 0.3 * 20.0 / 3.0 * 1e3);
   EXPECT_NEAR(summary["crack_length_m"].as<double>(), 20e-3, 2e-3);
+  // The crack path's threshold is in the summary, so that scripts need not repeat it.
+  EXPECT_DOUBLE_EQ(summary["crack_damage_threshold"].as<double>(), mppm::post::CrackSettings{}.damage_threshold);
 }
 
 TEST(PostOutput, LoadCurveHasOneDisplacementAndForcePerLoadedBoundary) {

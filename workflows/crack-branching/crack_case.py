@@ -11,10 +11,6 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import mppm_outputs  # noqa: E402
 from mppm_outputs import RunOutputError  # noqa: E402,F401  (the readers' error, for the scripts)
 
-# The postprocessor's crack path (postprocess/crack_metrics.hpp, CrackSettings::damage_threshold):
-# points with damage >= this. summary.json does not carry it yet; crack_damage_threshold()
-# prefers the summary's value when it does.
-POSTPROCESSOR_DAMAGE_THRESHOLD = 0.35
 
 
 def summary(out, run):
@@ -39,7 +35,12 @@ def frames(out, run):
 
 
 def crack_damage_threshold(run_summary):
-    return run_summary.get("crack_damage_threshold", POSTPROCESSOR_DAMAGE_THRESHOLD)
+    """The postprocessor's crack-path threshold (points with damage >= it), from summary.json."""
+    try:
+        return float(run_summary["crack_damage_threshold"])
+    except (KeyError, TypeError, ValueError):
+        raise RunOutputError("summary.json has no crack_damage_threshold: postprocess the run with "
+                             "this version of mppm-postprocess") from None
 
 
 def lattice(out, run):
