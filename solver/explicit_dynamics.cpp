@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 namespace mppm::solver {
 
@@ -184,7 +183,7 @@ void ExplicitDynamics::restore(const Carried& carried, const std::vector<double>
   body_force_ = body_force;
 }
 
-void ExplicitDynamics::step(bool with_energy) {
+void ExplicitDynamics::advance_to_forces(bool with_energy) {
   PointData& p = model_.points;
   const int D = p.dimension;
   const int R = p.rotation_components;
@@ -247,9 +246,19 @@ void ExplicitDynamics::step(bool with_energy) {
                            : static_cast<double>(steps_ + 1) * dt_;
   conditions_.prescribe(p, time_);
   compute_loads_and_forces(with_energy, true);
-  if (injection_ && injection_->step == steps_ + 1) inject_nan();
-  if (kick_ && kick_->step == steps_ + 1)
-    p.velocity[kick_->point * static_cast<std::size_t>(D) + static_cast<std::size_t>(kick_->component)] += kick_->velocity;
+}
+
+void ExplicitDynamics::complete_step(bool with_energy) {
+  PointData& p = model_.points;
+  const int D = p.dimension;
+  const int R = p.rotation_components;
+  const double inv_rho = 1.0 / model_.constants.density;
+  const double inv_inertia = R > 0 ? 1.0 / model_.constants.micro_inertia : 0.0;
+  const double rho = model_.constants.density;
+  const double inertia = model_.constants.micro_inertia;
+  const double half = 0.5 * dt_;
+  const bool threaded = thread_point_loop(p.owned);
+  const double c_damp = damping_;
 
   // Damage: where breaks refreshed the forces (Model::advance_internal_forces), this step's kick
   // and next step's use the forces without the broken bonds, as they must (a bond past its
@@ -346,32 +355,6 @@ void ExplicitDynamics::step(bool with_energy) {
   }
   ++steps_;
   if (with_energy) evaluate_energy();
-}
-
-const char* NanInjection::name(Field f) {
-  switch (f) {
-    case Field::displacement: return "displacement";
-    case Field::velocity: return "velocity";
-    case Field::rotation: return "rotation";
-    case Field::rotation_rate: return "rotation_rate";
-    case Field::force: return "force";
-  }
-  return "?";
-}
-
-void ExplicitDynamics::inject_nan() {
-  PointData& p = model_.points;
-  const NanInjection& k = *injection_;
-  const std::size_t D = static_cast<std::size_t>(p.dimension), R = static_cast<std::size_t>(p.rotation_components);
-  const auto c = static_cast<std::size_t>(k.component);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  switch (k.field) {
-    case NanInjection::Field::displacement: p.displacement[k.point * D + c] = nan; break;
-    case NanInjection::Field::velocity: p.velocity[k.point * D + c] = nan; break;
-    case NanInjection::Field::force: p.force[k.point * D + c] = nan; break;
-    case NanInjection::Field::rotation: p.rotation[k.point * R + c] = nan; break;
-    case NanInjection::Field::rotation_rate: p.spin[k.point * R + c] = nan; break;
-  }
 }
 
 std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite() const {

@@ -36,30 +36,6 @@ struct EnergyState {
   double accounted() const { return total() + plastic_dissipation + fracture_dissipation; }
 };
 
-// Test hook (mppm-solve --inject-nan, solver/README.md "Test hooks"): a quiet NaN written into one
-// component of one point's state in the middle of a step, after its force evaluation and before
-// its second half kick, as a singular local update would leave it. The per-step guard then sees
-// it in the same step, before the next force evaluation spreads it to the neighbours.
-struct NanInjection {
-  enum class Field { displacement, velocity, rotation, rotation_rate, force };
-  std::int64_t step = 1;    // the step (1-based) in which the value turns NaN
-  std::size_t point = 0;    // index in the points file (owned points come first, in file order)
-  Field field = Field::velocity;
-  int component = 0;
-  static const char* name(Field f);
-};
-
-// Test hook (mppm-solve --inject-kick, solver/README.md "Test hooks"): `velocity` m/s added to one
-// component of one point's velocity in the middle of a step, at the same place as a NaN injection.
-// Nothing accounts for the kinetic energy it adds, so the periodic energy check sees unexplained
-// growth for a known reason.
-struct VelocityKick {
-  std::int64_t step = 1;    // the step (1-based) in which the velocity jumps
-  std::size_t point = 0;    // index in the points file
-  int component = 0;
-  double velocity = 0.0;    // [m/s]
-};
-
 // Where the per-step guard found non-finite values (ExplicitDynamics::first_non_finite).
 struct NonFinitePoint {
   std::size_t point = 0;     // the lowest index holding a non-finite value
@@ -88,7 +64,18 @@ class ExplicitDynamics {
   // Prescribes the state at t = 0 and computes the forces and energies there.
   void initialize();
   // One step; energies are evaluated at the new time when `with_energy`.
-  void step(bool with_energy);
+  void step(bool with_energy) {
+    step(with_energy, [](PointData&, std::int64_t) {});
+  }
+  // The same, calling after_forces(points, step) between the step's force evaluation and its second
+  // half kick, with `step` counted from 1: the run driver applies its test hooks there
+  // (solver/test_hooks.hpp).
+  template <class AfterForces>
+  void step(bool with_energy, AfterForces&& after_forces) {
+    advance_to_forces(with_energy);
+    after_forces(model_.points, steps_ + 1);
+    complete_step(with_energy);
+  }
 
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
@@ -103,10 +90,6 @@ class ExplicitDynamics {
   bool finite() const { return finite_; }
   // The points holding non-finite values now (a full scan: call it when finite() turned false).
   std::optional<NonFinitePoint> first_non_finite() const;
-
-  // Test hook: the NaN to inject (none by default).
-  void set_nan_injection(std::optional<NanInjection> injection) { injection_ = injection; }
-  void set_velocity_kick(std::optional<VelocityKick> kick) { kick_ = kick; }
 
   Model& model() { return model_; }
   const Model& model() const { return model_; }
@@ -129,6 +112,10 @@ class ExplicitDynamics {
   void restore(const Carried& carried, const std::vector<double>& body_force);
 
  private:
+  // The first half of a step: first half kick, drift, prescribed motion, force evaluation.
+  void advance_to_forces(bool with_energy);
+  // The rest: the breaks' energy bookkeeping, second half kick, work, non-finite guard, energies.
+  void complete_step(bool with_energy);
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
@@ -174,9 +161,6 @@ class ExplicitDynamics {
   std::vector<double> work_increment_;   // summed serially, in point order
   EnergyState energy_;
   double initial_total_ = 0.0;
-  std::optional<NanInjection> injection_;
-  std::optional<VelocityKick> kick_;
-  void inject_nan();
 };
 
 }  // namespace mppm::solver

@@ -105,84 +105,7 @@ std::string non_finite_reason(const ExplicitDynamics& dynamics) {
          std::to_string(bad->points) + " point(s) non-finite";
 }
 
-// The value of a test hook (--inject-nan, --inject-kick) cut at its colons.
-std::vector<std::string> hook_parts(const std::string& value) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
-    parts.push_back(value.substr(start, at - start));
-  parts.push_back(value.substr(start));
-  return parts;
-}
-
-// A 1-based ("3") or 0-based ("17") non-negative integer of a test hook; `form` says what the
-// hook expects, for the message.
-std::int64_t hook_integer(const std::string& hook, const std::string& value, const std::string& part,
-                          const std::string& what, const std::string& form) {
-  std::size_t used = 0;
-  long long v = -1;
-  try {
-    v = std::stoll(part, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != part.size() || part.empty() || v < 0)
-    throw InputError("mppm-solve: " + hook + " " + value + ": " + what + " '" + part + "' is not a non-negative integer" +
-                     form);
-  return v;
-}
-
-// The step of a test hook, from 1.
-std::int64_t hook_step(const std::string& hook, const std::string& value, const std::string& part,
-                       const std::string& form) {
-  const std::int64_t step = hook_integer(hook, value, part, "STEP", form);
-  if (step < 1) throw InputError("mppm-solve: " + hook + " " + value + ": STEP counts from 1 (the first step)");
-  return step;
-}
-
 }  // namespace
-
-NanInjection parse_nan_injection(const std::string& value) {
-  const std::vector<std::string> parts = hook_parts(value);
-  const std::string hook = "--inject-nan";
-  const std::string form = " (expected STEP:POINT[:FIELD[:COMPONENT]], e.g. 200:17:velocity)";
-  if (parts.size() < 2 || parts.size() > 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
-  NanInjection k;
-  k.step = hook_step(hook, value, parts[0], form);
-  k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
-  if (parts.size() > 2) {
-    using F = NanInjection::Field;
-    bool known = false;
-    for (F f : {F::displacement, F::velocity, F::rotation, F::rotation_rate, F::force})
-      if (parts[2] == NanInjection::name(f)) {
-        k.field = f;
-        known = true;
-      }
-    if (!known)
-      throw InputError("mppm-solve: --inject-nan " + value + ": unknown FIELD '" + parts[2] +
-                       "' (expected displacement, velocity, rotation, rotation_rate or force)");
-  }
-  if (parts.size() > 3) k.component = static_cast<int>(hook_integer(hook, value, parts[3], "COMPONENT", form));
-  return k;
-}
-
-VelocityKick parse_velocity_kick(const std::string& value) {
-  const std::vector<std::string> parts = hook_parts(value);
-  const std::string hook = "--inject-kick";
-  const std::string form = " (expected STEP:POINT:COMPONENT:VELOCITY, e.g. 60:17:0:50)";
-  if (parts.size() != 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
-  VelocityKick k;
-  k.step = hook_step(hook, value, parts[0], form);
-  k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
-  k.component = static_cast<int>(hook_integer(hook, value, parts[2], "COMPONENT", form));
-  try {
-    k.velocity = parse_quantity_as(parts[3], dim::velocity);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY: " + e.what() + form);
-  }
-  if (!std::isfinite(k.velocity)) throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY must be finite" + form);
-  return k;
-}
 
 // Before anything big is allocated: the memory estimate (common/memory_estimate.hpp) against what
 // this machine has available (MemAvailable, or MPPM_MEMORY_AVAILABLE in bytes: a budget a user or
@@ -281,8 +204,7 @@ SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoin
     throw InputError(options.points_file + ": not the points the run in " + options.run_directory +
                      " was started with (the points file changed since the checkpoint " + checkpoint.path +
                      "; a restart needs the same points)");
-  if (options.inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-  if (options.inject_kick) throw InputError("mppm-solve: --inject-kick cannot be combined with --restart");
+  options.test_hooks.refuse_with_restart();
   return run(load_scene(scene_file), cloud, options, &checkpoint, release);
 }
 
@@ -352,9 +274,9 @@ class RunDriver {
   SolveResult run(const PointCloud& cloud, PointCloud* release) {
     check_inputs(cloud);
     build_model_and_conditions(cloud, release);
-    check_test_hooks_against_model();
+    options_.test_hooks.check_against_model(model(), options_.points_file);
     fit_time_step();
-    check_test_hooks_against_steps();
+    options_.test_hooks.check_against_steps(plan_.steps);
     open_run_directory();
     log_start();
     start_dynamics();
@@ -376,9 +298,7 @@ class RunDriver {
   // the next one allocates or writes anything.
   void check_inputs(const PointCloud& cloud);
   void build_model_and_conditions(const PointCloud& cloud, PointCloud* release);
-  void check_test_hooks_against_model() const;
   void fit_time_step();
-  void check_test_hooks_against_steps() const;
   void open_run_directory();
   void fill_run_info();
   void log_start();
@@ -462,33 +382,6 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
                      " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
 }
 
-// The test hooks' points and components, checked against the model before anything is written
-// (exit 2 like any bad option).
-void RunDriver::check_test_hooks_against_model() const {
-  const Model& m = *model_;
-  if (const auto& k = options_.inject_nan) {
-    const bool rotational = k->field == NanInjection::Field::rotation || k->field == NanInjection::Field::rotation_rate;
-    const int components = rotational ? m.points.rotation_components : m.dimension();
-    if (k->point >= m.points.owned)
-      throw InputError("mppm-solve: --inject-nan: POINT " + std::to_string(k->point) + " is not a point of " +
-                       options_.points_file + " (expected 0 to " + std::to_string(m.points.owned - 1) + ")");
-    if (components == 0)
-      throw InputError(std::string("mppm-solve: --inject-nan: FIELD ") + NanInjection::name(k->field) +
-                       " needs the micropolar effect (this run has no micro-rotation)");
-    if (k->component >= components)
-      throw InputError("mppm-solve: --inject-nan: COMPONENT " + std::to_string(k->component) + " of " +
-                       NanInjection::name(k->field) + " (expected 0 to " + std::to_string(components - 1) + ")");
-  }
-  if (const auto& k = options_.inject_kick) {
-    if (k->point >= m.points.owned)
-      throw InputError("mppm-solve: --inject-kick: POINT " + std::to_string(k->point) + " is not a point of " +
-                       options_.points_file + " (expected 0 to " + std::to_string(m.points.owned - 1) + ")");
-    if (k->component >= m.dimension())
-      throw InputError("mppm-solve: --inject-kick: COMPONENT " + std::to_string(k->component) +
-                       " of the velocity (expected 0 to " + std::to_string(m.dimension() - 1) + ")");
-  }
-}
-
 // The critical step of the model, the step the run takes (fit_step_to_end) and the breakage's
 // view of it; the resolved scene records the step.
 void RunDriver::fit_time_step() {
@@ -500,18 +393,6 @@ void RunDriver::fit_time_step() {
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
   scene_.time.step = plan_.dt;
-}
-
-void RunDriver::check_test_hooks_against_steps() const {
-  const std::int64_t steps = plan_.steps;
-  if (options_.inject_nan && options_.inject_nan->step > steps)
-    throw InputError("mppm-solve: --inject-nan: STEP " + std::to_string(options_.inject_nan->step) +
-                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
-                     std::to_string(steps) + ")");
-  if (options_.inject_kick && options_.inject_kick->step > steps)
-    throw InputError("mppm-solve: --inject-kick: STEP " + std::to_string(options_.inject_kick->step) +
-                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
-                     std::to_string(steps) + ")");
 }
 
 // The run directory: a new one (the resolved scene and the reference configuration written), or
@@ -594,15 +475,9 @@ void RunDriver::log_start_up_report() {
   for (const auto& w : scene_.warnings) writer().log("warning: " + w);
 }
 
+// The fault hooks armed for this run (solver/test_hooks.hpp).
 void RunDriver::log_test_hooks() {
-  if (const auto& k = options_.inject_nan)
-    writer().log("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
-                 " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) +
-                 " in step " + std::to_string(k->step));
-  if (const auto& k = options_.inject_kick)
-    writer().log("test hook (--inject-kick): " + text(k->velocity) + " m/s will be added to velocity component " +
-                 std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
-                 std::to_string(k->step) + " (kinetic energy that nothing accounts for)");
+  for (const std::string& line : options_.test_hooks.armed()) writer().log(line);
 }
 
 void RunDriver::log_fields_not_produced() {
@@ -620,8 +495,6 @@ void RunDriver::start_dynamics() {
   dynamics_.emplace(model(), *conditions_, plan_.dt, scene_.gravity);
   dynamics().set_damping(scene_.numerics.damping);
   dynamics().set_clock(scene_.time.end, plan_.steps);
-  dynamics().set_nan_injection(options_.inject_nan);
-  dynamics().set_velocity_kick(options_.inject_kick);
   dynamics().initialize();
   loop_start_ = std::chrono::steady_clock::now();
   rows_ = Schedule(scene_.output.load_interval, plan_.dt, true);
@@ -669,10 +542,10 @@ bool RunDriver::advance(Progress& progress) {
     const bool snap = snapshots_.due(s) || s == steps;
     // A finished run needs no checkpoint to continue from.
     const bool checkpoint_due = checkpoints_.due(s) && s < steps;
-    dynamics().step(row);
+    dynamics().step(row, [this](PointData& points, std::int64_t step) { options_.test_hooks.after_forces(points, step); });
     check_and_record(s, row);
     if (snap) snapshot();
-    const bool interrupted = interruption_requested() || options_.interrupt_after_step == s;
+    const bool interrupted = interruption_requested() || options_.test_hooks.interrupts_after(s);
     // With checkpoints on, an interruption (SIGINT, SIGTERM) writes one too, before the snapshot of
     // the interruption (which the checkpoint does not count, so that a restart removes it).
     if (checkpointing_ && (checkpoint_due || interrupted)) checkpoint();
@@ -828,7 +701,7 @@ void RunDriver::checkpoint() {
   ++checkpoints_written_;
   try {
     write_checkpoint(checkpoint_path(writer().directory()), identity_, model(), dynamics(), loop,
-                     options_.fail_checkpoint_write == checkpoints_written_);
+                     options_.test_hooks.fails_checkpoint_write(checkpoints_written_));
   } catch (const InputError& e) {
     stop_on_checkpoint_write_error(e);
   }
