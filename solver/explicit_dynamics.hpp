@@ -112,10 +112,28 @@ class ExplicitDynamics {
   void restore(const Carried& carried, const std::vector<double>& body_force);
 
  private:
+  // The constants of one step's kicks (no allocation: a step computes them on the stack).
+  struct StepConstants {
+    int D = 0, R = 0;
+    double inv_rho = 0.0, inv_inertia = 0.0, rho = 0.0, inertia = 0.0;
+    double half = 0.0, dt = 0.0, c_damp = 0.0;
+    bool threaded = false;
+  };
+  StepConstants step_constants() const;
+  // The damage terms of a step's energy bookkeeping (breakage_energy).
+  struct BreakageEnergy {
+    double kick = 0.0, work = 0.0;
+  };
   // The first half of a step: first half kick, drift, prescribed motion, force evaluation.
   void advance_to_forces(bool with_energy);
   // The rest: the breaks' energy bookkeeping, second half kick, work, non-finite guard, energies.
   void complete_step(bool with_energy);
+  void first_half_kick_and_drift(const StepConstants& sc);
+  BreakageEnergy breakage_energy(const StepConstants& sc) const;
+  bool second_half_kick(const StepConstants& sc);
+  int second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i);
+  int second_half_kick_tracked(const StepConstants& sc, double damp_factor, std::size_t i, std::size_t t);
+  void book_step_energy(const BreakageEnergy& breakage);
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
@@ -158,7 +176,7 @@ class ExplicitDynamics {
   std::vector<double> body_force_prev_;
   std::vector<double> force_prev_, moment_prev_;           // D, R
   std::vector<double> displacement_prev_, rotation_prev_;  // D, R
-  std::vector<double> work_increment_;   // summed serially, in point order
+  std::vector<double> work_increment_;   // summed serially, in point order (book_step_energy)
   EnergyState energy_;
   double initial_total_ = 0.0;
 };
