@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <optional>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,7 +19,6 @@
 #include "common/input_error.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
-#include "common/units.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/checkpoint.hpp"
 #include "common/memory_estimate.hpp"
@@ -172,8 +170,9 @@ void remove_output_after_checkpoint(const std::string& directory, const std::vec
   }
 }
 
-// `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
-// boundary conditions are built from it; null to leave it as it is.
+// A new run (resume null) or a restart from `resume`, by a RunDriver (below). `release`: the
+// caller's cloud (the same object as `cloud`), emptied once the model and the boundary conditions
+// are built from it; null to leave it as it is.
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
                 const CheckpointFile* resume, PointCloud* release);
 
@@ -229,9 +228,9 @@ constexpr std::int64_t kGuardStartStep = 50;
 // passed since their last rewrite; at checkpoints, stops, failures and the end always. Ten
 // fsyncs cost about 13 ms on the development VM: after every one of the crack-branching case's
 // 241 snapshots that was 3 s of its 17 s. A run killed between rewrites leaves every file
-// whole, the tables up to a second behind the newest snapshot. The snapshot's own fsyncs run
-// on the run writer's background thread (run_writer.hpp); a rewrite waits for them, so that
-// run_info.json lists only snapshots that are complete under their names.
+// whole, the tables up to a second behind the newest snapshot. The snapshots written since the
+// last rewrite are fsynced in one batch by the next one (run_writer.hpp), before run_info.json
+// lists them.
 constexpr std::chrono::duration<double> kTableFlushInterval{1.0};
 
 // The time step of a run and what it was fitted to.
