@@ -158,56 +158,45 @@ double family_breaking_energy(const PointData& p, const BondFamilies& f, const C
   return 0.5 * c.critical_bond_work * p.volume[i] * family;
 }
 
-BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
-                                     const InternalForceFunctions& kernel, double block_eigenvalue_limit,
-                                     BreakageWorkspace& w) {
-  BreakageUpdate u;
-  p.refreshed_points.clear();
-  std::vector<std::size_t>& changed = w.changed;
-  changed.clear();
-  // The kernel counts a break at the lower end of the bond, which holds the pair's work: the bonds
-  // of a counting point whose work reached the critical work are the breaking ones (the kernel
-  // books no work on a bond with a no-fail end, so those stay at zero), and their two ends the
-  // points whose families change.
-  // They still act until they are broken below.
-  std::vector<std::int64_t>& breaking = w.breaking;  // both entries of every breaking bond
-  breaking.clear();
-  std::size_t counted = 0;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    if (p.bonds_broken[i] == 0) continue;
-    counted += static_cast<std::size_t>(p.bonds_broken[i]);
-    changed.push_back(i);
-    const std::int64_t split = f.first_pair_bond(i);
-    for (std::int64_t b = split; b < f.offset[i + 1]; ++b) {
-      if (!f.acting(b)) continue;
-      const std::size_t j = f.neighbor_of(b);
-      const double work = f.work[static_cast<std::size_t>(f.pair_offset[i] + (b - split))];
-      if (!(work >= c.critical_bond_work)) continue;
-      breaking.push_back(b);
-      breaking.push_back(mirror_bond(f, i, j));
-      changed.push_back(j);
-    }
-  }
-  if (changed.empty()) return u;
-  if (breaking.size() != 2 * counted)
-    throw std::logic_error("update_after_breakage: the bonds at their critical work are not those the kernel counted");
-  std::sort(changed.begin(), changed.end());
-  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-  std::size_t broken_ends = breaking.size();
-  if (w.affected_index.size() != p.owned) w.affected_index.assign(p.owned, -1);
+namespace {
 
+// One update_after_breakage: the phases of the update over the state they share (the workspace's
+// arrays, so that no phase allocates once they are warm).
+class BreakageUpdater {
+ public:
+  BreakageUpdater(PointData& points, BondFamilies& bonds, const CosseratConstants& constants,
+                  const InternalForceFunctions& functions, double limit, BreakageWorkspace& workspace)
+      : p(points), f(bonds), c(constants), kernel(functions), block_eigenvalue_limit(limit), w(workspace) {}
+
+  BreakageUpdate run();
+
+ private:
+  bool collect_breaking_bonds();
+  void record(std::size_t i);
+  void detach_on_energy_rise();
+  void detach_unstable_blocks();
+  void break_bonds_of_detached();
+  void refresh_and_measure_release();
+
+  PointData& p;
+  BondFamilies& f;
+  const CosseratConstants& c;
+  const InternalForceFunctions& kernel;
+  const double block_eigenvalue_limit;
+  BreakageWorkspace& w;
+  BreakageUpdate u;
+  std::size_t broken_ends = 0;
+};
+
+BreakageUpdate BreakageUpdater::run() {
+  p.refreshed_points.clear();
+  if (!collect_breaking_bonds()) return u;
   // The points whose families change in this update, in the order first met, with the energy they
   // stored just before (the breaking bonds still act, shape tensor as it was).
   w.affected.clear();
   w.energy_before.clear();
-  auto record = [&](std::size_t i) {
-    if (i >= p.owned || w.affected_index[i] >= 0) return;
-    w.affected_index[i] = static_cast<std::int64_t>(w.affected.size());
-    w.affected.push_back(i);
-    w.energy_before.push_back(kernel.point_energy(p, f, c, i).total());
-  };
-  for (const std::size_t i : changed) record(i);
-  for (const std::int64_t b : breaking) f.break_bond(b);
+  for (const std::size_t i : w.changed) record(i);
+  for (const std::int64_t b : w.breaking) f.break_bond(b);
 
   // Points to detach, found after the shape tensors of the changed points are recomputed:
   //  - a singular shape tensor (SPEC section 2);
@@ -242,98 +231,166 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
   // A detached point moves ballistically: its remaining bonds break (which changes its
   // neighbours in turn), except those to no-fail points; no-fail points are never detached by the
   // last two rules. Decided serially and in index order: the same for any thread count. Points
-  // detached from the start (isolated by the geometry) are left as they are.
-  std::vector<std::size_t>& next = w.next;
-  std::vector<std::size_t>& detach = w.detach;
-  std::vector<std::size_t>& candidates = w.candidates;
-  while (!changed.empty()) {
-    w.was_detached.resize(changed.size());
-    for (std::size_t k = 0; k < changed.size(); ++k) w.was_detached[k] = p.detached[changed[k]];
-    update_shape_tensors(p, f, c, changed);
-    detach.clear();
-    for (std::size_t k = 0; k < changed.size(); ++k) {
-      const std::size_t i = changed[k];
-      if (w.was_detached[k]) continue;
-      if (p.detached[i]) {
-        detach.push_back(i);
-        continue;
-      }
-      if (p.no_fail[i]) continue;
-      const double before = w.energy_before[static_cast<std::size_t>(w.affected_index[i])];
-      const double after = kernel.point_energy(p, f, c, i).total();
-      if (!(after > before)) continue;
-      const bool overloaded = before > kOverloadedBreakingEnergyMultiple * family_breaking_energy(p, f, c, i);
-      if (overloaded || after > (1.0 + kEnergyRiseToDetach) * before) {
-        detach_point(p, i);
-        detach.push_back(i);
-        ++u.energy_detached;
-      }
-    }
-    if (block_eigenvalue_limit > 0.0) {
-      candidates.clear();
-      for (const std::size_t i : changed) {
-        candidates.push_back(i);
-        for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-          if (f.acting(b)) candidates.push_back(static_cast<std::size_t>(f.neighbor[b]));
-      }
-      std::sort(candidates.begin(), candidates.end());
-      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      // The blocks (an eigenvalue problem each, for every changed point's neighbours: the bulk of
-      // this update's work) are evaluated in parallel first; the decisions below stay serial and
-      // in index order. A detachment changes its neighbours' blocks, so once one happened in this
-      // round the later candidates are evaluated again, as a serial loop would see them.
-      auto checked = [&](std::size_t i) { return i < p.owned && !p.detached[i] && p.region[i] == 0 && !p.no_fail[i]; };
-      std::vector<double>& eigenvalue = w.candidate_eigenvalue;
-      eigenvalue.assign(candidates.size(), 0.0);
-      const auto count = static_cast<std::int64_t>(candidates.size());
-#pragma omp parallel for schedule(dynamic, 16) if (thread_block_loop(candidates.size()))
-      for (std::int64_t k = 0; k < count; ++k) {
-        const std::size_t i = candidates[static_cast<std::size_t>(k)];
-        if (checked(i)) eigenvalue[static_cast<std::size_t>(k)] = point_block_eigenvalue(p, f, c, i);
-      }
-      bool detached_this_round = false;
-      for (std::size_t k = 0; k < candidates.size(); ++k) {
-        const std::size_t i = candidates[k];
-        if (!checked(i)) continue;
-        const double block = detached_this_round ? point_block_eigenvalue(p, f, c, i) : eigenvalue[k];
-        if (block > block_eigenvalue_limit) {
-          detached_this_round = true;
-          record(i);
-          detach_point(p, i);
-          detach.push_back(i);
-          ++u.unstable_detached;
-        }
-      }
-    }
-    std::sort(detach.begin(), detach.end());
-    next.clear();
-    for (const std::size_t i : detach) {
-      ++u.newly_detached;
-      for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-        if (!f.acting(b)) continue;
-        const auto j = static_cast<std::size_t>(f.neighbor[b]);
-        // A bond with a no-fail end never breaks (SPEC section 7), not even here: the detached
-        // point stays tied to the protected boundary by it (its own stress is zero; the pair
-        // force is then the no-fail point's alone).
-        if (j < p.owned && p.no_fail[j]) continue;
-        record(j);
-        const std::int64_t rb = mirror_bond(f, i, j);
-        f.break_bond(b);
-        if (rb >= 0) f.break_bond(rb);
-        broken_ends += 2;
-        next.push_back(j);
-      }
-    }
-    std::sort(next.begin(), next.end());
-    next.erase(std::unique(next.begin(), next.end()), next.end());
-    changed.swap(next);
+  // detached from the start (isolated by the geometry) are left as they are. Rounds of this run
+  // until no family changes.
+  while (!w.changed.empty()) {
+    detach_on_energy_rise();
+    if (block_eigenvalue_limit > 0.0) detach_unstable_blocks();
+    break_bonds_of_detached();
   }
-  // The step's forces again without the broken bonds (kernel::refresh_after_breakage), which also
-  // refreshes the per-point energies of the affected points. The stored energy the breaks release
-  // is what these points stored before minus what they store now, at the same displacements and
-  // rotations (only their energies changed: a point's energy depends on its own family only).
-  // Summed in the order the points were met, which does not depend on the thread count. (The
-  // integrator adds the kick's share, from the forces before the refresh.)
+  refresh_and_measure_release();
+  u.broken_pairs = broken_ends / 2;
+  return u;
+}
+
+// The candidates: the kernel counts a break at the lower end of the bond, which holds the pair's
+// work: the bonds of a counting point whose work reached the critical work are the breaking ones
+// (the kernel books no work on a bond with a no-fail end, so those stay at zero), and their two
+// ends the points whose families change (w.changed, sorted). They still act until they are broken.
+// False when no bond breaks.
+bool BreakageUpdater::collect_breaking_bonds() {
+  std::vector<std::size_t>& changed = w.changed;
+  changed.clear();
+  std::vector<std::int64_t>& breaking = w.breaking;  // both entries of every breaking bond
+  breaking.clear();
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (p.bonds_broken[i] == 0) continue;
+    counted += static_cast<std::size_t>(p.bonds_broken[i]);
+    changed.push_back(i);
+    const std::int64_t split = f.first_pair_bond(i);
+    for (std::int64_t b = split; b < f.offset[i + 1]; ++b) {
+      if (!f.acting(b)) continue;
+      const std::size_t j = f.neighbor_of(b);
+      const double work = f.work[static_cast<std::size_t>(f.pair_offset[i] + (b - split))];
+      if (!(work >= c.critical_bond_work)) continue;
+      breaking.push_back(b);
+      breaking.push_back(mirror_bond(f, i, j));
+      changed.push_back(j);
+    }
+  }
+  if (changed.empty()) return false;
+  if (breaking.size() != 2 * counted)
+    throw std::logic_error("update_after_breakage: the bonds at their critical work are not those the kernel counted");
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  broken_ends = breaking.size();
+  if (w.affected_index.size() != p.owned) w.affected_index.assign(p.owned, -1);
+  return true;
+}
+
+// Point i among the affected points (once), with the energy it stores now.
+void BreakageUpdater::record(std::size_t i) {
+  if (i >= p.owned || w.affected_index[i] >= 0) return;
+  w.affected_index[i] = static_cast<std::int64_t>(w.affected.size());
+  w.affected.push_back(i);
+  w.energy_before.push_back(kernel.point_energy(p, f, c, i).total());
+}
+
+// The shape tensors of the changed points recomputed; the points they left singular, and those
+// whose stored energy rose too much (kEnergyRiseToDetach, kOverloadedBreakingEnergyMultiple),
+// detached (w.detach).
+void BreakageUpdater::detach_on_energy_rise() {
+  const std::vector<std::size_t>& changed = w.changed;
+  w.was_detached.resize(changed.size());
+  for (std::size_t k = 0; k < changed.size(); ++k) w.was_detached[k] = p.detached[changed[k]];
+  update_shape_tensors(p, f, c, changed);
+  w.detach.clear();
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    const std::size_t i = changed[k];
+    if (w.was_detached[k]) continue;
+    if (p.detached[i]) {
+      w.detach.push_back(i);
+      continue;
+    }
+    if (p.no_fail[i]) continue;
+    const double before = w.energy_before[static_cast<std::size_t>(w.affected_index[i])];
+    const double after = kernel.point_energy(p, f, c, i).total();
+    if (!(after > before)) continue;
+    const bool overloaded = before > kOverloadedBreakingEnergyMultiple * family_breaking_energy(p, f, c, i);
+    if (overloaded || after > (1.0 + kEnergyRiseToDetach) * before) {
+      detach_point(p, i);
+      w.detach.push_back(i);
+      ++u.energy_detached;
+    }
+  }
+}
+
+// The stability blocks: the changed points and their neighbours whose stiffness block exceeds
+// block_eigenvalue_limit detached (w.detach).
+void BreakageUpdater::detach_unstable_blocks() {
+  std::vector<std::size_t>& candidates = w.candidates;
+  candidates.clear();
+  for (const std::size_t i : w.changed) {
+    candidates.push_back(i);
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+      if (f.acting(b)) candidates.push_back(static_cast<std::size_t>(f.neighbor[b]));
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  // The blocks (an eigenvalue problem each, for every changed point's neighbours: the bulk of
+  // this update's work) are evaluated in parallel first; the decisions below stay serial and
+  // in index order. A detachment changes its neighbours' blocks, so once one happened in this
+  // round the later candidates are evaluated again, as a serial loop would see them.
+  auto checked = [&](std::size_t i) { return i < p.owned && !p.detached[i] && p.region[i] == 0 && !p.no_fail[i]; };
+  std::vector<double>& eigenvalue = w.candidate_eigenvalue;
+  eigenvalue.assign(candidates.size(), 0.0);
+  const auto count = static_cast<std::int64_t>(candidates.size());
+#pragma omp parallel for schedule(dynamic, 16) if (thread_block_loop(candidates.size()))
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::size_t i = candidates[static_cast<std::size_t>(k)];
+    if (checked(i)) eigenvalue[static_cast<std::size_t>(k)] = point_block_eigenvalue(p, f, c, i);
+  }
+  bool detached_this_round = false;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const std::size_t i = candidates[k];
+    if (!checked(i)) continue;
+    const double block = detached_this_round ? point_block_eigenvalue(p, f, c, i) : eigenvalue[k];
+    if (block > block_eigenvalue_limit) {
+      detached_this_round = true;
+      record(i);
+      detach_point(p, i);
+      w.detach.push_back(i);
+      ++u.unstable_detached;
+    }
+  }
+}
+
+// The detachment round: the remaining bonds of the points detached in this round break; their
+// other ends are the next round's changed points.
+void BreakageUpdater::break_bonds_of_detached() {
+  std::vector<std::size_t>& next = w.next;
+  std::sort(w.detach.begin(), w.detach.end());
+  next.clear();
+  for (const std::size_t i : w.detach) {
+    ++u.newly_detached;
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+      if (!f.acting(b)) continue;
+      const auto j = static_cast<std::size_t>(f.neighbor[b]);
+      // A bond with a no-fail end never breaks (SPEC section 7), not even here: the detached
+      // point stays tied to the protected boundary by it (its own stress is zero; the pair
+      // force is then the no-fail point's alone).
+      if (j < p.owned && p.no_fail[j]) continue;
+      record(j);
+      const std::int64_t rb = mirror_bond(f, i, j);
+      f.break_bond(b);
+      if (rb >= 0) f.break_bond(rb);
+      broken_ends += 2;
+      next.push_back(j);
+    }
+  }
+  std::sort(next.begin(), next.end());
+  next.erase(std::unique(next.begin(), next.end()), next.end());
+  w.changed.swap(next);
+}
+
+// The refresh: the step's forces again without the broken bonds (kernel::refresh_after_breakage),
+// which also refreshes the per-point energies of the affected points. The stored energy the breaks
+// release is what these points stored before minus what they store now, at the same displacements
+// and rotations (only their energies changed: a point's energy depends on its own family only).
+// Summed in the order the points were met, which does not depend on the thread count. (The
+// integrator adds the kick's share, from the forces before the refresh.)
+void BreakageUpdater::refresh_and_measure_release() {
   w.sorted.assign(w.affected.begin(), w.affected.end());
   std::sort(w.sorted.begin(), w.sorted.end());
   kernel.refresh_after_breakage(p, f, c, w.sorted);
@@ -345,8 +402,14 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
     u.released_energy += w.energy_before[k] - after;
     w.affected_index[i] = -1;
   }
-  u.broken_pairs = broken_ends / 2;
-  return u;
+}
+
+}  // namespace
+
+BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                                     const InternalForceFunctions& kernel, double block_eigenvalue_limit,
+                                     BreakageWorkspace& w) {
+  return BreakageUpdater(p, f, c, kernel, block_eigenvalue_limit, w).run();
 }
 
 }  // namespace mppm::solver

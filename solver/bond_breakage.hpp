@@ -1,7 +1,9 @@
 // Energy-based bond breakage (SPEC section 7): the critical bond work calibrated from G_cr, the
 // no-fail zone, the damage field, and the bookkeeping after a step in which bonds broke. The
 // work of each bond is accumulated by the force kernel (internal_force_kernel.hpp), which is
-// where the pair force is at hand; a bond breaks there, at both ends in the same step.
+// where the pair force is at hand; the kernel only counts the bonds that reached the critical
+// work (points.bonds_broken). update_after_breakage, which Model::advance_internal_forces calls
+// right after that evaluation, breaks them, at both ends in the same step.
 #pragma once
 #include <cstddef>
 #include <cstdint>

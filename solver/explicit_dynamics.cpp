@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 namespace mppm::solver {
 
@@ -184,26 +183,55 @@ void ExplicitDynamics::restore(const Carried& carried, const std::vector<double>
   body_force_ = body_force;
 }
 
-void ExplicitDynamics::step(bool with_energy) {
-  PointData& p = model_.points;
-  const int D = p.dimension;
-  const int R = p.rotation_components;
-  const double inv_rho = 1.0 / model_.constants.density;
-  const double inv_inertia = R > 0 ? 1.0 / model_.constants.micro_inertia : 0.0;
-  const double rho = model_.constants.density;
-  const double inertia = model_.constants.micro_inertia;
-  const double half = 0.5 * dt_;
-  const double dt = dt_;
-  const bool threaded = thread_point_loop(p.owned);
+ExplicitDynamics::StepConstants ExplicitDynamics::step_constants() const {
+  const PointData& p = model_.points;
+  StepConstants sc;
+  sc.D = p.dimension;
+  sc.R = p.rotation_components;
+  sc.inv_rho = 1.0 / model_.constants.density;
+  sc.inv_inertia = sc.R > 0 ? 1.0 / model_.constants.micro_inertia : 0.0;
+  sc.rho = model_.constants.density;
+  sc.inertia = model_.constants.micro_inertia;
+  sc.half = 0.5 * dt_;
+  sc.dt = dt_;
+  sc.c_damp = damping_;
+  sc.threaded = thread_point_loop(p.owned);
+  return sc;
+}
 
-  // First half kick and drift; remember the start-of-step state of the tracked points for the
-  // work increments (the force evaluation overwrites the force and the body force).
+void ExplicitDynamics::advance_to_forces(bool with_energy) {
+  // Remember the start-of-step body force of the tracked points for the work increments (the
+  // force evaluation overwrites it).
   body_force_prev_.swap(body_force_);
-  // Mass-proportional damping (numerics.damping, c): force density -c rho v (and -c I spin),
-  // explicit in the first half kick, implicit in the second (so any c is stable); its work
-  // (negative) is accumulated with the external work by the trapezoid rule.
-  const double c_damp = damping_;
-  for_each_point(threaded, [&](std::size_t i, std::ptrdiff_t row) {
+  first_half_kick_and_drift(step_constants());
+  // The clock is recomputed from the step count (no drift over many steps); with set_clock the
+  // last step lands exactly on the end time.
+  time_ = clock_steps_ > 0 ? static_cast<double>(steps_ + 1) / static_cast<double>(clock_steps_) * clock_end_
+                           : static_cast<double>(steps_ + 1) * dt_;
+  conditions_.prescribe(model_.points, time_);
+  compute_loads_and_forces(with_energy, true);
+}
+
+void ExplicitDynamics::complete_step(bool with_energy) {
+  const StepConstants sc = step_constants();
+  const BreakageEnergy breakage = model_.effects.damage ? breakage_energy(sc) : BreakageEnergy{};
+  if (second_half_kick(sc)) finite_ = false;
+  book_step_energy(breakage);
+  ++steps_;
+  if (with_energy) evaluate_energy();
+}
+
+// First half kick and drift; the start-of-step state of the tracked points kept for the work
+// increments (the force evaluation overwrites the force). Mass-proportional damping
+// (numerics.damping, c): force density -c rho v (and -c I spin), explicit in the first half kick,
+// implicit in the second (so any c is stable); its work (negative) is accumulated with the
+// external work by the trapezoid rule.
+void ExplicitDynamics::first_half_kick_and_drift(const StepConstants& sc) {
+  PointData& p = model_.points;
+  const int D = sc.D, R = sc.R;
+  const double half = sc.half, dt = sc.dt, c_damp = sc.c_damp;
+  const double inv_rho = sc.inv_rho, inv_inertia = sc.inv_inertia, rho = sc.rho, inertia = sc.inertia;
+  for_each_point(sc.threaded, [&](std::size_t i, std::ptrdiff_t row) {
     const bool tracked = row >= 0;
     const auto t = static_cast<std::size_t>(row);
     if (tracked) {
@@ -241,97 +269,118 @@ void ExplicitDynamics::step(bool with_energy) {
     if (tracked) work_increment_[t] = damping_work ? p.volume[i] * (rho * work + inertia * rot_work) : 0.0;
     return 0;
   });
-  // The clock is recomputed from the step count (no drift over many steps); with set_clock the
-  // last step lands exactly on the end time.
-  time_ = clock_steps_ > 0 ? static_cast<double>(steps_ + 1) / static_cast<double>(clock_steps_) * clock_end_
-                           : static_cast<double>(steps_ + 1) * dt_;
-  conditions_.prescribe(p, time_);
-  compute_loads_and_forces(with_energy, true);
-  if (injection_ && injection_->step == steps_ + 1) inject_nan();
-  if (kick_ && kick_->step == steps_ + 1)
-    p.velocity[kick_->point * static_cast<std::size_t>(D) + static_cast<std::size_t>(kick_->component)] += kick_->velocity;
+}
 
-  // Damage: where breaks refreshed the forces (Model::advance_internal_forces), this step's kick
-  // and next step's use the forces without the broken bonds, as they must (a bond past its
-  // breaking would do work nothing accounts for), while the step that ends here ran with the
-  // bonds. The energy bookkeeping takes that from the forces before the refresh: the layers'
-  // reaction work over this step uses them at its end (the trapezoid rule of the bonds as they
-  // were), and on a free component the new force changes the scheme's kinetic energy
-  // 1/2 M v^(n-1/2) . v^(n+1/2) by dt/2 v^(n-1/2) . (f_new - f_old) V, which the breaks dissipate
-  // (O(dt): the work the broken bonds would have done over the rest of the step). With the stored
-  // energy they release, kinetic + stored + dissipated - external work then stays conserved.
+// Damage: where breaks refreshed the forces (Model::advance_internal_forces), this step's kick
+// and next step's use the forces without the broken bonds, as they must (a bond past its
+// breaking would do work nothing accounts for), while the step that ends here ran with the
+// bonds. The energy bookkeeping takes that from the forces before the refresh: the layers'
+// reaction work over this step uses them at its end (the trapezoid rule of the bonds as they
+// were), and on a free component the new force changes the scheme's kinetic energy
+// 1/2 M v^(n-1/2) . v^(n+1/2) by dt/2 v^(n-1/2) . (f_new - f_old) V, which the breaks dissipate
+// (O(dt): the work the broken bonds would have done over the rest of the step). With the stored
+// energy they release, kinetic + stored + dissipated - external work then stays conserved.
+ExplicitDynamics::BreakageEnergy ExplicitDynamics::breakage_energy(const StepConstants& sc) const {
+  const PointData& p = model_.points;
+  const int D = sc.D, R = sc.R;
+  const double half = sc.half;
   double breakage_kick = 0.0, breakage_work = 0.0;
-  if (model_.effects.damage) {
-    const auto& refreshed = p.refreshed_points;
-    for (std::size_t r = 0; r < refreshed.size(); ++r) {
-      const std::size_t i = refreshed[r];
-      const std::ptrdiff_t row = tracked_row(i);  // every point with a prescribed component is tracked
-      const auto t = static_cast<std::size_t>(row);
-      for (int c = 0; c < D; ++c) {
-        const std::size_t k = i * D + c;
-        const double change = p.force_before_refresh[r * D + c] - p.force[k];  // f_old - f_new
-        if (conditions_.prescribed_displacement(i, c)) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
-        else breakage_kick += half * p.velocity[k] * change * p.volume[i];
-      }
-      for (int c = 0; c < R; ++c) {
-        const std::size_t k = i * R + c;
-        const double change = p.moment_before_refresh[r * R + c] - p.moment[k];
-        if (conditions_.prescribed_rotation(i, c)) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
-        else breakage_kick += half * p.spin[k] * change * p.volume[i];
-      }
-    }
-  }
-
-  // Second half kick, work increments (trapezoid: mean of the start and end forces times the
-  // increment), non-finite guard. A point that is not tracked has no prescribed component, no
-  // body force and no damping: its work increment is zero and is not formed.
-  const double damp_factor = 1.0 / (1.0 + half * c_damp);
-  const int bad = for_each_point(threaded, [&](std::size_t i, std::ptrdiff_t row) {
-    int bad_here = 0;
-    if (row < 0) {
-      for (int c = 0; c < D; ++c) {
-        const std::size_t k = i * D + c;
-        p.velocity[k] = (p.velocity[k] + half * (p.force[k] + 0.0) * inv_rho) * damp_factor;
-        bad_here |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
-      }
-      for (int c = 0; c < R; ++c) {
-        const std::size_t k = i * R + c;
-        p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;
-        bad_here |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
-      }
-      return bad_here;
-    }
+  const auto& refreshed = p.refreshed_points;
+  for (std::size_t r = 0; r < refreshed.size(); ++r) {
+    const std::size_t i = refreshed[r];
+    const std::ptrdiff_t row = tracked_row(i);  // every point with a prescribed component is tracked
     const auto t = static_cast<std::size_t>(row);
-    const unsigned fixed = conditions_.prescribed(i);
-    double work = 0.0;
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
-      const double du = p.displacement[k] - displacement_prev_[t * D + c];
-      if ((fixed >> c) & 1u) {
-        // The reaction -f V does the work of the prescribed motion (layer inertia excluded).
-        work -= 0.5 * (force_prev_[t * D + c] + p.force[k]) * du;
-      } else {
-        p.velocity[k] = (p.velocity[k] + half * (p.force[k] + body_force_[t * D + c]) * inv_rho) * damp_factor;
-        work += 0.5 * (body_force_prev_[t * D + c] + body_force_[t * D + c]) * du;
-        if (c_damp > 0.0) work -= 0.5 * c_damp * rho * p.velocity[k] * du;
-      }
-      bad_here |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
+      const double change = p.force_before_refresh[r * D + c] - p.force[k];  // f_old - f_new
+      if (conditions_.prescribed_displacement(i, c)) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
+      else breakage_kick += half * p.velocity[k] * change * p.volume[i];
     }
     for (int c = 0; c < R; ++c) {
       const std::size_t k = i * R + c;
-      const double dw = p.rotation[k] - rotation_prev_[t * R + c];
-      if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) {
-        work -= 0.5 * (moment_prev_[t * R + c] + p.moment[k]) * dw;
-      } else {
-        p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;
-        if (c_damp > 0.0) work -= 0.5 * c_damp * inertia * p.spin[k] * dw;
-      }
-      bad_here |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
+      const double change = p.moment_before_refresh[r * R + c] - p.moment[k];
+      if (conditions_.prescribed_rotation(i, c)) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
+      else breakage_kick += half * p.spin[k] * change * p.volume[i];
     }
-    work_increment_[t] += work * p.volume[i];
-    return bad_here;
-  });
-  if (bad) finite_ = false;
+  }
+  return {breakage_kick, breakage_work};
+}
+
+// Second half kick, work increments (trapezoid: mean of the start and end forces times the
+// increment), non-finite guard (true when a value of the new state is not finite). A point that is
+// not tracked has no prescribed component, no body force and no damping: its work increment is
+// zero and is not formed.
+bool ExplicitDynamics::second_half_kick(const StepConstants& sc) {
+  const double damp_factor = 1.0 / (1.0 + sc.half * sc.c_damp);
+  return for_each_point(sc.threaded, [&](std::size_t i, std::ptrdiff_t row) {
+    return row < 0 ? second_half_kick_untracked(sc, damp_factor, i)
+                   : second_half_kick_tracked(sc, damp_factor, i, static_cast<std::size_t>(row));
+  }) != 0;
+}
+
+int ExplicitDynamics::second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i) {
+  PointData& p = model_.points;
+  const int D = sc.D, R = sc.R;
+  const double half = sc.half, inv_rho = sc.inv_rho, inv_inertia = sc.inv_inertia;
+  int bad_here = 0;
+  for (int c = 0; c < D; ++c) {
+    const std::size_t k = i * D + c;
+    // "+ 0.0" is the body force of a tracked point (second_half_kick_tracked), which an untracked
+    // point has not: it turns a force of -0.0 into +0.0 as that sum does, so that a point's
+    // velocity has the same bits whether it is tracked or not (with gravity or damping every point
+    // is).
+    p.velocity[k] = (p.velocity[k] + half * (p.force[k] + 0.0) * inv_rho) * damp_factor;
+    bad_here |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
+  }
+  for (int c = 0; c < R; ++c) {
+    const std::size_t k = i * R + c;
+    p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;
+    bad_here |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
+  }
+  return bad_here;
+}
+
+int ExplicitDynamics::second_half_kick_tracked(const StepConstants& sc, double damp_factor, std::size_t i,
+                                               std::size_t t) {
+  PointData& p = model_.points;
+  const int D = sc.D, R = sc.R;
+  const double half = sc.half, inv_rho = sc.inv_rho, inv_inertia = sc.inv_inertia, c_damp = sc.c_damp;
+  const double rho = sc.rho, inertia = sc.inertia;
+  const unsigned fixed = conditions_.prescribed(i);
+  int bad_here = 0;
+  double work = 0.0;
+  for (int c = 0; c < D; ++c) {
+    const std::size_t k = i * D + c;
+    const double du = p.displacement[k] - displacement_prev_[t * D + c];
+    if ((fixed >> c) & 1u) {
+      // The reaction -f V does the work of the prescribed motion (layer inertia excluded).
+      work -= 0.5 * (force_prev_[t * D + c] + p.force[k]) * du;
+    } else {
+      p.velocity[k] = (p.velocity[k] + half * (p.force[k] + body_force_[t * D + c]) * inv_rho) * damp_factor;
+      work += 0.5 * (body_force_prev_[t * D + c] + body_force_[t * D + c]) * du;
+      if (c_damp > 0.0) work -= 0.5 * c_damp * rho * p.velocity[k] * du;
+    }
+    bad_here |= !std::isfinite(p.velocity[k]) || !std::isfinite(p.displacement[k]);
+  }
+  for (int c = 0; c < R; ++c) {
+    const std::size_t k = i * R + c;
+    const double dw = p.rotation[k] - rotation_prev_[t * R + c];
+    if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) {
+      work -= 0.5 * (moment_prev_[t * R + c] + p.moment[k]) * dw;
+    } else {
+      p.spin[k] = (p.spin[k] + half * p.moment[k] * inv_inertia) * damp_factor;
+      if (c_damp > 0.0) work -= 0.5 * c_damp * inertia * p.spin[k] * dw;
+    }
+    bad_here |= !std::isfinite(p.spin[k]) || !std::isfinite(p.rotation[k]);
+  }
+  work_increment_[t] += work * p.volume[i];
+  return bad_here;
+}
+
+// The step's energy row items: the external work (in point order), the plastic dissipation and,
+// with damage, the breaks' share.
+void ExplicitDynamics::book_step_energy(const BreakageEnergy& breakage) {
+  const PointData& p = model_.points;
   double work = 0.0;
   for (const double w : work_increment_) work += w;  // in point order
   energy_.external_work += work;
@@ -341,36 +390,8 @@ void ExplicitDynamics::step(bool with_energy) {
     energy_.plastic_dissipation += dissipated;
   }
   if (model_.effects.damage) {
-    energy_.external_work += breakage_work;
-    energy_.fracture_dissipation += model_.last_fracture_dissipation + breakage_kick;
-  }
-  ++steps_;
-  if (with_energy) evaluate_energy();
-}
-
-const char* NanInjection::name(Field f) {
-  switch (f) {
-    case Field::displacement: return "displacement";
-    case Field::velocity: return "velocity";
-    case Field::rotation: return "rotation";
-    case Field::rotation_rate: return "rotation_rate";
-    case Field::force: return "force";
-  }
-  return "?";
-}
-
-void ExplicitDynamics::inject_nan() {
-  PointData& p = model_.points;
-  const NanInjection& k = *injection_;
-  const std::size_t D = static_cast<std::size_t>(p.dimension), R = static_cast<std::size_t>(p.rotation_components);
-  const auto c = static_cast<std::size_t>(k.component);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  switch (k.field) {
-    case NanInjection::Field::displacement: p.displacement[k.point * D + c] = nan; break;
-    case NanInjection::Field::velocity: p.velocity[k.point * D + c] = nan; break;
-    case NanInjection::Field::force: p.force[k.point * D + c] = nan; break;
-    case NanInjection::Field::rotation: p.rotation[k.point * R + c] = nan; break;
-    case NanInjection::Field::rotation_rate: p.spin[k.point * R + c] = nan; break;
+    energy_.external_work += breakage.work;
+    energy_.fracture_dissipation += model_.last_fracture_dissipation + breakage.kick;
   }
 }
 

@@ -36,30 +36,6 @@ struct EnergyState {
   double accounted() const { return total() + plastic_dissipation + fracture_dissipation; }
 };
 
-// Test hook (mppm-solve --inject-nan, solver/README.md "Test hooks"): a quiet NaN written into one
-// component of one point's state in the middle of a step, after its force evaluation and before
-// its second half kick, as a singular local update would leave it. The per-step guard then sees
-// it in the same step, before the next force evaluation spreads it to the neighbours.
-struct NanInjection {
-  enum class Field { displacement, velocity, rotation, rotation_rate, force };
-  std::int64_t step = 1;    // the step (1-based) in which the value turns NaN
-  std::size_t point = 0;    // index in the points file (owned points come first, in file order)
-  Field field = Field::velocity;
-  int component = 0;
-  static const char* name(Field f);
-};
-
-// Test hook (mppm-solve --inject-kick, solver/README.md "Test hooks"): `velocity` m/s added to one
-// component of one point's velocity in the middle of a step, at the same place as a NaN injection.
-// Nothing accounts for the kinetic energy it adds, so the periodic energy check sees unexplained
-// growth for a known reason.
-struct VelocityKick {
-  std::int64_t step = 1;    // the step (1-based) in which the velocity jumps
-  std::size_t point = 0;    // index in the points file
-  int component = 0;
-  double velocity = 0.0;    // [m/s]
-};
-
 // Where the per-step guard found non-finite values (ExplicitDynamics::first_non_finite).
 struct NonFinitePoint {
   std::size_t point = 0;     // the lowest index holding a non-finite value
@@ -88,7 +64,18 @@ class ExplicitDynamics {
   // Prescribes the state at t = 0 and computes the forces and energies there.
   void initialize();
   // One step; energies are evaluated at the new time when `with_energy`.
-  void step(bool with_energy);
+  void step(bool with_energy) {
+    step(with_energy, [](PointData&, std::int64_t) {});
+  }
+  // The same, calling after_forces(points, step) between the step's force evaluation and its second
+  // half kick, with `step` counted from 1: the run driver applies its test hooks there
+  // (solver/test_hooks.hpp).
+  template <class AfterForces>
+  void step(bool with_energy, AfterForces&& after_forces) {
+    advance_to_forces(with_energy);
+    after_forces(model_.points, steps_ + 1);
+    complete_step(with_energy);
+  }
 
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
@@ -103,10 +90,6 @@ class ExplicitDynamics {
   bool finite() const { return finite_; }
   // The points holding non-finite values now (a full scan: call it when finite() turned false).
   std::optional<NonFinitePoint> first_non_finite() const;
-
-  // Test hook: the NaN to inject (none by default).
-  void set_nan_injection(std::optional<NanInjection> injection) { injection_ = injection; }
-  void set_velocity_kick(std::optional<VelocityKick> kick) { kick_ = kick; }
 
   Model& model() { return model_; }
   const Model& model() const { return model_; }
@@ -129,6 +112,28 @@ class ExplicitDynamics {
   void restore(const Carried& carried, const std::vector<double>& body_force);
 
  private:
+  // The constants of one step's kicks (no allocation: a step computes them on the stack).
+  struct StepConstants {
+    int D = 0, R = 0;
+    double inv_rho = 0.0, inv_inertia = 0.0, rho = 0.0, inertia = 0.0;
+    double half = 0.0, dt = 0.0, c_damp = 0.0;
+    bool threaded = false;
+  };
+  StepConstants step_constants() const;
+  // The damage terms of a step's energy bookkeeping (breakage_energy).
+  struct BreakageEnergy {
+    double kick = 0.0, work = 0.0;
+  };
+  // The first half of a step: first half kick, drift, prescribed motion, force evaluation.
+  void advance_to_forces(bool with_energy);
+  // The rest: the breaks' energy bookkeeping, second half kick, work, non-finite guard, energies.
+  void complete_step(bool with_energy);
+  void first_half_kick_and_drift(const StepConstants& sc);
+  BreakageEnergy breakage_energy(const StepConstants& sc) const;
+  bool second_half_kick(const StepConstants& sc);
+  int second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i);
+  int second_half_kick_tracked(const StepConstants& sc, double damp_factor, std::size_t i, std::size_t t);
+  void book_step_energy(const BreakageEnergy& breakage);
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
@@ -171,12 +176,9 @@ class ExplicitDynamics {
   std::vector<double> body_force_prev_;
   std::vector<double> force_prev_, moment_prev_;           // D, R
   std::vector<double> displacement_prev_, rotation_prev_;  // D, R
-  std::vector<double> work_increment_;   // summed serially, in point order
+  std::vector<double> work_increment_;   // summed serially, in point order (book_step_energy)
   EnergyState energy_;
   double initial_total_ = 0.0;
-  std::optional<NanInjection> injection_;
-  std::optional<VelocityKick> kick_;
-  void inject_nan();
 };
 
 }  // namespace mppm::solver

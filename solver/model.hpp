@@ -85,8 +85,8 @@ Model build_model(const PointCloud& cloud, const ModelOptions& options);
 // of it after the call is its pre-cracks and boundaries.
 Model build_model(PointCloud&& cloud, const ModelOptions& options);
 
-// Totals of the per-point energies of the last evaluation with energies [J], summed serially in
-// index order (the same result for any thread count).
+// Totals of the per-point energies of the last evaluation with energies [J], summed in chunks
+// fixed by the point count (ordered_point_sums.hpp: the same result for any thread count).
 struct InternalEnergy {
   double force_stress = 0.0;   // 1/2 eps:sigma
   double couple_stress = 0.0;  // 1/2 kap:m (elastic parts; plane strain: sigma_zz term included)

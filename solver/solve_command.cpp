@@ -10,10 +10,13 @@
 #include "common/scene.hpp"
 #include "common/checkpoint_file.hpp"
 #include "solver/solve_run.hpp"
+#include "solver/test_hooks.hpp"
 
 namespace mppm::solver {
 
-int solve_command(int argc, char** argv) {
+namespace {
+
+mppm::CommandLineSpec solve_command_spec() {
   mppm::CommandLineSpec spec;
   spec.program = "mppm-solve";
   spec.usage =
@@ -46,69 +49,69 @@ int solve_command(int argc, char** argv) {
       "its step with a last snapshot, a checkpoint when checkpoints are on, and status\n"
       "\"interrupted\")\n";
   // --inject-nan STEP:POINT[:FIELD[:COMPONENT]], --inject-kick STEP:POINT:COMPONENT:VELOCITY and
-  // --fail-checkpoint-write K are test hooks (solver/README.md "Test hooks"), not listed in the
-  // usage: they make the run fail on purpose.
+  // --fail-checkpoint-write K are test hooks (solver/test_hooks.hpp, solver/README.md "Test hooks"),
+  // not listed in the usage: they make the run fail on purpose.
   spec.value_options = {"-o", "--points", "--inject-nan", "--inject-kick", "--restart", "--fail-checkpoint-write"};
   spec.flag_options = {"--force"};
-  return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) {
-    int fail_checkpoint_write = 0;
-    if (const auto hook = cl.option("--fail-checkpoint-write")) {
-      try {
-        std::size_t used = 0;
-        fail_checkpoint_write = std::stoi(*hook, &used);
-        if (used != hook->size() || fail_checkpoint_write < 1) throw std::invalid_argument(*hook);
-      } catch (const std::exception&) {
-        throw mppm::InputError("mppm-solve: --fail-checkpoint-write " + *hook +
-                               ": expected K >= 1 (the K-th checkpoint write fails)");
-      }
-    }
-    if (const auto run_directory = cl.option("--restart")) {
-      if (!cl.positional.empty() || cl.option("-o") || !cl.overrides.empty() || cl.has_flag("--force"))
-        throw mppm::InputError("mppm-solve: --restart " + *run_directory +
-                               " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
-                               "or --force with it (see --help)");
-      if (cl.option("--inject-nan")) throw mppm::InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-      if (cl.option("--inject-kick")) throw mppm::InputError("mppm-solve: --inject-kick cannot be combined with --restart");
-      const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(mppm::solver::checkpoint_path(*run_directory));
-      mppm::solver::SolveOptions options;
-      options.run_directory = *run_directory;
-      options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
-      options.quiet = cl.quiet;
-      options.fail_checkpoint_write = fail_checkpoint_write;
-      mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
-      const mppm::solver::SolveResult result = mppm::solver::restart(std::move(cloud), checkpoint, options);
-      if (result.interrupted) {
-        std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";
-        return mppm::kExitOther;
-      }
-      return mppm::kExitSuccess;
-    }
-    if (cl.positional.size() != 1)
-      throw mppm::InputError("mppm-solve: expected exactly one scene file (see --help)");
-    const auto points = cl.option("--points");
-    const auto out = cl.option("-o");
-    if (!points) throw mppm::InputError("mppm-solve: --points POINTS.vtp is required (see --help)");
-    if (!out) throw mppm::InputError("mppm-solve: -o RUN_DIR is required (see --help)");
-    std::optional<mppm::solver::NanInjection> inject_nan;
-    if (const auto hook = cl.option("--inject-nan")) inject_nan = mppm::solver::parse_nan_injection(*hook);
-    std::optional<mppm::solver::VelocityKick> inject_kick;
-    if (const auto hook = cl.option("--inject-kick")) inject_kick = mppm::solver::parse_velocity_kick(*hook);
-    const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
-    mppm::PointCloud cloud = mppm::read_point_cloud(*points);
-    mppm::solver::SolveOptions options;
-    options.run_directory = *out;
-    options.points_file = *points;
-    options.force = cl.has_flag("--force");
-    options.quiet = cl.quiet;
-    options.inject_nan = inject_nan;
-    options.inject_kick = inject_kick;
-    options.fail_checkpoint_write = fail_checkpoint_write;
-    const mppm::solver::SolveResult result = mppm::solver::solve(scene, std::move(cloud), options);
-    if (result.interrupted) {
-      std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";
-      return mppm::kExitOther;
-    }
-    return mppm::kExitSuccess;
+  return spec;
+}
+
+// An interrupted run is exit 1 with the message; a completed one exit 0.
+int exit_code(const SolveResult& result, const SolveOptions& options) {
+  if (result.interrupted) {
+    std::cerr << "mppm-solve: " << result.message << " (" << options.run_directory << ")\n";
+    return mppm::kExitOther;
+  }
+  return mppm::kExitSuccess;
+}
+
+// mppm-solve --restart RUN_DIR: the run's own scene and directory; of the test hooks only
+// --fail-checkpoint-write.
+int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, const TestHooks& hooks) {
+  if (!cl.positional.empty() || cl.option("-o") || !cl.overrides.empty() || cl.has_flag("--force"))
+    throw mppm::InputError("mppm-solve: --restart " + run_directory +
+                           " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
+                           "or --force with it (see --help)");
+  if (cl.option("--inject-nan")) throw mppm::InputError("mppm-solve: --inject-nan cannot be combined with --restart");
+  if (cl.option("--inject-kick")) throw mppm::InputError("mppm-solve: --inject-kick cannot be combined with --restart");
+  const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(checkpoint_path(run_directory));
+  SolveOptions options;
+  options.run_directory = run_directory;
+  options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
+  options.quiet = cl.quiet;
+  options.test_hooks = hooks;
+  mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
+  return exit_code(restart(std::move(cloud), checkpoint, options), options);
+}
+
+// mppm-solve SCENE.yaml --points POINTS -o RUN_DIR: a new run.
+int start_run(const mppm::CommandLine& cl, TestHooks hooks) {
+  if (cl.positional.size() != 1) throw mppm::InputError("mppm-solve: expected exactly one scene file (see --help)");
+  const auto points = cl.option("--points");
+  const auto out = cl.option("-o");
+  if (!points) throw mppm::InputError("mppm-solve: --points POINTS.vtp is required (see --help)");
+  if (!out) throw mppm::InputError("mppm-solve: -o RUN_DIR is required (see --help)");
+  if (const auto hook = cl.option("--inject-nan")) hooks.inject_nan = parse_nan_injection(*hook);
+  if (const auto hook = cl.option("--inject-kick")) hooks.inject_kick = parse_velocity_kick(*hook);
+  const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
+  mppm::PointCloud cloud = mppm::read_point_cloud(*points);
+  SolveOptions options;
+  options.run_directory = *out;
+  options.points_file = *points;
+  options.force = cl.has_flag("--force");
+  options.quiet = cl.quiet;
+  options.test_hooks = hooks;
+  return exit_code(solve(scene, std::move(cloud), options), options);
+}
+
+}  // namespace
+
+int solve_command(int argc, char** argv) {
+  return mppm::run_stage(argc, argv, solve_command_spec(), [](const mppm::CommandLine& cl) {
+    TestHooks hooks;
+    if (const auto k = cl.option("--fail-checkpoint-write")) hooks.fail_checkpoint_write = parse_checkpoint_write_failure(*k);
+    if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
+    return start_run(cl, hooks);
   });
 }
 

@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <optional>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,7 +19,6 @@
 #include "common/input_error.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
-#include "common/units.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/checkpoint.hpp"
 #include "common/memory_estimate.hpp"
@@ -65,6 +63,7 @@ void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const
 // interval (every step for interval 0 when `every_step_if_zero`).
 class Schedule {
  public:
+  Schedule() = default;  // never due
   Schedule(double interval, double dt, bool every_step_if_zero)
       : interval_(interval), dt_(dt), every_(interval <= 0.0 && every_step_if_zero) {}
   bool due(std::int64_t step) {
@@ -82,8 +81,8 @@ class Schedule {
   void restore(double next) { next_ = next; }
 
  private:
-  double interval_, dt_;
-  bool every_;
+  double interval_ = 0.0, dt_ = 0.0;
+  bool every_ = false;
   double next_ = 1.0;
 };
 
@@ -104,84 +103,7 @@ std::string non_finite_reason(const ExplicitDynamics& dynamics) {
          std::to_string(bad->points) + " point(s) non-finite";
 }
 
-// The value of a test hook (--inject-nan, --inject-kick) cut at its colons.
-std::vector<std::string> hook_parts(const std::string& value) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t at; (at = value.find(':', start)) != std::string::npos; start = at + 1)
-    parts.push_back(value.substr(start, at - start));
-  parts.push_back(value.substr(start));
-  return parts;
-}
-
-// A 1-based ("3") or 0-based ("17") non-negative integer of a test hook; `form` says what the
-// hook expects, for the message.
-std::int64_t hook_integer(const std::string& hook, const std::string& value, const std::string& part,
-                          const std::string& what, const std::string& form) {
-  std::size_t used = 0;
-  long long v = -1;
-  try {
-    v = std::stoll(part, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != part.size() || part.empty() || v < 0)
-    throw InputError("mppm-solve: " + hook + " " + value + ": " + what + " '" + part + "' is not a non-negative integer" +
-                     form);
-  return v;
-}
-
-// The step of a test hook, from 1.
-std::int64_t hook_step(const std::string& hook, const std::string& value, const std::string& part,
-                       const std::string& form) {
-  const std::int64_t step = hook_integer(hook, value, part, "STEP", form);
-  if (step < 1) throw InputError("mppm-solve: " + hook + " " + value + ": STEP counts from 1 (the first step)");
-  return step;
-}
-
 }  // namespace
-
-NanInjection parse_nan_injection(const std::string& value) {
-  const std::vector<std::string> parts = hook_parts(value);
-  const std::string hook = "--inject-nan";
-  const std::string form = " (expected STEP:POINT[:FIELD[:COMPONENT]], e.g. 200:17:velocity)";
-  if (parts.size() < 2 || parts.size() > 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
-  NanInjection k;
-  k.step = hook_step(hook, value, parts[0], form);
-  k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
-  if (parts.size() > 2) {
-    using F = NanInjection::Field;
-    bool known = false;
-    for (F f : {F::displacement, F::velocity, F::rotation, F::rotation_rate, F::force})
-      if (parts[2] == NanInjection::name(f)) {
-        k.field = f;
-        known = true;
-      }
-    if (!known)
-      throw InputError("mppm-solve: --inject-nan " + value + ": unknown FIELD '" + parts[2] +
-                       "' (expected displacement, velocity, rotation, rotation_rate or force)");
-  }
-  if (parts.size() > 3) k.component = static_cast<int>(hook_integer(hook, value, parts[3], "COMPONENT", form));
-  return k;
-}
-
-VelocityKick parse_velocity_kick(const std::string& value) {
-  const std::vector<std::string> parts = hook_parts(value);
-  const std::string hook = "--inject-kick";
-  const std::string form = " (expected STEP:POINT:COMPONENT:VELOCITY, e.g. 60:17:0:50)";
-  if (parts.size() != 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
-  VelocityKick k;
-  k.step = hook_step(hook, value, parts[0], form);
-  k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
-  k.component = static_cast<int>(hook_integer(hook, value, parts[2], "COMPONENT", form));
-  try {
-    k.velocity = parse_quantity_as(parts[3], dim::velocity);
-  } catch (const std::invalid_argument& e) {
-    throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY: " + e.what() + form);
-  }
-  if (!std::isfinite(k.velocity)) throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY must be finite" + form);
-  return k;
-}
 
 // Before anything big is allocated: the memory estimate (common/memory_estimate.hpp) against what
 // this machine has available (MemAvailable, or MPPM_MEMORY_AVAILABLE in bytes: a budget a user or
@@ -248,8 +170,9 @@ void remove_output_after_checkpoint(const std::string& directory, const std::vec
   }
 }
 
-// `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
-// boundary conditions are built from it; null to leave it as it is.
+// A new run (resume null) or a restart from `resume`, by a RunDriver (below). `release`: the
+// caller's cloud (the same object as `cloud`), emptied once the model and the boundary conditions
+// are built from it; null to leave it as it is.
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
                 const CheckpointFile* resume, PointCloud* release);
 
@@ -280,8 +203,7 @@ SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoin
     throw InputError(options.points_file + ": not the points the run in " + options.run_directory +
                      " was started with (the points file changed since the checkpoint " + checkpoint.path +
                      "; a restart needs the same points)");
-  if (options.inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-  if (options.inject_kick) throw InputError("mppm-solve: --inject-kick cannot be combined with --restart");
+  options.test_hooks.refuse_with_restart();
   return run(load_scene(scene_file), cloud, options, &checkpoint, release);
 }
 
@@ -297,379 +219,515 @@ SolveResult restart(PointCloud&& cloud, const CheckpointFile& checkpoint, const 
 
 namespace {
 
-SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
-                const CheckpointFile* resume, PointCloud* release) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  Scene scene = scene_in;
-  check_points_match_scene(scene, cloud, options.points_file);
-  if (!(scene.time.end > 0.0)) throw InputError(scene.path + ": time.end: must be positive");
-  refuse_runs_that_do_not_fit(scene, cloud);
+// The energy check leaves the first steps alone (energy_guard.hpp); the worst balance error of
+// the end-of-run warning is watched from the same step.
+constexpr std::int64_t kGuardStartStep = 50;
 
-  // Bad viscoplastic parameters are an InputError naming the key.
-  const ModelOptions model_settings = model_options(scene);
-  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
-  // run's inputs by the resolved scene as written and the points.
-  const bool checkpointing = scene.output.checkpoint_interval > 0.0;
-  RunIdentity identity;
-  if (resume) {
-    identity.scene_fingerprint = resume->header.scene_fingerprint;  // checked by restart()
-    identity.points_fingerprint = resume->header.points_fingerprint;
-  } else if (checkpointing) {
-    identity.points_fingerprint = point_cloud_fingerprint(cloud);
-  }
-  const BoundaryConditions conditions(scene, cloud, options.points_file);
-  // With `release` the model takes the cloud's arrays over instead of copying them, and the rest
-  // of the cloud is emptied: `cloud` (the same object) is not read after this.
-  Model model = release ? build_model(std::move(*release), model_settings) : build_model(cloud, model_settings);
-  if (release) *release = PointCloud{};
+// After a snapshot, the tables, the log and run_info.json are rewritten (each atomically, with
+// an fsync of the file and of the directory) only when kTableFlushInterval of wall time has
+// passed since their last rewrite; at checkpoints, stops, failures and the end always. Ten
+// fsyncs cost about 13 ms on the development VM: after every one of the crack-branching case's
+// 241 snapshots that was 3 s of its 17 s. A run killed between rewrites leaves every file
+// whole, the tables up to a second behind the newest snapshot. The snapshots written since the
+// last rewrite are fsynced in one batch by the next one (run_writer.hpp), before run_info.json
+// lists them.
+constexpr std::chrono::duration<double> kTableFlushInterval{1.0};
 
-  if (model.detached_points == model.points.owned)
-    throw InputError(options.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
-                     text(scene.geometry.horizon()) +
-                     " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
-  if (const auto& k = options.inject_nan) {
-    // Checked against the points before anything is written (exit 2 like any bad option).
-    const bool rotational = k->field == NanInjection::Field::rotation || k->field == NanInjection::Field::rotation_rate;
-    const int components = rotational ? model.points.rotation_components : model.dimension();
-    if (k->point >= model.points.owned)
-      throw InputError("mppm-solve: --inject-nan: POINT " + std::to_string(k->point) + " is not a point of " +
-                       options.points_file + " (expected 0 to " + std::to_string(model.points.owned - 1) + ")");
-    if (components == 0)
-      throw InputError(std::string("mppm-solve: --inject-nan: FIELD ") + NanInjection::name(k->field) +
-                       " needs the micropolar effect (this run has no micro-rotation)");
-    if (k->component >= components)
-      throw InputError("mppm-solve: --inject-nan: COMPONENT " + std::to_string(k->component) + " of " +
-                       NanInjection::name(k->field) + " (expected 0 to " + std::to_string(components - 1) + ")");
-  }
-  if (const auto& k = options.inject_kick) {
-    if (k->point >= model.points.owned)
-      throw InputError("mppm-solve: --inject-kick: POINT " + std::to_string(k->point) + " is not a point of " +
-                       options.points_file + " (expected 0 to " + std::to_string(model.points.owned - 1) + ")");
-    if (k->component >= model.dimension())
-      throw InputError("mppm-solve: --inject-kick: COMPONENT " + std::to_string(k->component) +
-                       " of the velocity (expected 0 to " + std::to_string(model.dimension() - 1) + ")");
-  }
-  const CriticalTimeStep critical = critical_time_step(model);
-  if (!(critical.step > 0.0 && std::isfinite(critical.step)))
-    throw NumericalFailure(options.run_directory + ": the critical time step could not be estimated (" +
-                           text(critical.step) + " s): the discrete operator is not positive");
-  const double damage_step = model.damage_critical_step(critical.step);
-  double dt = choose_time_step(scene, critical, damage_step);
-  // A whole number of steps ends exactly at time.end (the step only shrinks; a given step that
-  // divides time.end is kept as written). An automatic step is also fitted to output.interval
-  // when that divides time.end, so that snapshots fall on the interval's multiples.
+// The time step of a run and what it was fitted to.
+struct TimeStepPlan {
+  CriticalTimeStep critical;
+  double damage_step = 0.0;  // the largest step of a damage run (Model::damage_critical_step)
+  double dt = 0.0;
+  std::int64_t steps = 0;
+};
+
+// A whole number of steps ends exactly at time.end (the step only shrinks; a given step that
+// divides time.end is kept as written). An automatic step is also fitted to output.interval
+// when that divides time.end, so that snapshots fall on the interval's multiples.
+void fit_step_to_end(const Scene& scene, bool step_given, TimeStepPlan& plan) {
   const double end = scene.time.end;
   auto divides = [](double whole, double part) {
     const double ratio = whole / part;
     return std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
   };
-  if (!scene_in.time.step && scene.output.interval > 0.0 && scene.output.interval < end &&
-      divides(end, scene.output.interval))
+  double dt = plan.dt;
+  if (!step_given && scene.output.interval > 0.0 && scene.output.interval < end && divides(end, scene.output.interval))
     dt = scene.output.interval / std::ceil(scene.output.interval / dt - 1e-9);
   const auto steps = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(end / dt - 1e-9)));
   if (std::abs(static_cast<double>(steps) * dt - end) > 1e-9 * end) dt = end / static_cast<double>(steps);
-  scene.time.step = dt;
-  if (options.inject_nan && options.inject_nan->step > steps)
-    throw InputError("mppm-solve: --inject-nan: STEP " + std::to_string(options.inject_nan->step) +
-                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
-                     std::to_string(steps) + ")");
-  if (options.inject_kick && options.inject_kick->step > steps)
-    throw InputError("mppm-solve: --inject-kick: STEP " + std::to_string(options.inject_kick->step) +
-                     " is beyond the run's " + std::to_string(steps) + " steps (expected 1 to " +
-                     std::to_string(steps) + ")");
-  model.set_breakage_time_step(dt);
+  plan.dt = dt;
+  plan.steps = steps;
+}
 
-  std::optional<RunWriter> writer_storage;
-  if (resume) writer_storage.emplace(options.run_directory, RunWriter::ContinueExisting{});
-  else writer_storage.emplace(options.run_directory, options.force);
-  RunWriter& writer = *writer_storage;
-  if (!resume) {
-    std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", critical.step}};
-    if (scene.effects.damage) derived.emplace_back("critical_bond_work_J_per_m6", model.constants.critical_bond_work);
-    const std::string resolved = writer.write_resolved_scene(scene, derived);
-    if (checkpointing) identity.scene_fingerprint = fnv1a(resolved);
-    writer.write_reference(model.points);
+// One run of mppm-solve, from the scene and the points (or a checkpoint) to the finished run
+// directory: run() lists the steps; the driver owns what they share.
+class RunDriver {
+ public:
+  RunDriver(const Scene& scene_in, const SolveOptions& options, const CheckpointFile* resume)
+      : scene_in_(scene_in), options_(options), resume_(resume), wall_start_(std::chrono::steady_clock::now()),
+        scene_(scene_in), checkpointing_(scene_in.output.checkpoint_interval > 0.0),
+        guard_(scene_in.numerics.energy_check_tolerance, kGuardStartStep) {}
+
+  // `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
+  // boundary conditions are built from it; null to leave it as it is.
+  SolveResult run(const PointCloud& cloud, PointCloud* release) {
+    check_inputs(cloud);
+    build_model_and_conditions(cloud, release);
+    options_.test_hooks.check_against_model(model(), options_.points_file);
+    fit_time_step();
+    options_.test_hooks.check_against_steps(plan_.steps);
+    open_run_directory();
+    log_start();
+    start_dynamics();
+    if (resume_) restore_from_checkpoint();
+    else write_initial_state();
+    Progress progress("mppm-solve", plan_.steps, options_.quiet);
+    const InterruptionHandlers handlers;
+    if (advance(progress)) finish_completed();
+    progress.finish("t = " + text(dynamics().time()) + " s");
+    return result();
   }
 
-  RunInfo info;
-  info.points = model.points.owned;
-  info.bonds = model.bonds.bond_count();
-  info.threads = omp_get_max_threads();
-  info.effects = scene.effects.names();
-  info.dimension = scene.dimension;
-  info.time_step = dt;
-  info.critical_time_step = critical.step;
-  info.largest_time_step = damage_step;
-  info.limiting_mode = critical.limiting_mode;
-  info.detached_points = model.detached_points;
+ private:
+  Model& model() { return *model_; }
+  RunWriter& writer() { return *writer_; }
+  ExplicitDynamics& dynamics() { return *dynamics_; }
 
-  if (resume) writer.restore_log(file_text(writer.path(run_layout::log)));
-  else writer.log("mppm-solve " MPPM_VERSION ": scene " + scene.path + ", points " + options.points_file);
-  if (resume)
-    writer.log("mppm-solve " MPPM_VERSION " --restart: continues from " + resume->path + " (step " +
-               std::to_string(resume->header.step) + ", t = " + text(resume->header.time) + " s), points " +
-               options.points_file + ", threads " + std::to_string(info.threads) +
-               "; rows and snapshots after the checkpoint are dropped and written again");
-  // The run's start-up report (a restart has it already in its log).
-  if (!resume) {
-    writer.log("points " + std::to_string(info.points) + ", bonds " + std::to_string(info.bonds) +
-               " (stored from both ends), pre-crack cuts " + std::to_string(model.precrack_cut_bonds) +
-               " bonds, detached points " + std::to_string(model.detached_points));
-    writer.log("critical time step " + text(critical.step) + " s (translational " + text(critical.translational) +
-               " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
-               "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " + critical.limiting_mode +
-               ", driven by " + critical.driver);
-    writer.log("time step " + text(dt) + " s (" + (scene_in.time.step ? "given" : "auto, safety " + text(scene.time.safety)) +
-               "), " + std::to_string(steps) + " steps, threads " + std::to_string(info.threads));
-    if (scene.effects.damage)
-      writer.log("damage: critical bond work w_cr " + text(model.constants.critical_bond_work) + " J/m^6 (G_cr " +
-                 text(scene.material.damage->critical_energy_release_rate) + " J/m^2, " +
-                 scene.material.damage->calibration + " calibration), no-fail depth " +
-                 text(scene.material.damage->no_fail_depth) + " m; largest step of a damage run " + text(damage_step) +
-                 " s (" + text(damage_step / critical.step) +
-                 " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
-                 " s is detached (stiffness block limit " + text(model.block_eigenvalue_limit) + " 1/s^2)");
-    if (model.viscoplastic_model)
-      writer.log("viscoplastic model " + model.viscoplastic_model->name() +
-                 " (return map once per step; the critical step above is the elastic bound, which "
-                 "plastic flow does not lower)");
-    for (const auto& w : scene.warnings) writer.log("warning: " + w);
-    if (const auto& k = options.inject_nan)
-        writer.log("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
-                 " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
-                 std::to_string(k->step));
-    if (const auto& k = options.inject_kick)
-      writer.log("test hook (--inject-kick): " + text(k->velocity) + " m/s will be added to velocity component " +
-                 std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
-                 std::to_string(k->step) + " (kinetic energy that nothing accounts for)");
-    const auto available = available_fields(model);
-    for (const auto& f : scene.output.fields)
-      if (std::find(available.begin(), available.end(), f) == available.end())
-        writer.log("note: output field '" + f + "' is not produced by this run (effects: " +
-                   [&] {
-                     std::string e;
-                     for (const auto& n : info.effects) e += (e.empty() ? "" : ", ") + n;
-                     return e.empty() ? std::string("none") : e;
-                   }() + ")");
-  }  // start-up report
+  // Set-up, in this order: each step may refuse the run (InputError, NumericalFailure) before
+  // the next one allocates or writes anything.
+  void check_inputs(const PointCloud& cloud);
+  void build_model_and_conditions(const PointCloud& cloud, PointCloud* release);
+  void fit_time_step();
+  void open_run_directory();
+  void fill_run_info();
+  void log_start();
+  void log_start_up_report();
+  void log_test_hooks();
+  void log_fields_not_produced();
+  void start_dynamics();
+  void restore_from_checkpoint();
+  void write_initial_state();
+  // The time loop; true when it reached time.end, false when it stopped on an interruption.
+  bool advance(Progress& progress);
+  void check_and_record(std::int64_t s, bool row);
+  void stop_on_interruption(std::int64_t s, bool snapshot_written);
+  void finish_completed();
+  SolveResult result() const;
 
-  std::vector<std::string> load_header{"time_s"};
-  for (const auto& bc : scene.boundary_conditions)
-    for (const auto& c : run_files::load_columns(bc.name, scene.dimension)) load_header.push_back(c);
-  writer.set_load_header(load_header);
+  // What the steps of the loop share.
+  void record_rows();
+  void update_info(const std::string& status, const std::string& message);
+  void snapshot();
+  void write_snapshot();
+  [[noreturn]] void fail(const std::string& reason);
+  void checkpoint();
+  RunLoopState loop_state() const;
+  [[noreturn]] void stop_on_checkpoint_write_error(const InputError& e);
+  std::string damage_summary() const;
 
-  ExplicitDynamics dynamics(model, conditions, dt, scene.gravity);
-  dynamics.set_damping(scene.numerics.damping);
-  dynamics.set_clock(end, steps);
-  dynamics.set_nan_injection(options.inject_nan);
-  dynamics.set_velocity_kick(options.inject_kick);
-  dynamics.initialize();
-  const auto loop_start = std::chrono::steady_clock::now();
-
-  auto record_rows = [&] {
-    std::vector<double> row{dynamics.time()};
-    for (const auto& v : conditions.load_values(model.points, dynamics.time())) {
-      row.insert(row.end(), v.displacement.begin(), v.displacement.end());
-      row.insert(row.end(), v.force.begin(), v.force.end());
-    }
-    writer.add_load_row(row);
-    const EnergyState& e = dynamics.energy();
-    writer.add_energy_row({dynamics.time(), e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization,
-                           e.plastic_dissipation, e.fracture_dissipation, e.external_work,
-                           dynamics.balance_error()});
-  };
-  auto update_info = [&](const std::string& status, const std::string& message) {
-    info.status = status;
-    info.message = message;
-    info.steps = dynamics.steps();
-    info.time = dynamics.time();
-    const auto now = std::chrono::steady_clock::now();
-    info.wall_seconds = std::chrono::duration<double>(now - wall_start).count();
-    info.loop_wall_seconds = std::chrono::duration<double>(now - loop_start).count();
-    info.detached_points = model.detached_points;
-  };
-  // After a snapshot, the tables, the log and run_info.json are rewritten (each atomically, with
-  // an fsync of the file and of the directory) only when kTableFlushInterval of wall time has
-  // passed since their last rewrite; at checkpoints, stops, failures and the end always. Ten
-  // fsyncs cost about 13 ms on the development VM: after every one of the crack-branching case's
-  // 241 snapshots that was 3 s of its 17 s. A run killed between rewrites leaves every file
-  // whole, the tables up to a second behind the newest snapshot. The snapshot's own fsyncs run
-  // on the run writer's background thread (run_writer.hpp); a rewrite waits for them, so that
-  // run_info.json lists only snapshots that are complete under their names.
-  constexpr std::chrono::duration<double> kTableFlushInterval{1.0};
-  std::optional<std::chrono::steady_clock::time_point> last_flush;
-  auto snapshot = [&] {
-    writer.write_snapshot(model.dimension(), dynamics.steps(), dynamics.time(), model.points.owned,
-                          snapshot_sources(model, scene.output.fields));
-    const auto now = std::chrono::steady_clock::now();
-    if (last_flush && now - *last_flush < kTableFlushInterval) return;
-    update_info("running", "");
-    writer.flush(info);
-    last_flush = now;
-  };
-  auto fail = [&](const std::string& reason) {
-    const std::string message = "numerical failure at step " + std::to_string(dynamics.steps()) + ", t = " +
-                                text(dynamics.time()) + " s: " + reason +
-                                "; the last good snapshot is kept (try a smaller time.step or check the material)";
-    if (scene.effects.damage)
-      writer.log("at the failure: broken bonds " + std::to_string(model.broken_bonds) + " (pairs), fracture dissipation " +
-                 text(dynamics.energy().fracture_dissipation) + " J, detached points " +
-                 std::to_string(model.detached_points) + " (" + std::to_string(model.unstable_detached_points) +
-                 " of them for the time step's sake)");
-    writer.log(message);
-    update_info("numerical_failure", message);
-    writer.flush(info);
-    throw NumericalFailure(options.run_directory + ": " + message);
-  };
-
-  Schedule rows(scene.output.load_interval, dt, true);
-  Schedule snapshots(scene.output.interval, dt, false);
-  Schedule checkpoints(scene.output.checkpoint_interval, dt, false);
-  constexpr std::int64_t kGuardStartStep = 50;
-  EnergyGuard guard(scene.numerics.energy_check_tolerance, kGuardStartStep);
+  const Scene& scene_in_;  // as given: scene_.time.step is the step the run arrives at
+  const SolveOptions& options_;
+  const CheckpointFile* resume_;  // null for a new run
+  const std::chrono::steady_clock::time_point wall_start_;
+  std::chrono::steady_clock::time_point loop_start_;
+  Scene scene_;
+  // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
+  // run's inputs by the resolved scene as written and the points.
+  const bool checkpointing_;
+  RunIdentity identity_;
+  std::optional<BoundaryConditions> conditions_;
+  std::optional<Model> model_;
+  TimeStepPlan plan_;
+  std::optional<RunWriter> writer_;
+  RunInfo info_;
+  std::optional<ExplicitDynamics> dynamics_;
+  Schedule rows_, snapshots_, checkpoints_;
+  EnergyGuard guard_;
   // The energy check stops growth; energy that disappears without a dissipation that accounts for
   // it is not an instability but a wrong answer all the same: reported at the end.
-  double worst_balance = 0.0;
-  const std::string points_file = std::filesystem::absolute(options.points_file).string();
+  double worst_balance_ = 0.0;
+  std::string points_file_;  // absolute: a checkpoint stores it
+  std::int64_t first_step_ = 1;
+  std::optional<std::chrono::steady_clock::time_point> last_flush_;
+  int checkpoints_written_ = 0;
+  std::int64_t last_checkpoint_step_ = -1;
+  SolveResult result_;
+};
 
-  std::int64_t first_step = 1;
-  if (resume) {
-    RunLoopState loop = restore_checkpoint(*resume, identity, model, dynamics);
-    if (loop.time_step != dt)
-      throw InputError(resume->path + ": the checkpoint's time step " + text(loop.time_step) +
-                       " s is not the one this run arrives at (" + text(dt) + " s); cannot continue it bit for bit");
-    rows.restore(loop.next_row);
-    snapshots.restore(loop.next_snapshot);
-    checkpoints.restore(loop.next_checkpoint);
-    guard.restore(loop.guard);
-    worst_balance = loop.worst_balance;
-    writer.restore_tables(table_up_to_checkpoint(writer.path(run_layout::load), loop.load_table_bytes,
-                                                 loop.load_table_fingerprint, resume->header.step),
-                          table_up_to_checkpoint(writer.path(run_layout::energy), loop.energy_table_bytes,
-                                                 loop.energy_table_fingerprint, resume->header.step));
-    remove_output_after_checkpoint(writer.directory(), loop.snapshots);
-    writer.restore_snapshots(std::move(loop.snapshots));
-    first_step = dynamics.steps() + 1;
-    update_info("running", "");
-    writer.flush(info);
-  } else {
-    record_rows();
-    snapshot();
+void RunDriver::check_inputs(const PointCloud& cloud) {
+  check_points_match_scene(scene_, cloud, options_.points_file);
+  if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");
+  refuse_runs_that_do_not_fit(scene_, cloud);
+}
+
+// The boundary conditions and the model; with `release` the model takes the cloud's arrays over
+// instead of copying them, and the rest of the cloud is emptied: `cloud` (the same object) is
+// not read after this.
+void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* release) {
+  // Bad viscoplastic parameters are an InputError naming the key.
+  const ModelOptions model_settings = model_options(scene_);
+  if (resume_) {
+    identity_.scene_fingerprint = resume_->header.scene_fingerprint;  // checked by restart()
+    identity_.points_fingerprint = resume_->header.points_fingerprint;
+  } else if (checkpointing_) {
+    identity_.points_fingerprint = point_cloud_fingerprint(cloud);
   }
+  conditions_.emplace(scene_, cloud, options_.points_file);
+  model_.emplace(release ? build_model(std::move(*release), model_settings) : build_model(cloud, model_settings));
+  if (release) *release = PointCloud{};
+  if (model().detached_points == model().points.owned)
+    throw InputError(options_.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
+                     text(scene_.geometry.horizon()) +
+                     " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
+}
 
-  // A checkpoint after step s: the tables are flushed first, so that
-  // load.csv and energy.csv on disk hold every row the checkpoint counts. A write error stops the
-  // run (exit 2) with the previous checkpoint intact.
-  int checkpoints_written = 0;
-  std::int64_t last_checkpoint_step = resume ? resume->header.step : -1;
-  auto checkpoint = [&] {
-    update_info("running", "");
-    writer.flush(info);
-    last_flush = std::chrono::steady_clock::now();
-    RunLoopState loop;
-    loop.next_row = rows.next();
-    loop.next_snapshot = snapshots.next();
-    loop.next_checkpoint = checkpoints.next();
-    loop.worst_balance = worst_balance;
-    loop.guard = guard.history();
-    loop.snapshots = writer.snapshots();
-    loop.load_table_bytes = writer.load_table().size();
-    loop.load_table_fingerprint = fnv1a(writer.load_table());
-    loop.energy_table_bytes = writer.energy_table().size();
-    loop.energy_table_fingerprint = fnv1a(writer.energy_table());
-    loop.points_file = points_file;
-    loop.time_step = dt;
-    ++checkpoints_written;
-    try {
-      write_checkpoint(checkpoint_path(writer.directory()), identity, model, dynamics, loop,
-                       options.fail_checkpoint_write == checkpoints_written);
-    } catch (const InputError& e) {
-      const std::string message =
-          std::string(e.what()) + "; the run stopped at step " + std::to_string(dynamics.steps()) +
-          (last_checkpoint_step >= 0 ? "; the previous checkpoint (step " + std::to_string(last_checkpoint_step) +
-                                           ") is intact: free space, then mppm-solve --restart " + writer.directory() +
-                                           " continues from it"
-                                     : std::string("; no checkpoint was written before"));
-      writer.log(message);
-      update_info("write_error", message);
-      try {
-        writer.flush(info);
-      } catch (const InputError&) {
-        // The disk that refused the checkpoint may refuse the tables too: the message above is
-        // what matters, and the tables of the last flush are intact.
-      }
-      throw InputError(message);
-    }
-    last_checkpoint_step = dynamics.steps();
-  };
+// The critical step of the model, the step the run takes (fit_step_to_end) and the breakage's
+// view of it; the resolved scene records the step.
+void RunDriver::fit_time_step() {
+  plan_.critical = critical_time_step(model());
+  if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
+    throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
+                           text(plan_.critical.step) + " s): the discrete operator is not positive");
+  plan_.damage_step = model().damage_critical_step(plan_.critical.step);
+  plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
+  fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
+  scene_.time.step = plan_.dt;
+}
 
-  Progress progress("mppm-solve", steps, options.quiet);
-  const InterruptionHandlers handlers;
-  SolveResult r;
-  for (std::int64_t s = first_step; s <= steps; ++s) {
-    const bool row = rows.due(s) || s == steps;
-    const bool snap = snapshots.due(s) || s == steps;
+// The run directory: a new one (the resolved scene and the reference configuration written), or
+// the one a restart continues.
+void RunDriver::open_run_directory() {
+  model().set_breakage_time_step(plan_.dt);
+  if (resume_) writer_.emplace(options_.run_directory, RunWriter::ContinueExisting{});
+  else writer_.emplace(options_.run_directory, options_.force);
+  if (!resume_) {
+    std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", plan_.critical.step}};
+    if (scene_.effects.damage) derived.emplace_back("critical_bond_work_J_per_m6", model().constants.critical_bond_work);
+    const std::string resolved = writer().write_resolved_scene(scene_, derived);
+    if (checkpointing_) identity_.scene_fingerprint = fnv1a(resolved);
+    writer().write_reference(model().points);
+  }
+  fill_run_info();
+}
+
+void RunDriver::fill_run_info() {
+  info_.points = model().points.owned;
+  info_.bonds = model().bonds.bond_count();
+  info_.threads = omp_get_max_threads();
+  info_.effects = scene_.effects.names();
+  info_.dimension = scene_.dimension;
+  info_.time_step = plan_.dt;
+  info_.critical_time_step = plan_.critical.step;
+  info_.largest_time_step = plan_.damage_step;
+  info_.limiting_mode = plan_.critical.limiting_mode;
+  info_.detached_points = model().detached_points;
+}
+
+// The first lines of log.txt: what runs, and the start-up report (a restart has it already in
+// its log and says where it continues from).
+void RunDriver::log_start() {
+  if (resume_) writer().restore_log(file_text(writer().path(run_layout::log)));
+  else writer().log("mppm-solve " MPPM_VERSION ": scene " + scene_.path + ", points " + options_.points_file);
+  if (resume_)
+    writer().log("mppm-solve " MPPM_VERSION " --restart: continues from " + resume_->path + " (step " +
+                 std::to_string(resume_->header.step) + ", t = " + text(resume_->header.time) + " s), points " +
+                 options_.points_file + ", threads " + std::to_string(info_.threads) +
+                 "; rows and snapshots after the checkpoint are dropped and written again");
+  if (!resume_) {
+    log_start_up_report();
+    log_test_hooks();
+    log_fields_not_produced();
+  }
+  std::vector<std::string> load_header{"time_s"};
+  for (const auto& bc : scene_.boundary_conditions)
+    for (const auto& c : run_files::load_columns(bc.name, scene_.dimension)) load_header.push_back(c);
+  writer().set_load_header(load_header);
+}
+
+// The model, the critical and the chosen time step, the damage and viscoplastic settings, the
+// scene's warnings.
+void RunDriver::log_start_up_report() {
+  const Model& m = model();
+  const CriticalTimeStep& critical = plan_.critical;
+  const double dt = plan_.dt;
+  writer().log("points " + std::to_string(info_.points) + ", bonds " + std::to_string(info_.bonds) +
+               " (stored from both ends), pre-crack cuts " + std::to_string(m.precrack_cut_bonds) +
+               " bonds, detached points " + std::to_string(m.detached_points));
+  writer().log("critical time step " + text(critical.step) + " s (translational " + text(critical.translational) +
+               " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
+               "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " +
+               critical.limiting_mode + ", driven by " + critical.driver);
+  writer().log("time step " + text(dt) + " s (" + (scene_in_.time.step ? "given" : "auto, safety " + text(scene_.time.safety)) +
+               "), " + std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads));
+  if (scene_.effects.damage)
+    writer().log("damage: critical bond work w_cr " + text(m.constants.critical_bond_work) + " J/m^6 (G_cr " +
+                 text(scene_.material.damage->critical_energy_release_rate) + " J/m^2, " +
+                 scene_.material.damage->calibration + " calibration), no-fail depth " +
+                 text(scene_.material.damage->no_fail_depth) + " m; largest step of a damage run " +
+                 text(plan_.damage_step) + " s (" + text(plan_.damage_step / critical.step) +
+                 " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
+                 " s is detached (stiffness block limit " + text(m.block_eigenvalue_limit) + " 1/s^2)");
+  if (m.viscoplastic_model)
+    writer().log("viscoplastic model " + m.viscoplastic_model->name() +
+                 " (return map once per step; the critical step above is the elastic bound, which "
+                 "plastic flow does not lower)");
+  for (const auto& w : scene_.warnings) writer().log("warning: " + w);
+}
+
+// The fault hooks armed for this run (solver/test_hooks.hpp).
+void RunDriver::log_test_hooks() {
+  for (const std::string& line : options_.test_hooks.armed()) writer().log(line);
+}
+
+void RunDriver::log_fields_not_produced() {
+  const auto available = available_fields(model());
+  std::string effects;
+  for (const auto& n : info_.effects) effects += (effects.empty() ? "" : ", ") + n;
+  if (effects.empty()) effects = "none";
+  for (const auto& f : scene_.output.fields)
+    if (std::find(available.begin(), available.end(), f) == available.end())
+      writer().log("note: output field '" + f + "' is not produced by this run (effects: " + effects + ")");
+}
+
+// The integrator at t = 0, the schedules and the energy check.
+void RunDriver::start_dynamics() {
+  dynamics_.emplace(model(), *conditions_, plan_.dt, scene_.gravity);
+  dynamics().set_damping(scene_.numerics.damping);
+  dynamics().set_clock(scene_.time.end, plan_.steps);
+  dynamics().initialize();
+  loop_start_ = std::chrono::steady_clock::now();
+  rows_ = Schedule(scene_.output.load_interval, plan_.dt, true);
+  snapshots_ = Schedule(scene_.output.interval, plan_.dt, false);
+  checkpoints_ = Schedule(scene_.output.checkpoint_interval, plan_.dt, false);
+  points_file_ = std::filesystem::absolute(options_.points_file).string();
+}
+
+// A restart: the state, the schedules, the energy check and the tables of the checkpoint; the
+// output written after it removed.
+void RunDriver::restore_from_checkpoint() {
+  RunLoopState loop = restore_checkpoint(*resume_, identity_, model(), dynamics());
+  if (loop.time_step != plan_.dt)
+    throw InputError(resume_->path + ": the checkpoint's time step " + text(loop.time_step) +
+                     " s is not the one this run arrives at (" + text(plan_.dt) + " s); cannot continue it bit for bit");
+  rows_.restore(loop.next_row);
+  snapshots_.restore(loop.next_snapshot);
+  checkpoints_.restore(loop.next_checkpoint);
+  guard_.restore(loop.guard);
+  worst_balance_ = loop.worst_balance;
+  const std::int64_t step = resume_->header.step;
+  writer().restore_tables(table_up_to_checkpoint(writer().path(run_layout::load), loop.load_table_bytes,
+                                                 loop.load_table_fingerprint, step),
+                          table_up_to_checkpoint(writer().path(run_layout::energy), loop.energy_table_bytes,
+                                                 loop.energy_table_fingerprint, step));
+  remove_output_after_checkpoint(writer().directory(), loop.snapshots);
+  writer().restore_snapshots(std::move(loop.snapshots));
+  first_step_ = dynamics().steps() + 1;
+  last_checkpoint_step_ = step;
+  update_info("running", "");
+  writer().flush(info_);
+}
+
+// A new run: the rows and the snapshot of t = 0.
+void RunDriver::write_initial_state() {
+  record_rows();
+  snapshot();
+}
+
+// Per step: step, guards, row, scheduled snapshot, checkpoint, interruption.
+bool RunDriver::advance(Progress& progress) {
+  const std::int64_t steps = plan_.steps;
+  for (std::int64_t s = first_step_; s <= steps; ++s) {
+    const bool row = rows_.due(s) || s == steps;
+    const bool snap = snapshots_.due(s) || s == steps;
     // A finished run needs no checkpoint to continue from.
-    const bool checkpoint_due = checkpoints.due(s) && s < steps;
-    dynamics.step(row);
-    if (!dynamics.finite()) fail(non_finite_reason(dynamics));
-    if (row) {
-      record_rows();
-      if (const auto reason = guard.check(s, dynamics.energy(), dynamics.initial_total_energy())) fail(*reason);
-      if (s >= kGuardStartStep && std::abs(dynamics.balance_error()) > std::abs(worst_balance))
-        worst_balance = dynamics.balance_error();
-    }
+    const bool checkpoint_due = checkpoints_.due(s) && s < steps;
+    dynamics().step(row, [this](PointData& points, std::int64_t step) { options_.test_hooks.after_forces(points, step); });
+    check_and_record(s, row);
     if (snap) snapshot();
-    const bool interrupted = interruption_requested() || options.interrupt_after_step == s;
+    const bool interrupted = interruption_requested() || options_.test_hooks.interrupts_after(s);
     // With checkpoints on, an interruption (SIGINT, SIGTERM) writes one too, before the snapshot of
     // the interruption (which the checkpoint does not count, so that a restart removes it).
-    if (checkpointing && (checkpoint_due || interrupted)) checkpoint();
+    if (checkpointing_ && (checkpoint_due || interrupted)) checkpoint();
     if (interrupted) {
-      clear_interruption();
-      if (!snap)
-        writer.write_snapshot(model.dimension(), dynamics.steps(), dynamics.time(), model.points.owned,
-                              snapshot_sources(model, scene.output.fields));
-      const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(steps) +
-                                  ", t = " + text(dynamics.time()) + " s; the state there is the last snapshot" +
-                                  (checkpointing ? "; mppm-solve --restart " + writer.directory() +
-                                                       " continues from the checkpoint written there"
-                                                 : std::string());
-      writer.log(message);
-      update_info("interrupted", message);
-      writer.flush(info);
-      r.interrupted = true;
-      r.message = message;
-      break;
+      stop_on_interruption(s, snap);
+      return false;
     }
-    progress.update(s, "t = " + text(dynamics.time()) + " s");
+    progress.update(s, "t = " + text(dynamics().time()) + " s");
   }
-  if (!r.interrupted) {
-    std::string warning;
-    if (std::abs(worst_balance) > scene.numerics.energy_check_tolerance)
-      warning = "warning: the energy balance error reached " + text(worst_balance) +
-                " (beyond numerics.energy_check_tolerance " + text(scene.numerics.energy_check_tolerance) +
-                "): energy " + (worst_balance < 0.0 ? "disappeared" : "appeared") +
-                " that neither the external work nor a dissipation accounts for (energy.csv, balance_error)";
-    if (!warning.empty()) writer.log(warning);
-    update_info("completed", warning);
-    writer.log("completed " + std::to_string(steps) + " steps in " + text(info.wall_seconds) +
-               " s, final balance error " + text(dynamics.balance_error()) +
-               (scene.effects.damage ? ", broken bonds " + std::to_string(model.broken_bonds) + " (pairs), fracture dissipation " +
-                                           text(dynamics.energy().fracture_dissipation) + " J, detached points " +
-                                           std::to_string(model.detached_points) + " (" +
-                                           std::to_string(model.unstable_detached_points) +
-                                           " of them for the time step's sake)"
-                                     : std::string()));
-    writer.flush(info);
-  }
-  progress.finish("t = " + text(dynamics.time()) + " s");
+  return true;
+}
 
-  r.steps = dynamics.steps();
-  r.time_step = dt;
-  r.critical_time_step = critical.step;
-  r.limiting_mode = critical.limiting_mode;
-  r.final_balance_error = dynamics.balance_error();
+// The guards of step s (non-finite values; at a row, the energy check) and its row.
+void RunDriver::check_and_record(std::int64_t s, bool row) {
+  if (!dynamics().finite()) fail(non_finite_reason(dynamics()));
+  if (!row) return;
+  record_rows();
+  if (const auto reason = guard_.check(s, dynamics().energy(), dynamics().initial_total_energy())) fail(*reason);
+  if (s >= kGuardStartStep && std::abs(dynamics().balance_error()) > std::abs(worst_balance_))
+    worst_balance_ = dynamics().balance_error();
+}
+
+// SIGINT / SIGTERM (or the interrupt_after_step hook) after step s: a last snapshot, status
+// "interrupted".
+void RunDriver::stop_on_interruption(std::int64_t s, bool snapshot_written) {
+  clear_interruption();
+  if (!snapshot_written) write_snapshot();
+  const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(plan_.steps) +
+                              ", t = " + text(dynamics().time()) + " s; the state there is the last snapshot" +
+                              (checkpointing_ ? "; mppm-solve --restart " + writer().directory() +
+                                                    " continues from the checkpoint written there"
+                                              : std::string());
+  writer().log(message);
+  update_info("interrupted", message);
+  writer().flush(info_);
+  result_.interrupted = true;
+  result_.message = message;
+}
+
+// ", broken bonds ... detached points ... (... of them for the time step's sake)"
+std::string RunDriver::damage_summary() const {
+  const Model& m = *model_;
+  return "broken bonds " + std::to_string(m.broken_bonds) + " (pairs), fracture dissipation " +
+         text(dynamics_->energy().fracture_dissipation) + " J, detached points " + std::to_string(m.detached_points) +
+         " (" + std::to_string(m.unstable_detached_points) + " of them for the time step's sake)";
+}
+
+// The end of a run that reached time.end: the balance warning, the summary, the files.
+void RunDriver::finish_completed() {
+  std::string warning;
+  const double tolerance = scene_.numerics.energy_check_tolerance;
+  if (std::abs(worst_balance_) > tolerance)
+    warning = "warning: the energy balance error reached " + text(worst_balance_) +
+              " (beyond numerics.energy_check_tolerance " + text(tolerance) + "): energy " +
+              (worst_balance_ < 0.0 ? "disappeared" : "appeared") +
+              " that neither the external work nor a dissipation accounts for (energy.csv, balance_error)";
+  if (!warning.empty()) writer().log(warning);
+  update_info("completed", warning);
+  writer().log("completed " + std::to_string(plan_.steps) + " steps in " + text(info_.wall_seconds) +
+               " s, final balance error " + text(dynamics().balance_error()) +
+               (scene_.effects.damage ? ", " + damage_summary() : std::string()));
+  writer().flush(info_);
+}
+
+SolveResult RunDriver::result() const {
+  SolveResult r = result_;
+  r.steps = dynamics_->steps();
+  r.time_step = plan_.dt;
+  r.critical_time_step = plan_.critical.step;
+  r.limiting_mode = plan_.critical.limiting_mode;
+  r.final_balance_error = dynamics_->balance_error();
   return r;
+}
+
+void RunDriver::record_rows() {
+  const double t = dynamics().time();
+  std::vector<double> row{t};
+  for (const auto& v : conditions_->load_values(model().points, t)) {
+    row.insert(row.end(), v.displacement.begin(), v.displacement.end());
+    row.insert(row.end(), v.force.begin(), v.force.end());
+  }
+  writer().add_load_row(row);
+  const EnergyState& e = dynamics().energy();
+  writer().add_energy_row({t, e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization, e.plastic_dissipation,
+                           e.fracture_dissipation, e.external_work, dynamics().balance_error()});
+}
+
+void RunDriver::update_info(const std::string& status, const std::string& message) {
+  info_.status = status;
+  info_.message = message;
+  info_.steps = dynamics().steps();
+  info_.time = dynamics().time();
+  const auto now = std::chrono::steady_clock::now();
+  info_.wall_seconds = std::chrono::duration<double>(now - wall_start_).count();
+  info_.loop_wall_seconds = std::chrono::duration<double>(now - loop_start_).count();
+  info_.detached_points = model().detached_points;
+}
+
+void RunDriver::write_snapshot() {
+  writer().write_snapshot(model().dimension(), dynamics().steps(), dynamics().time(), model().points.owned,
+                          snapshot_sources(model(), scene_.output.fields));
+}
+
+// A scheduled snapshot, then the files when kTableFlushInterval has passed since their last rewrite.
+void RunDriver::snapshot() {
+  write_snapshot();
+  const auto now = std::chrono::steady_clock::now();
+  if (last_flush_ && now - *last_flush_ < kTableFlushInterval) return;
+  update_info("running", "");
+  writer().flush(info_);
+  last_flush_ = now;
+}
+
+// A numerical failure (exit 3): the run directory keeps everything up to the last good snapshot.
+void RunDriver::fail(const std::string& reason) {
+  const std::string message = "numerical failure at step " + std::to_string(dynamics().steps()) + ", t = " +
+                              text(dynamics().time()) + " s: " + reason +
+                              "; the last good snapshot is kept (try a smaller time.step or check the material)";
+  if (scene_.effects.damage) writer().log("at the failure: " + damage_summary());
+  writer().log(message);
+  update_info("numerical_failure", message);
+  writer().flush(info_);
+  throw NumericalFailure(options_.run_directory + ": " + message);
+}
+
+// The loop's state after the last step, as a checkpoint stores it.
+RunLoopState RunDriver::loop_state() const {
+  const RunWriter& w = *writer_;
+  RunLoopState loop;
+  loop.next_row = rows_.next();
+  loop.next_snapshot = snapshots_.next();
+  loop.next_checkpoint = checkpoints_.next();
+  loop.worst_balance = worst_balance_;
+  loop.guard = guard_.history();
+  loop.snapshots = w.snapshots();
+  loop.load_table_bytes = w.load_table().size();
+  loop.load_table_fingerprint = fnv1a(w.load_table());
+  loop.energy_table_bytes = w.energy_table().size();
+  loop.energy_table_fingerprint = fnv1a(w.energy_table());
+  loop.points_file = points_file_;
+  loop.time_step = plan_.dt;
+  return loop;
+}
+
+// A checkpoint after the last step: the tables are flushed first, so that load.csv and energy.csv
+// on disk hold every row the checkpoint counts. A write error stops the run (exit 2) with the
+// previous checkpoint intact.
+void RunDriver::checkpoint() {
+  update_info("running", "");
+  writer().flush(info_);
+  last_flush_ = std::chrono::steady_clock::now();
+  const RunLoopState loop = loop_state();
+  ++checkpoints_written_;
+  try {
+    write_checkpoint(checkpoint_path(writer().directory()), identity_, model(), dynamics(), loop,
+                     options_.test_hooks.fails_checkpoint_write(checkpoints_written_));
+  } catch (const InputError& e) {
+    stop_on_checkpoint_write_error(e);
+  }
+  last_checkpoint_step_ = dynamics().steps();
+}
+
+void RunDriver::stop_on_checkpoint_write_error(const InputError& e) {
+  const std::string message =
+      std::string(e.what()) + "; the run stopped at step " + std::to_string(dynamics().steps()) +
+      (last_checkpoint_step_ >= 0 ? "; the previous checkpoint (step " + std::to_string(last_checkpoint_step_) +
+                                        ") is intact: free space, then mppm-solve --restart " + writer().directory() +
+                                        " continues from it"
+                                  : std::string("; no checkpoint was written before"));
+  writer().log(message);
+  update_info("write_error", message);
+  try {
+    writer().flush(info_);
+  } catch (const InputError&) {
+    // The disk that refused the checkpoint may refuse the tables too: the message above is
+    // what matters, and the tables of the last flush are intact.
+  }
+  throw InputError(message);
+}
+
+SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,
+                const CheckpointFile* resume, PointCloud* release) {
+  return RunDriver(scene_in, options, resume).run(cloud, release);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
 #include "solver/explicit_dynamics.hpp"
+#include "solver/test_hooks.hpp"
 
 namespace mppm::solver {
 
@@ -17,26 +18,9 @@ struct SolveOptions {
   std::string points_file = "points";  // named in messages
   bool force = false;                  // overwrite an earlier run in run_directory
   bool quiet = true;                   // no progress display
-  // Test hook (mppm-solve --inject-nan STEP:POINT[:FIELD[:COMPONENT]], solver/README.md "Test
-  // hooks"): a NaN appears in one point during one step, to test the guard end to end.
-  std::optional<NanInjection> inject_nan;
-  // Test hook (mppm-solve --inject-kick STEP:POINT:COMPONENT:VELOCITY): a point's velocity jumps
-  // in one step, to trip the energy check end to end for a known reason.
-  std::optional<VelocityKick> inject_kick;
-  // Test hooks of checkpoints (README "Checkpoints and restart"; not on the command line's --help):
-  // the run stops after this step as if SIGTERM had arrived during it (0 = never) ...
-  std::int64_t interrupt_after_step = 0;
-  // ... and the k-th checkpoint this process writes fails halfway as on a full disk (0 = none).
-  int fail_checkpoint_write = 0;
+  // Faults on purpose, for tests (solver/test_hooks.hpp; none by default).
+  TestHooks test_hooks;
 };
-
-// Parses the value of --inject-nan: STEP:POINT[:FIELD[:COMPONENT]] with STEP >= 1, POINT the
-// 0-based index in the points file, FIELD displacement, velocity (default), rotation,
-// rotation_rate or force, COMPONENT 0-based (default 0). Throws InputError naming the option.
-NanInjection parse_nan_injection(const std::string& value);
-// Parses the value of --inject-kick: STEP:POINT:COMPONENT:VELOCITY, VELOCITY in m/s (a number,
-// units allowed: "50 m/s"). Throws InputError naming the option.
-VelocityKick parse_velocity_kick(const std::string& value);
 
 struct SolveResult {
   std::int64_t steps = 0;

@@ -155,10 +155,10 @@ void check_restart_is_bit_for_bit(const Case& c_in, const std::string& name) {
   checkpointed.scene.output.checkpoint_interval = 0.3 * c.scene.time.end;
   const std::string stopped = fresh_directory(name + "_stopped");
   SolveOptions stop = options_for(stopped);
-  stop.interrupt_after_step = whole.steps / 2 + 1;
+  stop.test_hooks.interrupt_after_step = whole.steps / 2 + 1;
   const SolveResult first = solve(checkpointed.scene, checkpointed.cloud, stop);
   ASSERT_TRUE(first.interrupted);
-  EXPECT_EQ(read_checkpoint_file(checkpoint_path(stopped)).header.step, stop.interrupt_after_step);
+  EXPECT_EQ(read_checkpoint_file(checkpoint_path(stopped)).header.step, stop.test_hooks.interrupt_after_step);
   const SolveResult rest = restart_run(checkpointed, stopped);
   EXPECT_FALSE(rest.interrupted);
   EXPECT_EQ(rest.steps, whole.steps);
@@ -197,7 +197,7 @@ TEST(CheckpointRestart, NoCheckpointWithoutTheInterval) {
   const Case c = elastic_bar();
   const std::string dir = fresh_directory("none");
   SolveOptions o = options_for(dir);
-  o.interrupt_after_step = 5;
+  o.test_hooks.interrupt_after_step = 5;
   EXPECT_TRUE(solve(c.scene, c.cloud, o).interrupted);
   EXPECT_FALSE(fs::exists(fs::path(dir) / run_layout::checkpoint_dir));
   try {
@@ -220,7 +220,7 @@ TEST(CheckpointRestart, FailedCheckpointWriteKeepsThePreviousOne) {
   c.scene.output.checkpoint_interval = 0.2 * c.scene.time.end;
   const std::string dir = fresh_directory("write_failure");
   SolveOptions o = options_for(dir);
-  o.fail_checkpoint_write = 2;
+  o.test_hooks.fail_checkpoint_write = 2;
   try {
     solve(c.scene, c.cloud, o);
     FAIL() << "the run should stop on the failed checkpoint write";
@@ -246,7 +246,7 @@ std::string stopped_run(const Case& c, const std::string& name) {
   k.scene.output.checkpoint_interval = 0.25 * c.scene.time.end;
   const std::string dir = fresh_directory(name);
   SolveOptions o = options_for(dir);
-  o.interrupt_after_step = 10;
+  o.test_hooks.interrupt_after_step = 10;
   EXPECT_TRUE(solve(k.scene, k.cloud, o).interrupted);
   return dir;
 }
