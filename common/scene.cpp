@@ -50,6 +50,19 @@ std::string join(const std::vector<std::string>& items, const std::string& sep =
   return out;
 }
 
+// "a, b or c"
+std::string alternatives(const std::vector<std::string>& items) {
+  if (items.size() < 2) return join(items);
+  return join(std::vector<std::string>(items.begin(), items.end() - 1)) + " or " + items.back();
+}
+
+template <class E, std::size_t N>
+std::vector<std::string> enum_names(const std::array<EnumName<E>, N>& table) {
+  std::vector<std::string> names;
+  for (const auto& entry : table) names.push_back(entry.name);
+  return names;
+}
+
 // Nearest known name, if close enough to be a likely typo.
 std::string suggestion(const std::string& name, const std::vector<std::string>& known) {
   std::string best;
@@ -260,6 +273,17 @@ class SceneReader {
   }
   void positive(const YAML::Node& node, const std::string& path, double v, const std::string& what = "must be > 0") {
     if (!(v > 0.0)) fail(node, path, format_number(v) + " " + what);
+  }
+  // A name of `table` (e.g. kConeMatchNames); any other is "unknown <what> 'x' (expected a, b or c)".
+  template <class E, std::size_t N>
+  E enum_value(const YAML::Node& node, const std::string& path, const std::array<EnumName<E>, N>& table,
+               const std::string& what) {
+    const auto expected = alternatives(enum_names(table));
+    const auto text = scalar(node, path, expected);
+    for (const auto& entry : table) {
+      if (text == entry.name) return entry.value;
+    }
+    fail(node, path, "unknown " + what + " '" + text + "' (expected " + expected + ")");
   }
 
   // ---------------------------------------------------------------- sections
@@ -478,10 +502,7 @@ class SceneReader {
     dp.no_fail_depth = quantity_or(node, p, "no_fail_depth", dim::length, 0.0);
     if (dp.no_fail_depth < 0.0) fail(node["no_fail_depth"], p + ".no_fail_depth", "must be >= 0");
     if (node["calibration"].IsDefined()) {
-      dp.calibration = scalar(node["calibration"], p + ".calibration", "lattice, continuum or dissipation");
-      if (dp.calibration != "lattice" && dp.calibration != "continuum" && dp.calibration != "dissipation")
-        fail(node["calibration"], p + ".calibration",
-             "unknown calibration '" + dp.calibration + "' (expected lattice, continuum or dissipation)");
+      dp.calibration = enum_value(node["calibration"], p + ".calibration", kDamageCalibrationNames, "calibration");
     }
     if (node["region"].IsDefined()) dp.region = read_region(node["region"], p + ".region");
     scene_.material.damage = dp;
@@ -531,10 +552,7 @@ class SceneReader {
       fail(node["residual_cohesion"], p + ".residual_cohesion", "must be in [0, cohesion]");
     }
     if (node["cone_match"].IsDefined()) {
-      vp.cone_match = scalar(node["cone_match"], p + ".cone_match", "triaxial-compression or plane-strain");
-      if (vp.cone_match != "triaxial-compression" && vp.cone_match != "plane-strain") {
-        fail(node["cone_match"], p + ".cone_match", "unknown match '" + vp.cone_match + "' (expected triaxial-compression or plane-strain)");
-      }
+      vp.cone_match = enum_value(node["cone_match"], p + ".cone_match", kConeMatchNames, "match");
     }
     if (node["region"].IsDefined()) vp.region = read_region(node["region"], p + ".region");
     scene_.material.viscoplasticity = vp;

@@ -104,7 +104,7 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{m.damage->critical_energy_release_rate};
     out << YAML::Key << "no_fail_depth" << YAML::Value << Num{m.damage->no_fail_depth};
-    out << YAML::Key << "calibration" << YAML::Value << m.damage->calibration;
+    out << YAML::Key << "calibration" << YAML::Value << to_string(m.damage->calibration);
     if (m.damage->region) {
       out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
       emit_selector_keys(out, *m.damage->region);
@@ -122,7 +122,7 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     out << YAML::Key << "hardening" << YAML::Value << Num{vp.hardening};
     out << YAML::Key << "viscosity" << YAML::Value << Num{vp.viscosity};
     out << YAML::Key << "residual_cohesion" << YAML::Value << Num{vp.residual_cohesion};
-    out << YAML::Key << "cone_match" << YAML::Value << vp.cone_match;
+    out << YAML::Key << "cone_match" << YAML::Value << to_string(vp.cone_match);
     if (vp.region) {
       out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
       emit_selector_keys(out, *vp.region);

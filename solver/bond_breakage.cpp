@@ -44,9 +44,9 @@ double lattice_crossing_sum(int dimension, double horizon_factor) {
 double critical_bond_work(const DamageParameters& damage, int dimension, double spacing, double horizon_factor,
                           double thickness, double stabilization) {
   const double g_cr = damage.critical_energy_release_rate;
-  if (damage.calibration == "continuum")
+  if (damage.calibration == DamageCalibration::continuum)
     return continuum_critical_bond_work(dimension, g_cr, horizon_factor * spacing, thickness);
-  if (damage.calibration == "dissipation") {
+  if (damage.calibration == DamageCalibration::dissipation) {
     const auto rho = released_fraction(dimension, horizon_factor, stabilization);
     if (!rho)
       throw std::invalid_argument("the dissipation calibration is measured for " + released_fraction_ranges(dimension) +
@@ -54,7 +54,7 @@ double critical_bond_work(const DamageParameters& damage, int dimension, double 
                                   std::to_string(horizon_factor) + ", G_s " + std::to_string(stabilization) +
                                   "); use calibration: lattice, or a setting in that range");
     DamageParameters lattice = damage;
-    lattice.calibration = "lattice";
+    lattice.calibration = DamageCalibration::lattice;
     return critical_bond_work(lattice, dimension, spacing, horizon_factor, thickness, stabilization) / *rho;
   }
   // Per cell of the plane (dx t in 2-D, dx^2 in 3-D) the crossing bonds carry S V^2 with V = dx^2 t

@@ -424,7 +424,7 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
     if (scene.effects.damage)
       writer.log("damage: critical bond work w_cr " + text(model.constants.critical_bond_work) + " J/m^6 (G_cr " +
                  text(scene.material.damage->critical_energy_release_rate) + " J/m^2, " +
-                 scene.material.damage->calibration + " calibration), no-fail depth " +
+                 to_string(scene.material.damage->calibration) + " calibration), no-fail depth " +
                  text(scene.material.damage->no_fail_depth) + " m; largest step of a damage run " + text(damage_step) +
                  " s (" + text(damage_step / critical.step) +
                  " of the critical step); a point whose lopsided family would need a step below " + text(dt) +

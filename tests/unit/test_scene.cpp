@@ -234,3 +234,37 @@ TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
   EXPECT_EQ(b.output.fields, a.output.fields);
   EXPECT_NE(yaml.find("time_step_s"), std::string::npos);
 }
+
+// The named choices are enums in the Scene, read and written by the same name table.
+TEST(Scene, NamedChoicesAreReadAsEnumsAndWrittenBackByName) {
+  const Scene lattice = parse_scene(kExample, kPath);
+  EXPECT_EQ(lattice.material.damage->calibration, DamageCalibration::lattice);  // the default
+  for (const auto& [value, name] : kDamageCalibrationNames) {
+    const Scene s = parse_scene(kExample, kPath, {std::string("material.damage.calibration=") + name});
+    EXPECT_EQ(s.material.damage->calibration, value) << name;
+    EXPECT_NE(resolved_scene_yaml(s).find(std::string("calibration: ") + name), std::string::npos) << name;
+    EXPECT_EQ(parse_scene(resolved_scene_yaml(s), kPath).material.damage->calibration, value) << name;
+  }
+  const std::string vp = "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, "
+                         "cohesion: 0.35 MPa, viscosity: 0.01 MPa*s}";
+  const Scene outer = parse_scene(kExample, kPath, {"effects=[micropolar,viscoplasticity]", vp});
+  EXPECT_EQ(outer.material.viscoplasticity->cone_match, ConeMatch::triaxial_compression);  // the default
+  for (const auto& [value, name] : kConeMatchNames) {
+    const Scene s = parse_scene(kExample, kPath, {"effects=[micropolar,viscoplasticity]", vp,
+                                                  std::string("material.viscoplasticity.cone_match=") + name});
+    EXPECT_EQ(s.material.viscoplasticity->cone_match, value) << name;
+    EXPECT_STREQ(to_string(value), name);
+    EXPECT_NE(resolved_scene_yaml(s).find(std::string("cone_match: ") + name), std::string::npos) << name;
+  }
+  EXPECT_EQ(error_of(kExample, {"material.damage.calibration=latice"}),
+            kPath + ": --set material.damage.calibration=latice: material.damage.calibration: unknown calibration "
+                    "'latice' (expected lattice, continuum or dissipation)");
+  EXPECT_EQ(error_of(replace(kExample, "no_fail_depth: 2 mm}", "no_fail_depth: 2 mm, calibration: bulk}")),
+            kPath + ":19: material.damage.calibration: unknown calibration 'bulk' (expected lattice, continuum or "
+                    "dissipation)");
+  const auto e = error_of(kExample, {"effects=[micropolar,viscoplasticity]", vp,
+                                     "material.viscoplasticity.cone_match=triaxial"});
+  EXPECT_NE(e.find(": material.viscoplasticity.cone_match: unknown match 'triaxial' (expected triaxial-compression "
+                   "or plane-strain)"),
+            std::string::npos) << e;
+}

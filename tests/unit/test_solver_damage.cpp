@@ -26,7 +26,7 @@ constexpr double kDx = 1e-3;
 Scene damage_scene(int dimension, double g_cr) {
   Scene s = testing::make_scene(dimension, true, kDx, dimension == 2 ? 3.05 : 2.05);
   s.effects.damage = true;
-  s.material.damage = DamageParameters{g_cr, 0.0, "lattice", std::nullopt};
+  s.material.damage = DamageParameters{g_cr, 0.0, DamageCalibration::lattice, std::nullopt};
   return s;
 }
 
