@@ -803,7 +803,8 @@ class SceneReader {
   void read_numerics(const YAML::Node& n) {
     if (!n.IsDefined() || n.IsNull()) return;
     const std::string p = "numerics";
-    check_keys(n, p, {"stabilization", "damping", "energy_check_tolerance"});
+    check_keys(n, p, {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step",
+                      "detach_energy_rise", "overload_factor", "damaged_frequency_ratio"});
     auto& num = scene_.numerics;
     num.stabilization = quantity_or(n, p, "stabilization", dim::none, num.stabilization);
     if (num.stabilization < 0.0) fail(n["stabilization"], "numerics.stabilization", "must be >= 0 (0 disables the zero-energy-mode control)");
@@ -811,6 +812,21 @@ class SceneReader {
     if (num.damping < 0.0) fail(n["damping"], "numerics.damping", "must be >= 0");
     num.energy_check_tolerance = quantity_or(n, p, "energy_check_tolerance", dim::none, num.energy_check_tolerance);
     positive(n["energy_check_tolerance"], "numerics.energy_check_tolerance", num.energy_check_tolerance);
+    if (n["energy_check_start_step"].IsDefined()) {
+      num.energy_check_start_step = integer(n["energy_check_start_step"], "numerics.energy_check_start_step");
+      if (num.energy_check_start_step < 0) fail(n["energy_check_start_step"], "numerics.energy_check_start_step", "must be >= 0");
+    }
+    num.detach_energy_rise = quantity_or(n, p, "detach_energy_rise", dim::none, num.detach_energy_rise);
+    if (num.detach_energy_rise < 0.0) {
+      fail(n["detach_energy_rise"], "numerics.detach_energy_rise", format_number(num.detach_energy_rise) + " must be >= 0 (a share of the stored energy)");
+    }
+    num.overload_factor = quantity_or(n, p, "overload_factor", dim::none, num.overload_factor);
+    positive(n["overload_factor"], "numerics.overload_factor", num.overload_factor, "must be > 0 (a multiple of the breaking energy)");
+    num.damaged_frequency_ratio = quantity_or(n, p, "damaged_frequency_ratio", dim::none, num.damaged_frequency_ratio);
+    if (!(num.damaged_frequency_ratio >= 1.0)) {
+      fail(n["damaged_frequency_ratio"], "numerics.damaged_frequency_ratio",
+           format_number(num.damaged_frequency_ratio) + " must be >= 1 (omega_max^2 is at least the largest point block)");
+    }
   }
 };
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <optional>
@@ -174,6 +175,13 @@ struct Numerics {
   double stabilization = 0.1;      // G_s
   double damping = 0.0;            // mass-proportional damping coefficient [1/s] (quasi-static runs)
   double energy_check_tolerance = 0.05;  // relative unexplained energy growth that stops a run
+  std::int64_t energy_check_start_step = 50;  // the energy check skips the steps before this one
+  // Damage thresholds (solver/bond_breakage.cpp and solver/point_stability.hpp say why these values):
+  double detach_energy_rise = 0.5;       // a point whose stored energy rises by more than this share
+                                         // when it loses bonds is detached
+  double overload_factor = 1.5;          // above this multiple of its family's breaking energy, any
+                                         // rise detaches the point
+  double damaged_frequency_ratio = 3.5;  // allowed omega_max^2 / largest point block of a damaged lattice
 };
 
 struct Scene {

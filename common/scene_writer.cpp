@@ -192,6 +192,10 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
   out << YAML::Key << "stabilization" << YAML::Value << Num{scene.numerics.stabilization};
   out << YAML::Key << "damping" << YAML::Value << Num{scene.numerics.damping};
   out << YAML::Key << "energy_check_tolerance" << YAML::Value << Num{scene.numerics.energy_check_tolerance};
+  out << YAML::Key << "energy_check_start_step" << YAML::Value << scene.numerics.energy_check_start_step;
+  out << YAML::Key << "detach_energy_rise" << YAML::Value << Num{scene.numerics.detach_energy_rise};
+  out << YAML::Key << "overload_factor" << YAML::Value << Num{scene.numerics.overload_factor};
+  out << YAML::Key << "damaged_frequency_ratio" << YAML::Value << Num{scene.numerics.damaged_frequency_ratio};
   out << YAML::EndMap;
 
   out << YAML::Key << "derived" << YAML::Value << YAML::BeginMap;

@@ -211,7 +211,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
 
   // Points to detach, found after the shape tensors of the changed points are recomputed:
   //  - a singular shape tensor (SPEC section 2);
-  //  - a stored energy more than kEnergyRiseToDetach above the one before the point lost its
+  //  - a stored energy more than numerics.detach_energy_rise (default 0.5) above the one before the point lost its
   //    bonds: breaking bonds takes energy out, but a point left with a lopsided family
   //    renormalizes its shape tensor and can read a larger strain from the bonds it kept, which
   //    puts energy into the model (measured before this rule: up to 1.9 x the work on high-rate
@@ -221,7 +221,7 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
   //    clean crack turns into an avalanche of detachments across the strip (measured), with 50 %
   //    the strip is as without the rule while the fragments put 1e-6 of the work into the model;
   //  - any rise of the stored energy of an overloaded point, one that stored more than
-  //    kOverloadedBreakingEnergyMultiple times its family's breaking energy before the loss (the
+  //    numerics.overload_factor (default 1.5) times its family's breaking energy before the loss (the
   //    energy it takes to break all its bonds at w_cr, family_breaking_energy). The margin above
   //    is relative, so a point can ratchet up by just under 50 % at every loss: in the 3-D impact
   //    the points crushed at the striker's edges (next to its no-fail zone, bonds into it kept)
@@ -262,8 +262,8 @@ BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const Cosser
       const double before = w.energy_before[static_cast<std::size_t>(w.affected_index[i])];
       const double after = kernel.point_energy(p, f, c, i).total();
       if (!(after > before)) continue;
-      const bool overloaded = before > kOverloadedBreakingEnergyMultiple * family_breaking_energy(p, f, c, i);
-      if (overloaded || after > (1.0 + kEnergyRiseToDetach) * before) {
+      const bool overloaded = before > c.overload_factor * family_breaking_energy(p, f, c, i);
+      if (overloaded || after > (1.0 + c.detach_energy_rise) * before) {
         detach_point(p, i);
         detach.push_back(i);
         ++u.energy_detached;

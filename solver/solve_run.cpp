@@ -525,8 +525,8 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
   Schedule rows(scene.output.load_interval, dt, true);
   Schedule snapshots(scene.output.interval, dt, false);
   Schedule checkpoints(scene.output.checkpoint_interval, dt, false);
-  constexpr std::int64_t kGuardStartStep = 50;
-  EnergyGuard guard(scene.numerics.energy_check_tolerance, kGuardStartStep);
+  const std::int64_t guard_start_step = scene.numerics.energy_check_start_step;
+  EnergyGuard guard(scene.numerics.energy_check_tolerance, guard_start_step);
   // The energy check stops growth; energy that disappears without a dissipation that accounts for
   // it is not an instability but a wrong answer all the same: reported at the end.
   double worst_balance = 0.0;
@@ -616,7 +616,7 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
     if (row) {
       record_rows();
       if (const auto reason = guard.check(s, dynamics.energy(), dynamics.initial_total_energy())) fail(*reason);
-      if (s >= kGuardStartStep && std::abs(dynamics.balance_error()) > std::abs(worst_balance))
+      if (s >= guard_start_step && std::abs(dynamics.balance_error()) > std::abs(worst_balance))
         worst_balance = dynamics.balance_error();
     }
     if (snap) snapshot();

@@ -268,3 +268,38 @@ TEST(Scene, NamedChoicesAreReadAsEnumsAndWrittenBackByName) {
                    "or plane-strain)"),
             std::string::npos) << e;
 }
+
+// The thresholds of numerics: today's values by default, written to the resolved scene, read back,
+// and a bad value names its key.
+TEST(Scene, NumericsThresholdsDefaultEchoAndValidate) {
+  const Scene s = parse_scene(kExample, kPath);
+  EXPECT_EQ(s.numerics.energy_check_start_step, 50);
+  EXPECT_EQ(s.numerics.detach_energy_rise, 0.5);
+  EXPECT_EQ(s.numerics.overload_factor, 1.5);
+  EXPECT_EQ(s.numerics.damaged_frequency_ratio, 3.5);
+  const std::string yaml = resolved_scene_yaml(s);
+  for (const char* line : {"energy_check_start_step: 50", "detach_energy_rise: 0.5", "overload_factor: 1.5",
+                           "damaged_frequency_ratio: 3.5"}) {
+    EXPECT_NE(yaml.find(line), std::string::npos) << line << "\n" << yaml;
+  }
+  const Scene t = parse_scene(kExample, kPath,
+                              {"numerics.energy_check_start_step=200", "numerics.detach_energy_rise=0.25",
+                               "numerics.overload_factor=3", "numerics.damaged_frequency_ratio=2"});
+  const Scene back = parse_scene(resolved_scene_yaml(t), kPath);
+  EXPECT_EQ(back.numerics.energy_check_start_step, 200);
+  EXPECT_EQ(back.numerics.detach_energy_rise, 0.25);
+  EXPECT_EQ(back.numerics.overload_factor, 3.0);
+  EXPECT_EQ(back.numerics.damaged_frequency_ratio, 2.0);
+  const std::pair<const char*, const char*> bad[] = {
+      {"numerics.energy_check_start_step=-1", "numerics.energy_check_start_step: must be >= 0"},
+      {"numerics.energy_check_start_step=2.5", "numerics.energy_check_start_step: \"2.5\" is not an integer"},
+      {"numerics.detach_energy_rise=-0.1", "numerics.detach_energy_rise: -0.10000000000000001 must be >= 0"},
+      {"numerics.detach_energy_rise=inf", "numerics.detach_energy_rise: \"inf\" is not a finite number"},
+      {"numerics.overload_factor=0", "numerics.overload_factor: 0 must be > 0"},
+      {"numerics.damaged_frequency_ratio=0.5", "numerics.damaged_frequency_ratio: 0.5 must be >= 1"},
+      {"numerics.damaged_frequency_ratio=1 mm", "numerics.damaged_frequency_ratio: \"1 mm\" is a length"}};
+  for (const auto& [set, expected] : bad) {
+    const auto e = error_of(kExample, {set});
+    EXPECT_NE(e.find(expected), std::string::npos) << set << ": " << e;
+  }
+}
