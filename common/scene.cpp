@@ -11,8 +11,10 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "common/scene_keys.hpp"
 #include "common/units.hpp"
 
 namespace mppm {
@@ -30,6 +32,51 @@ const std::vector<std::pair<std::string, std::string>> kOutputFields{
     {"damage", "damage"},      {"plastic_strain", "viscoplasticity"},
     {"plastic_shear_strain", "viscoplasticity"}, {"equivalent_plastic_strain", "viscoplasticity"},
     {"detached", ""}};
+
+// The keys each block of a scene accepts, by the path of the block ("" = top level, "[]" = every
+// entry of a list). check_keys reads them from here, so this is the one list of valid keys;
+// scene_key_paths() exports it (docs/scene.md documents every one).
+const std::vector<std::string> kSelectorKeys{"boundary", "entities", "box"};
+const std::vector<std::string> kRegionKeys{"box"};
+const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
+    {"", {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects", "gravity",
+          "boundary_conditions", "time", "output", "numerics", "derived", "mppm_version"}},
+    {"geometry", {"file", "unit", "spacing", "horizon_factor", "precracks"}},
+    {"geometry.precracks[]", kSelectorKeys},
+    {"material", {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli", "length_scale",
+                  "damage", "viscoplasticity"}},
+    {"material.damage", {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"}},
+    {"material.damage.region", kRegionKeys},
+    {"material.viscoplasticity", {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
+                                  "residual_cohesion", "cone_match", "region"}},
+    {"material.viscoplasticity.region", kRegionKeys},
+    {"boundary_conditions[]", {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation",
+                               "rotation_rate", "rotation_history", "depth"}},
+    {"time", {"end", "step", "safety"}},
+    {"output", {"interval", "load_interval", "fields", "checkpoint_interval"}},
+    {"numerics", {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step",
+                  "detach_energy_rise", "overload_factor", "damaged_frequency_ratio"}},
+};
+
+// "boundary_conditions[2]" -> "boundary_conditions[]"
+std::string block_pattern(const std::string& path) {
+  std::string out;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    out += path[k];
+    if (path[k] == '[') {
+      while (k + 1 < path.size() && path[k + 1] != ']') ++k;
+    }
+  }
+  return out;
+}
+
+const std::vector<std::string>& keys_of_block(const std::string& path) {
+  const auto pattern = block_pattern(path);
+  for (const auto& [block, keys] : kBlockKeys) {
+    if (block == pattern) return keys;
+  }
+  throw std::logic_error("scene reader: no key table for the block '" + pattern + "'");
+}
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
@@ -101,9 +148,7 @@ class SceneReader {
     for (const auto& o : overrides) apply_override(root, o);
 
     scene_.path = file_;
-    check_keys(root, "", {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects",
-                          "gravity", "boundary_conditions", "time", "output", "numerics", "derived",
-                          "mppm_version"});
+    check_keys(root, "");
     read_header(root);
     read_effects(root);
     read_geometry(require(root, "", "geometry"));
@@ -217,7 +262,9 @@ class SceneReader {
   }
 
   // ---------------------------------------------------------------- typed accessors
-  void check_keys(const YAML::Node& map, const std::string& path, const std::vector<std::string>& allowed) {
+  // Refuses a key that the block at `path` does not accept (kBlockKeys).
+  void check_keys(const YAML::Node& map, const std::string& path) {
+    const std::vector<std::string>& allowed = keys_of_block(path);
     if (!map.IsMap()) fail(map, path, "expected a map of keys (" + join(allowed) + ")");
     for (const auto& kv : map) {
       // A list or map used as a key ("[a]: 1") has no string value: as<std::string>() would throw.
@@ -339,7 +386,7 @@ class SceneReader {
       return s;
     }
     if (!node.IsMap()) fail(node, path, "expected a physical group name, {entities: [...]} or {box: [[x0,y0,z0],[x1,y1,z1]]}");
-    check_keys(node, path, {"boundary", "entities", "box"});
+    check_keys(node, path);
     read_selector_keys(node, path, s);
     return s;
   }
@@ -391,7 +438,7 @@ class SceneReader {
 
   void read_geometry(const YAML::Node& g) {
     const std::string p = "geometry";
-    check_keys(g, p, {"file", "unit", "spacing", "horizon_factor", "precracks"});
+    check_keys(g, p);
     const auto file = scalar(require(g, p, "file", "path of a .geo .msh .step .stp .brep or .stl file"), "geometry.file", "a file path");
     fs::path fp(file);
     if (fp.is_relative()) fp = fs::path(dir_) / fp;
@@ -426,8 +473,7 @@ class SceneReader {
 
   void read_material(const YAML::Node& m) {
     const std::string p = "material";
-    check_keys(m, p, {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli",
-                      "length_scale", "damage", "viscoplasticity"});
+    check_keys(m, p);
     auto& mat = scene_.material;
     if (m["model"].IsDefined()) {
       mat.model = scalar(m["model"], "material.model", "a material model name");
@@ -495,7 +541,7 @@ class SceneReader {
       return;
     }
     if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
-    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"});
+    check_keys(node, p);
     DamageParameters dp;
     dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"), p + ".critical_energy_release_rate", dim::energy_per_area);
     positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate", dp.critical_energy_release_rate);
@@ -512,7 +558,7 @@ class SceneReader {
   // and its boundaries, not volume groups, so a box is what can select points).
   Selector read_region(const YAML::Node& node, const std::string& path) {
     if (!node.IsMap()) fail(node, path, "expected {box: [[x0, y0(, z0)], [x1, y1(, z1)]]}");
-    check_keys(node, path, {"box"});
+    check_keys(node, path);
     if (!node["box"].IsDefined()) fail(node, path, "missing: box (expected {box: [[x0, y0(, z0)], [x1, y1(, z1)]]})");
     Selector s;
     read_selector_keys(node, path, s);
@@ -529,8 +575,7 @@ class SceneReader {
     if (!node.IsDefined() || node.IsNull()) {
       fail(m, p, "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, viscosity}");
     }
-    check_keys(node, p, {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
-                         "residual_cohesion", "cone_match", "region"});
+    check_keys(node, p);
     ViscoplasticParameters vp;
     if (node["model"].IsDefined()) vp.model = scalar(node["model"], p + ".model", "a model name");
     vp.friction_angle = quantity(require(node, p, "friction_angle", "e.g. 35 deg"), p + ".friction_angle", dim::angle);
@@ -713,8 +758,7 @@ class SceneReader {
     for (std::size_t k = 0; k < list.size(); ++k) {
       const auto p = "boundary_conditions[" + std::to_string(k) + "]";
       const YAML::Node node = list[k];
-      check_keys(node, p, {"name", "boundary", "entities", "box", "type", "value", "ramp", "history",
-                           "rotation", "rotation_rate", "rotation_history", "depth"});
+      check_keys(node, p);
       BoundaryCondition bc;
       bc.line = node.Mark().line + 1;
       read_selector_keys(node, p, bc.selector);
@@ -745,7 +789,7 @@ class SceneReader {
 
   void read_time(const YAML::Node& t) {
     const std::string p = "time";
-    check_keys(t, p, {"end", "step", "safety"});
+    check_keys(t, p);
     scene_.time.end = quantity(require(t, p, "end", "end time, e.g. 60 us"), "time.end", dim::time);
     positive(t["end"], "time.end", scene_.time.end);
     const YAML::Node step = t["step"];
@@ -769,7 +813,7 @@ class SceneReader {
     if (scene_.effects.viscoplasticity) out.fields.push_back("plastic_shear_strain");
     if (!o.IsDefined() || o.IsNull()) return;
     const std::string p = "output";
-    check_keys(o, p, {"interval", "load_interval", "fields", "checkpoint_interval"});
+    check_keys(o, p);
     out.interval = quantity_or(o, p, "interval", dim::time, out.interval);
     out.load_interval = quantity_or(o, p, "load_interval", dim::time, 0.0);
     out.checkpoint_interval = quantity_or(o, p, "checkpoint_interval", dim::time, 0.0);
@@ -803,8 +847,7 @@ class SceneReader {
   void read_numerics(const YAML::Node& n) {
     if (!n.IsDefined() || n.IsNull()) return;
     const std::string p = "numerics";
-    check_keys(n, p, {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step",
-                      "detach_energy_rise", "overload_factor", "damaged_frequency_ratio"});
+    check_keys(n, p);
     auto& num = scene_.numerics;
     num.stabilization = quantity_or(n, p, "stabilization", dim::none, num.stabilization);
     if (num.stabilization < 0.0) fail(n["stabilization"], "numerics.stabilization", "must be >= 0 (0 disables the zero-energy-mode control)");
@@ -831,6 +874,14 @@ class SceneReader {
 };
 
 }  // namespace
+
+std::vector<std::string> scene_key_paths() {
+  std::vector<std::string> paths;
+  for (const auto& [block, keys] : kBlockKeys) {
+    for (const auto& key : keys) paths.push_back(block.empty() ? key : block + "." + key);
+  }
+  return paths;
+}
 
 std::vector<std::string> EffectSet::names() const {
   std::vector<std::string> out;
