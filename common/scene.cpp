@@ -516,12 +516,15 @@ class SceneReader {
       mat.length_scale = quantity(require(m, p, "length_scale", "micro-polar length l (mean grain size), e.g. 2 mm"), "material.length_scale", dim::length);
       positive(m["length_scale"], "material.length_scale", mat.length_scale);
     } else {
-      std::vector<std::string> ignored;
+      std::vector<std::string> ignored;  // full paths; the first one's key locates the warning
+      std::string first_key;
       for (const auto& k : polar_keys) {
-        if (m[k].IsDefined()) ignored.push_back("material." + k);
+        if (!m[k].IsDefined()) continue;
+        if (first_key.empty()) first_key = k;
+        ignored.push_back(child_path(p, k));
       }
       if (!ignored.empty()) {
-        scene_.warnings.push_back(location(m[ignored.front().substr(9)], ignored.front()) + ": " + join(ignored) +
+        scene_.warnings.push_back(location(m[first_key], ignored.front()) + ": " + join(ignored) +
                                   ": ignored because the effect 'micropolar' is not listed in effects");
       }
     }
@@ -533,13 +536,17 @@ class SceneReader {
     scene_.warnings.push_back(location(node, path) + ": " + path + ": ignored because the effect '" + effect + "' is not listed in effects");
   }
 
+  // The parameter block of an effect is read only when the effect is on; given while it is off,
+  // it is ignored with a warning.
+  bool effect_block_wanted(const YAML::Node& node, const std::string& path, bool effect_on, const std::string& effect) {
+    if (!effect_on && node.IsDefined()) warn_effect_off(node, path, effect);
+    return effect_on;
+  }
+
   void read_damage(const YAML::Node& m) {
     const YAML::Node node = m["damage"];
     const std::string p = "material.damage";
-    if (!scene_.effects.damage) {
-      if (node.IsDefined()) warn_effect_off(node, p, "damage");
-      return;
-    }
+    if (!effect_block_wanted(node, p, scene_.effects.damage, "damage")) return;
     if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
     check_keys(node, p);
     DamageParameters dp;
@@ -568,10 +575,7 @@ class SceneReader {
   void read_viscoplasticity(const YAML::Node& m) {
     const YAML::Node node = m["viscoplasticity"];
     const std::string p = "material.viscoplasticity";
-    if (!scene_.effects.viscoplasticity) {
-      if (node.IsDefined()) warn_effect_off(node, p, "viscoplasticity");
-      return;
-    }
+    if (!effect_block_wanted(node, p, scene_.effects.viscoplasticity, "viscoplasticity")) return;
     if (!node.IsDefined() || node.IsNull()) {
       fail(m, p, "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, viscosity}");
     }
@@ -616,36 +620,34 @@ class SceneReader {
     scene_.gravity = {g[0], g[1], d == 3 ? g[2] : 0.0};
   }
 
-  // Reads `value`, `ramp`, `history` of one boundary condition into a History.
+  // The unit of a condition's value.
+  static Dimension value_unit(BoundaryType type) {
+    return type == BoundaryType::velocity ? dim::velocity : type == BoundaryType::displacement ? dim::length : dim::pressure;
+  }
+  // The unit of a micro-rotation condition: a rate on a velocity layer, an angle on a displacement one.
+  static Dimension rotation_unit(BoundaryType type) {
+    return type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
+  }
+  std::size_t rotation_components() const { return scene_.dimension == 2 ? 1 : 3; }
+
+  // A component written `free` (or left empty) is not prescribed: kinematic conditions only.
+  bool is_free_component(const YAML::Node& comp, const std::string& path, const BoundaryCondition& bc) {
+    const bool free = comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free");
+    if (free && !is_kinematic(bc.type)) fail(comp, path, "only velocity and displacement components can be free");
+    return free;
+  }
+
+  // Reads `value`, `ramp`, `history` of one boundary condition into a History, then its rotation.
   void read_boundary_value(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
-    const int d = scene_.dimension;
-    const bool is_pressure = bc.type == BoundaryType::pressure;
-    const std::size_t n = is_pressure ? 1 : static_cast<std::size_t>(d);
-    const Dimension unit = bc.type == BoundaryType::velocity ? dim::velocity
-                           : bc.type == BoundaryType::displacement ? dim::length
-                                                                   : dim::pressure;
+    const std::size_t n = bc.type == BoundaryType::pressure ? 1 : static_cast<std::size_t>(scene_.dimension);
+    const Dimension unit = value_unit(bc.type);
     std::vector<double> value(n, 0.0);
     bc.constrained.assign(n, true);
     const YAML::Node v = node["value"];
     const YAML::Node ramp = node["ramp"];
     const YAML::Node history = node["history"];
     if (v.IsDefined()) {
-      if (is_pressure) {
-        value[0] = quantity(v, p + ".value", unit);
-      } else {
-        if (!v.IsSequence() || v.size() != n) fail(v, p + ".value", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
-        for (std::size_t c = 0; c < n; ++c) {
-          const auto cp = p + ".value[" + std::to_string(c) + "]";
-          const YAML::Node comp = v[c];
-          if (comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free")) {
-            if (!is_kinematic(bc.type)) fail(comp, cp, "only velocity and displacement components can be free");
-            bc.constrained[c] = false;
-            note_line(comp, cp);
-          } else {
-            value[c] = quantity(comp, cp, unit);
-          }
-        }
-      }
+      value = read_value_components(v, p + ".value", bc, unit);
     } else if (!history.IsDefined()) {
       fail(node, p + ".value", "missing: give value (with an optional ramp) or history");
     }
@@ -656,40 +658,73 @@ class SceneReader {
       bc.value.times = {0.0, t0};
       bc.value.values = {std::vector<double>(n, 0.0), value};
     } else if (history.IsDefined()) {
-      if (!history.IsSequence() || history.size() == 0) fail(history, p + ".history", "expected a list of rows [t, v]");
-      // With `value`, rows are [t, factor]; without, rows are [t, v] (scalar) or [t, [v...]].
-      for (std::size_t r = 0; r < history.size(); ++r) {
-        const auto rp = p + ".history[" + std::to_string(r) + "]";
-        const YAML::Node row = history[r];
-        if (!row.IsSequence() || row.size() != 2) fail(row, rp, v.IsDefined() ? "expected [t, factor]" : "expected [t, value]");
-        const double t = quantity(row[0], rp + "[0]", dim::time);
-        if (!bc.value.times.empty() && t < bc.value.times.back()) fail(row, rp, "times must not decrease");
-        std::vector<double> rowv(n);
-        if (v.IsDefined()) {
-          const double factor = quantity(row[1], rp + "[1]", dim::none);
-          for (std::size_t c = 0; c < n; ++c) rowv[c] = factor * value[c];
-        } else if (n == 1 && row[1].IsScalar()) {
-          rowv[0] = quantity(row[1], rp + "[1]", unit);
-        } else {
-          const YAML::Node vals = row[1];
-          if (!vals.IsSequence() || vals.size() != n) fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
-          for (std::size_t c = 0; c < n; ++c) {
-            const YAML::Node comp = vals[c];
-            const bool free = comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free");
-            if (free && !is_kinematic(bc.type)) fail(comp, rp, "only velocity and displacement components can be free");
-            if (r > 0 && free == bc.constrained[c]) fail(comp, rp, "a component is free in some rows and prescribed in others");
-            bc.constrained[c] = !free;
-            rowv[c] = free ? 0.0 : quantity(comp, rp + "[1][" + std::to_string(c) + "]", unit);
-          }
-        }
-        bc.value.times.push_back(t);
-        bc.value.values.push_back(rowv);
-      }
+      read_value_history(history, p + ".history", v.IsDefined(), value, bc, unit);
     } else {
       bc.value.times = {0.0};
       bc.value.values = {value};
     }
-    // Rotation on a kinematic layer follows the same time profile as the value.
+    read_boundary_rotation(node, p, bc);
+  }
+
+  // `value`: one pressure, or one entry per component (kinematic components may be free).
+  std::vector<double> read_value_components(const YAML::Node& v, const std::string& path, BoundaryCondition& bc,
+                                            const Dimension& unit) {
+    const std::size_t n = bc.constrained.size();
+    std::vector<double> value(n, 0.0);
+    if (bc.type == BoundaryType::pressure) {
+      value[0] = quantity(v, path, unit);
+      return value;
+    }
+    if (!v.IsSequence() || v.size() != n) fail(v, path, "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+    for (std::size_t c = 0; c < n; ++c) {
+      const auto cp = path + "[" + std::to_string(c) + "]";
+      const YAML::Node comp = v[c];
+      if (is_free_component(comp, cp, bc)) {
+        bc.constrained[c] = false;
+        note_line(comp, cp);
+      } else {
+        value[c] = quantity(comp, cp, unit);
+      }
+    }
+    return value;
+  }
+
+  // `history`: with a `value` (scaled), rows are [t, factor]; without, [t, v] (scalar) or [t, [v...]].
+  void read_value_history(const YAML::Node& history, const std::string& path, bool scaled,
+                          const std::vector<double>& value, BoundaryCondition& bc, const Dimension& unit) {
+    const std::size_t n = value.size();
+    if (!history.IsSequence() || history.size() == 0) fail(history, path, "expected a list of rows [t, v]");
+    for (std::size_t r = 0; r < history.size(); ++r) {
+      const auto rp = path + "[" + std::to_string(r) + "]";
+      const YAML::Node row = history[r];
+      if (!row.IsSequence() || row.size() != 2) fail(row, rp, scaled ? "expected [t, factor]" : "expected [t, value]");
+      const double t = quantity(row[0], rp + "[0]", dim::time);
+      if (!bc.value.times.empty() && t < bc.value.times.back()) fail(row, rp, "times must not decrease");
+      std::vector<double> rowv(n);
+      if (scaled) {
+        const double factor = quantity(row[1], rp + "[1]", dim::none);
+        for (std::size_t c = 0; c < n; ++c) rowv[c] = factor * value[c];
+      } else if (n == 1 && row[1].IsScalar()) {
+        rowv[0] = quantity(row[1], rp + "[1]", unit);
+      } else {
+        const YAML::Node vals = row[1];
+        if (!vals.IsSequence() || vals.size() != n) fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+        for (std::size_t c = 0; c < n; ++c) {
+          const YAML::Node comp = vals[c];
+          const bool free = is_free_component(comp, rp, bc);
+          if (r > 0 && free == bc.constrained[c]) fail(comp, rp, "a component is free in some rows and prescribed in others");
+          bc.constrained[c] = !free;
+          rowv[c] = free ? 0.0 : quantity(comp, rp + "[1][" + std::to_string(c) + "]", unit);
+        }
+      }
+      bc.value.times.push_back(t);
+      bc.value.values.push_back(rowv);
+    }
+  }
+
+  // Rotation on a kinematic layer: a full `rotation_history`, or `rotation` / `rotation_rate`
+  // following the same time profile as the value.
+  void read_boundary_rotation(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
     const char* rotation_key = bc.type == BoundaryType::velocity ? "rotation_rate" : "rotation";
     const char* other_key = bc.type == BoundaryType::velocity ? "rotation" : "rotation_rate";
     if (node[other_key].IsDefined()) {
@@ -698,56 +733,66 @@ class SceneReader {
     const YAML::Node rot = node[rotation_key];
     const YAML::Node rot_history = node["rotation_history"];
     if (rot_history.IsDefined()) {
-      // Full rotation history [[t, r], ...] (written by the resolved-scene writer).
       const auto rp = p + ".rotation_history";
       if (rot.IsDefined()) fail(rot_history, rp, std::string("give either ") + rotation_key + " or rotation_history");
       if (!is_kinematic(bc.type)) fail(rot_history, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
-      if (!rot_history.IsSequence() || rot_history.size() == 0) fail(rot_history, rp, "expected a list of rows [t, rotation]");
-      const Dimension rd = bc.type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
-      const std::size_t nr = d == 2 ? 1 : 3;
-      History h;
-      for (std::size_t r = 0; r < rot_history.size(); ++r) {
-        const auto rowp = rp + "[" + std::to_string(r) + "]";
-        const YAML::Node row = rot_history[r];
-        if (!row.IsSequence() || row.size() != 2) fail(row, rowp, "expected [t, rotation]");
-        const double t = quantity(row[0], rowp + "[0]", dim::time);
-        if (!h.times.empty() && t < h.times.back()) fail(row, rowp, "times must not decrease");
-        h.times.push_back(t);
-        if (nr == 1 && row[1].IsScalar()) h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
-        else h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
-      }
+      const History h = read_rotation_history(rot_history, rp, bc);
       if (scene_.effects.micropolar) bc.rotation = h;
       else warn_effect_off(rot_history, rp, "micropolar");
       return;
     }
-    if (rot.IsDefined()) {
-      const auto rp = p + "." + rotation_key;
-      if (!is_kinematic(bc.type)) fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
-      if (!scene_.effects.micropolar) {
-        warn_effect_off(rot, rp, "micropolar");
-        return;
-      }
-      const Dimension rd = bc.type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
-      const std::size_t nr = d == 2 ? 1 : 3;
-      std::vector<double> r(nr);
-      if (nr == 1 && rot.IsScalar()) r[0] = quantity(rot, rp, rd);
-      else r = quantity_list(rot, rp, rd, nr);
-      History h;
-      if (ramp.IsDefined() || (history.IsDefined() && v.IsDefined())) {
-        h.times = bc.value.times;
-        for (std::size_t row = 0; row < h.times.size(); ++row) {
-          // factor of this row relative to the value (ramp: 0 then 1).
-          double factor = ramp.IsDefined() ? (row == 0 ? 0.0 : 1.0) : quantity(history[row][1], p, dim::none);
-          std::vector<double> rv(nr);
-          for (std::size_t c = 0; c < nr; ++c) rv[c] = factor * r[c];
-          h.values.push_back(rv);
-        }
-      } else {
-        h.times = {0.0};
-        h.values = {r};
-      }
-      bc.rotation = h;
+    if (rot.IsDefined()) read_rotation_value(node, rot, p, p + "." + rotation_key, bc);
+  }
+
+  // Full rotation history [[t, r], ...] (written by the resolved-scene writer).
+  History read_rotation_history(const YAML::Node& rot_history, const std::string& rp, const BoundaryCondition& bc) {
+    if (!rot_history.IsSequence() || rot_history.size() == 0) fail(rot_history, rp, "expected a list of rows [t, rotation]");
+    const Dimension rd = rotation_unit(bc.type);
+    const std::size_t nr = rotation_components();
+    History h;
+    for (std::size_t r = 0; r < rot_history.size(); ++r) {
+      const auto rowp = rp + "[" + std::to_string(r) + "]";
+      const YAML::Node row = rot_history[r];
+      if (!row.IsSequence() || row.size() != 2) fail(row, rowp, "expected [t, rotation]");
+      const double t = quantity(row[0], rowp + "[0]", dim::time);
+      if (!h.times.empty() && t < h.times.back()) fail(row, rowp, "times must not decrease");
+      h.times.push_back(t);
+      if (nr == 1 && row[1].IsScalar()) h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
+      else h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
     }
+    return h;
+  }
+
+  // `rotation` / `rotation_rate`: one value, scaled by the rows of the value's ramp or history.
+  void read_rotation_value(const YAML::Node& node, const YAML::Node& rot, const std::string& p, const std::string& rp,
+                           BoundaryCondition& bc) {
+    if (!is_kinematic(bc.type)) fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
+    if (!scene_.effects.micropolar) {
+      warn_effect_off(rot, rp, "micropolar");
+      return;
+    }
+    const Dimension rd = rotation_unit(bc.type);
+    const std::size_t nr = rotation_components();
+    std::vector<double> r(nr);
+    if (nr == 1 && rot.IsScalar()) r[0] = quantity(rot, rp, rd);
+    else r = quantity_list(rot, rp, rd, nr);
+    const YAML::Node ramp = node["ramp"];
+    const YAML::Node history = node["history"];
+    History h;
+    if (ramp.IsDefined() || (history.IsDefined() && node["value"].IsDefined())) {
+      h.times = bc.value.times;
+      for (std::size_t row = 0; row < h.times.size(); ++row) {
+        // factor of this row relative to the value (ramp: 0 then 1).
+        double factor = ramp.IsDefined() ? (row == 0 ? 0.0 : 1.0) : quantity(history[row][1], p, dim::none);
+        std::vector<double> rv(nr);
+        for (std::size_t c = 0; c < nr; ++c) rv[c] = factor * r[c];
+        h.values.push_back(rv);
+      }
+    } else {
+      h.times = {0.0};
+      h.values = {r};
+    }
+    bc.rotation = h;
   }
 
   void read_boundary_conditions(const YAML::Node& root) {
