@@ -11,8 +11,10 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
+#include "common/scene_keys.hpp"
 #include "common/units.hpp"
 
 namespace mppm {
@@ -31,6 +33,51 @@ const std::vector<std::pair<std::string, std::string>> kOutputFields{
     {"plastic_shear_strain", "viscoplasticity"}, {"equivalent_plastic_strain", "viscoplasticity"},
     {"detached", ""}};
 
+// The keys each block of a scene accepts, by the path of the block ("" = top level, "[]" = every
+// entry of a list). check_keys reads them from here, so this is the one list of valid keys;
+// scene_key_paths() exports it (docs/scene.md documents every one).
+const std::vector<std::string> kSelectorKeys{"boundary", "entities", "box"};
+const std::vector<std::string> kRegionKeys{"box"};
+const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
+    {"", {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects", "gravity",
+          "boundary_conditions", "time", "output", "numerics", "derived", "mppm_version"}},
+    {"geometry", {"file", "unit", "spacing", "horizon_factor", "precracks"}},
+    {"geometry.precracks[]", kSelectorKeys},
+    {"material", {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli", "length_scale",
+                  "damage", "viscoplasticity"}},
+    {"material.damage", {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"}},
+    {"material.damage.region", kRegionKeys},
+    {"material.viscoplasticity", {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
+                                  "residual_cohesion", "cone_match", "region"}},
+    {"material.viscoplasticity.region", kRegionKeys},
+    {"boundary_conditions[]", {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation",
+                               "rotation_rate", "rotation_history", "depth"}},
+    {"time", {"end", "step", "safety"}},
+    {"output", {"interval", "load_interval", "fields", "checkpoint_interval"}},
+    {"numerics", {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step",
+                  "detach_energy_rise", "overload_factor", "damaged_frequency_ratio"}},
+};
+
+// "boundary_conditions[2]" -> "boundary_conditions[]"
+std::string block_pattern(const std::string& path) {
+  std::string out;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    out += path[k];
+    if (path[k] == '[') {
+      while (k + 1 < path.size() && path[k + 1] != ']') ++k;
+    }
+  }
+  return out;
+}
+
+const std::vector<std::string>& keys_of_block(const std::string& path) {
+  const auto pattern = block_pattern(path);
+  for (const auto& [block, keys] : kBlockKeys) {
+    if (block == pattern) return keys;
+  }
+  throw std::logic_error("scene reader: no key table for the block '" + pattern + "'");
+}
+
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
@@ -48,6 +95,19 @@ std::string join(const std::vector<std::string>& items, const std::string& sep =
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];
   return out;
+}
+
+// "a, b or c"
+std::string alternatives(const std::vector<std::string>& items) {
+  if (items.size() < 2) return join(items);
+  return join(std::vector<std::string>(items.begin(), items.end() - 1)) + " or " + items.back();
+}
+
+template <class E, std::size_t N>
+std::vector<std::string> enum_names(const std::array<EnumName<E>, N>& table) {
+  std::vector<std::string> names;
+  for (const auto& entry : table) names.push_back(entry.name);
+  return names;
 }
 
 // Nearest known name, if close enough to be a likely typo.
@@ -88,9 +148,7 @@ class SceneReader {
     for (const auto& o : overrides) apply_override(root, o);
 
     scene_.path = file_;
-    check_keys(root, "", {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects",
-                          "gravity", "boundary_conditions", "time", "output", "numerics", "derived",
-                          "mppm_version"});
+    check_keys(root, "");
     read_header(root);
     read_effects(root);
     read_geometry(require(root, "", "geometry"));
@@ -204,7 +262,9 @@ class SceneReader {
   }
 
   // ---------------------------------------------------------------- typed accessors
-  void check_keys(const YAML::Node& map, const std::string& path, const std::vector<std::string>& allowed) {
+  // Refuses a key that the block at `path` does not accept (kBlockKeys).
+  void check_keys(const YAML::Node& map, const std::string& path) {
+    const std::vector<std::string>& allowed = keys_of_block(path);
     if (!map.IsMap()) fail(map, path, "expected a map of keys (" + join(allowed) + ")");
     for (const auto& kv : map) {
       // A list or map used as a key ("[a]: 1") has no string value: as<std::string>() would throw.
@@ -261,6 +321,17 @@ class SceneReader {
   void positive(const YAML::Node& node, const std::string& path, double v, const std::string& what = "must be > 0") {
     if (!(v > 0.0)) fail(node, path, format_number(v) + " " + what);
   }
+  // A name of `table` (e.g. kConeMatchNames); any other is "unknown <what> 'x' (expected a, b or c)".
+  template <class E, std::size_t N>
+  E enum_value(const YAML::Node& node, const std::string& path, const std::array<EnumName<E>, N>& table,
+               const std::string& what) {
+    const auto expected = alternatives(enum_names(table));
+    const auto text = scalar(node, path, expected);
+    for (const auto& entry : table) {
+      if (text == entry.name) return entry.value;
+    }
+    fail(node, path, "unknown " + what + " '" + text + "' (expected " + expected + ")");
+  }
 
   // ---------------------------------------------------------------- sections
   void read_header(const YAML::Node& root) {
@@ -315,7 +386,7 @@ class SceneReader {
       return s;
     }
     if (!node.IsMap()) fail(node, path, "expected a physical group name, {entities: [...]} or {box: [[x0,y0,z0],[x1,y1,z1]]}");
-    check_keys(node, path, {"boundary", "entities", "box"});
+    check_keys(node, path);
     read_selector_keys(node, path, s);
     return s;
   }
@@ -367,7 +438,7 @@ class SceneReader {
 
   void read_geometry(const YAML::Node& g) {
     const std::string p = "geometry";
-    check_keys(g, p, {"file", "unit", "spacing", "horizon_factor", "precracks"});
+    check_keys(g, p);
     const auto file = scalar(require(g, p, "file", "path of a .geo .msh .step .stp .brep or .stl file"), "geometry.file", "a file path");
     fs::path fp(file);
     if (fp.is_relative()) fp = fs::path(dir_) / fp;
@@ -402,8 +473,7 @@ class SceneReader {
 
   void read_material(const YAML::Node& m) {
     const std::string p = "material";
-    check_keys(m, p, {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli",
-                      "length_scale", "damage", "viscoplasticity"});
+    check_keys(m, p);
     auto& mat = scene_.material;
     if (m["model"].IsDefined()) {
       mat.model = scalar(m["model"], "material.model", "a material model name");
@@ -446,12 +516,15 @@ class SceneReader {
       mat.length_scale = quantity(require(m, p, "length_scale", "micro-polar length l (mean grain size), e.g. 2 mm"), "material.length_scale", dim::length);
       positive(m["length_scale"], "material.length_scale", mat.length_scale);
     } else {
-      std::vector<std::string> ignored;
+      std::vector<std::string> ignored;  // full paths; the first one's key locates the warning
+      std::string first_key;
       for (const auto& k : polar_keys) {
-        if (m[k].IsDefined()) ignored.push_back("material." + k);
+        if (!m[k].IsDefined()) continue;
+        if (first_key.empty()) first_key = k;
+        ignored.push_back(child_path(p, k));
       }
       if (!ignored.empty()) {
-        scene_.warnings.push_back(location(m[ignored.front().substr(9)], ignored.front()) + ": " + join(ignored) +
+        scene_.warnings.push_back(location(m[first_key], ignored.front()) + ": " + join(ignored) +
                                   ": ignored because the effect 'micropolar' is not listed in effects");
       }
     }
@@ -463,25 +536,26 @@ class SceneReader {
     scene_.warnings.push_back(location(node, path) + ": " + path + ": ignored because the effect '" + effect + "' is not listed in effects");
   }
 
+  // The parameter block of an effect is read only when the effect is on; given while it is off,
+  // it is ignored with a warning.
+  bool effect_block_wanted(const YAML::Node& node, const std::string& path, bool effect_on, const std::string& effect) {
+    if (!effect_on && node.IsDefined()) warn_effect_off(node, path, effect);
+    return effect_on;
+  }
+
   void read_damage(const YAML::Node& m) {
     const YAML::Node node = m["damage"];
     const std::string p = "material.damage";
-    if (!scene_.effects.damage) {
-      if (node.IsDefined()) warn_effect_off(node, p, "damage");
-      return;
-    }
+    if (!effect_block_wanted(node, p, scene_.effects.damage, "damage")) return;
     if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
-    check_keys(node, p, {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"});
+    check_keys(node, p);
     DamageParameters dp;
     dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"), p + ".critical_energy_release_rate", dim::energy_per_area);
     positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate", dp.critical_energy_release_rate);
     dp.no_fail_depth = quantity_or(node, p, "no_fail_depth", dim::length, 0.0);
     if (dp.no_fail_depth < 0.0) fail(node["no_fail_depth"], p + ".no_fail_depth", "must be >= 0");
     if (node["calibration"].IsDefined()) {
-      dp.calibration = scalar(node["calibration"], p + ".calibration", "lattice, continuum or dissipation");
-      if (dp.calibration != "lattice" && dp.calibration != "continuum" && dp.calibration != "dissipation")
-        fail(node["calibration"], p + ".calibration",
-             "unknown calibration '" + dp.calibration + "' (expected lattice, continuum or dissipation)");
+      dp.calibration = enum_value(node["calibration"], p + ".calibration", kDamageCalibrationNames, "calibration");
     }
     if (node["region"].IsDefined()) dp.region = read_region(node["region"], p + ".region");
     scene_.material.damage = dp;
@@ -491,7 +565,7 @@ class SceneReader {
   // and its boundaries, not volume groups, so a box is what can select points).
   Selector read_region(const YAML::Node& node, const std::string& path) {
     if (!node.IsMap()) fail(node, path, "expected {box: [[x0, y0(, z0)], [x1, y1(, z1)]]}");
-    check_keys(node, path, {"box"});
+    check_keys(node, path);
     if (!node["box"].IsDefined()) fail(node, path, "missing: box (expected {box: [[x0, y0(, z0)], [x1, y1(, z1)]]})");
     Selector s;
     read_selector_keys(node, path, s);
@@ -501,15 +575,11 @@ class SceneReader {
   void read_viscoplasticity(const YAML::Node& m) {
     const YAML::Node node = m["viscoplasticity"];
     const std::string p = "material.viscoplasticity";
-    if (!scene_.effects.viscoplasticity) {
-      if (node.IsDefined()) warn_effect_off(node, p, "viscoplasticity");
-      return;
-    }
+    if (!effect_block_wanted(node, p, scene_.effects.viscoplasticity, "viscoplasticity")) return;
     if (!node.IsDefined() || node.IsNull()) {
       fail(m, p, "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, viscosity}");
     }
-    check_keys(node, p, {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
-                         "residual_cohesion", "cone_match", "region"});
+    check_keys(node, p);
     ViscoplasticParameters vp;
     if (node["model"].IsDefined()) vp.model = scalar(node["model"], p + ".model", "a model name");
     vp.friction_angle = quantity(require(node, p, "friction_angle", "e.g. 35 deg"), p + ".friction_angle", dim::angle);
@@ -531,10 +601,7 @@ class SceneReader {
       fail(node["residual_cohesion"], p + ".residual_cohesion", "must be in [0, cohesion]");
     }
     if (node["cone_match"].IsDefined()) {
-      vp.cone_match = scalar(node["cone_match"], p + ".cone_match", "triaxial-compression or plane-strain");
-      if (vp.cone_match != "triaxial-compression" && vp.cone_match != "plane-strain") {
-        fail(node["cone_match"], p + ".cone_match", "unknown match '" + vp.cone_match + "' (expected triaxial-compression or plane-strain)");
-      }
+      vp.cone_match = enum_value(node["cone_match"], p + ".cone_match", kConeMatchNames, "match");
     }
     if (node["region"].IsDefined()) vp.region = read_region(node["region"], p + ".region");
     scene_.material.viscoplasticity = vp;
@@ -553,36 +620,34 @@ class SceneReader {
     scene_.gravity = {g[0], g[1], d == 3 ? g[2] : 0.0};
   }
 
-  // Reads `value`, `ramp`, `history` of one boundary condition into a History.
+  // The unit of a condition's value.
+  static Dimension value_unit(BoundaryType type) {
+    return type == BoundaryType::velocity ? dim::velocity : type == BoundaryType::displacement ? dim::length : dim::pressure;
+  }
+  // The unit of a micro-rotation condition: a rate on a velocity layer, an angle on a displacement one.
+  static Dimension rotation_unit(BoundaryType type) {
+    return type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
+  }
+  std::size_t rotation_components() const { return scene_.dimension == 2 ? 1 : 3; }
+
+  // A component written `free` (or left empty) is not prescribed: kinematic conditions only.
+  bool is_free_component(const YAML::Node& comp, const std::string& path, const BoundaryCondition& bc) {
+    const bool free = comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free");
+    if (free && !is_kinematic(bc.type)) fail(comp, path, "only velocity and displacement components can be free");
+    return free;
+  }
+
+  // Reads `value`, `ramp`, `history` of one boundary condition into a History, then its rotation.
   void read_boundary_value(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
-    const int d = scene_.dimension;
-    const bool is_pressure = bc.type == BoundaryType::pressure;
-    const std::size_t n = is_pressure ? 1 : static_cast<std::size_t>(d);
-    const Dimension unit = bc.type == BoundaryType::velocity ? dim::velocity
-                           : bc.type == BoundaryType::displacement ? dim::length
-                                                                   : dim::pressure;
+    const std::size_t n = bc.type == BoundaryType::pressure ? 1 : static_cast<std::size_t>(scene_.dimension);
+    const Dimension unit = value_unit(bc.type);
     std::vector<double> value(n, 0.0);
     bc.constrained.assign(n, true);
     const YAML::Node v = node["value"];
     const YAML::Node ramp = node["ramp"];
     const YAML::Node history = node["history"];
     if (v.IsDefined()) {
-      if (is_pressure) {
-        value[0] = quantity(v, p + ".value", unit);
-      } else {
-        if (!v.IsSequence() || v.size() != n) fail(v, p + ".value", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
-        for (std::size_t c = 0; c < n; ++c) {
-          const auto cp = p + ".value[" + std::to_string(c) + "]";
-          const YAML::Node comp = v[c];
-          if (comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free")) {
-            if (!is_kinematic(bc.type)) fail(comp, cp, "only velocity and displacement components can be free");
-            bc.constrained[c] = false;
-            note_line(comp, cp);
-          } else {
-            value[c] = quantity(comp, cp, unit);
-          }
-        }
-      }
+      value = read_value_components(v, p + ".value", bc, unit);
     } else if (!history.IsDefined()) {
       fail(node, p + ".value", "missing: give value (with an optional ramp) or history");
     }
@@ -593,40 +658,73 @@ class SceneReader {
       bc.value.times = {0.0, t0};
       bc.value.values = {std::vector<double>(n, 0.0), value};
     } else if (history.IsDefined()) {
-      if (!history.IsSequence() || history.size() == 0) fail(history, p + ".history", "expected a list of rows [t, v]");
-      // With `value`, rows are [t, factor]; without, rows are [t, v] (scalar) or [t, [v...]].
-      for (std::size_t r = 0; r < history.size(); ++r) {
-        const auto rp = p + ".history[" + std::to_string(r) + "]";
-        const YAML::Node row = history[r];
-        if (!row.IsSequence() || row.size() != 2) fail(row, rp, v.IsDefined() ? "expected [t, factor]" : "expected [t, value]");
-        const double t = quantity(row[0], rp + "[0]", dim::time);
-        if (!bc.value.times.empty() && t < bc.value.times.back()) fail(row, rp, "times must not decrease");
-        std::vector<double> rowv(n);
-        if (v.IsDefined()) {
-          const double factor = quantity(row[1], rp + "[1]", dim::none);
-          for (std::size_t c = 0; c < n; ++c) rowv[c] = factor * value[c];
-        } else if (n == 1 && row[1].IsScalar()) {
-          rowv[0] = quantity(row[1], rp + "[1]", unit);
-        } else {
-          const YAML::Node vals = row[1];
-          if (!vals.IsSequence() || vals.size() != n) fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
-          for (std::size_t c = 0; c < n; ++c) {
-            const YAML::Node comp = vals[c];
-            const bool free = comp.IsNull() || (comp.IsScalar() && comp.Scalar() == "free");
-            if (free && !is_kinematic(bc.type)) fail(comp, rp, "only velocity and displacement components can be free");
-            if (r > 0 && free == bc.constrained[c]) fail(comp, rp, "a component is free in some rows and prescribed in others");
-            bc.constrained[c] = !free;
-            rowv[c] = free ? 0.0 : quantity(comp, rp + "[1][" + std::to_string(c) + "]", unit);
-          }
-        }
-        bc.value.times.push_back(t);
-        bc.value.values.push_back(rowv);
-      }
+      read_value_history(history, p + ".history", v.IsDefined(), value, bc, unit);
     } else {
       bc.value.times = {0.0};
       bc.value.values = {value};
     }
-    // Rotation on a kinematic layer follows the same time profile as the value.
+    read_boundary_rotation(node, p, bc);
+  }
+
+  // `value`: one pressure, or one entry per component (kinematic components may be free).
+  std::vector<double> read_value_components(const YAML::Node& v, const std::string& path, BoundaryCondition& bc,
+                                            const Dimension& unit) {
+    const std::size_t n = bc.constrained.size();
+    std::vector<double> value(n, 0.0);
+    if (bc.type == BoundaryType::pressure) {
+      value[0] = quantity(v, path, unit);
+      return value;
+    }
+    if (!v.IsSequence() || v.size() != n) fail(v, path, "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+    for (std::size_t c = 0; c < n; ++c) {
+      const auto cp = path + "[" + std::to_string(c) + "]";
+      const YAML::Node comp = v[c];
+      if (is_free_component(comp, cp, bc)) {
+        bc.constrained[c] = false;
+        note_line(comp, cp);
+      } else {
+        value[c] = quantity(comp, cp, unit);
+      }
+    }
+    return value;
+  }
+
+  // `history`: with a `value` (scaled), rows are [t, factor]; without, [t, v] (scalar) or [t, [v...]].
+  void read_value_history(const YAML::Node& history, const std::string& path, bool scaled,
+                          const std::vector<double>& value, BoundaryCondition& bc, const Dimension& unit) {
+    const std::size_t n = value.size();
+    if (!history.IsSequence() || history.size() == 0) fail(history, path, "expected a list of rows [t, v]");
+    for (std::size_t r = 0; r < history.size(); ++r) {
+      const auto rp = path + "[" + std::to_string(r) + "]";
+      const YAML::Node row = history[r];
+      if (!row.IsSequence() || row.size() != 2) fail(row, rp, scaled ? "expected [t, factor]" : "expected [t, value]");
+      const double t = quantity(row[0], rp + "[0]", dim::time);
+      if (!bc.value.times.empty() && t < bc.value.times.back()) fail(row, rp, "times must not decrease");
+      std::vector<double> rowv(n);
+      if (scaled) {
+        const double factor = quantity(row[1], rp + "[1]", dim::none);
+        for (std::size_t c = 0; c < n; ++c) rowv[c] = factor * value[c];
+      } else if (n == 1 && row[1].IsScalar()) {
+        rowv[0] = quantity(row[1], rp + "[1]", unit);
+      } else {
+        const YAML::Node vals = row[1];
+        if (!vals.IsSequence() || vals.size() != n) fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+        for (std::size_t c = 0; c < n; ++c) {
+          const YAML::Node comp = vals[c];
+          const bool free = is_free_component(comp, rp, bc);
+          if (r > 0 && free == bc.constrained[c]) fail(comp, rp, "a component is free in some rows and prescribed in others");
+          bc.constrained[c] = !free;
+          rowv[c] = free ? 0.0 : quantity(comp, rp + "[1][" + std::to_string(c) + "]", unit);
+        }
+      }
+      bc.value.times.push_back(t);
+      bc.value.values.push_back(rowv);
+    }
+  }
+
+  // Rotation on a kinematic layer: a full `rotation_history`, or `rotation` / `rotation_rate`
+  // following the same time profile as the value.
+  void read_boundary_rotation(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
     const char* rotation_key = bc.type == BoundaryType::velocity ? "rotation_rate" : "rotation";
     const char* other_key = bc.type == BoundaryType::velocity ? "rotation" : "rotation_rate";
     if (node[other_key].IsDefined()) {
@@ -635,56 +733,66 @@ class SceneReader {
     const YAML::Node rot = node[rotation_key];
     const YAML::Node rot_history = node["rotation_history"];
     if (rot_history.IsDefined()) {
-      // Full rotation history [[t, r], ...] (written by the resolved-scene writer).
       const auto rp = p + ".rotation_history";
       if (rot.IsDefined()) fail(rot_history, rp, std::string("give either ") + rotation_key + " or rotation_history");
       if (!is_kinematic(bc.type)) fail(rot_history, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
-      if (!rot_history.IsSequence() || rot_history.size() == 0) fail(rot_history, rp, "expected a list of rows [t, rotation]");
-      const Dimension rd = bc.type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
-      const std::size_t nr = d == 2 ? 1 : 3;
-      History h;
-      for (std::size_t r = 0; r < rot_history.size(); ++r) {
-        const auto rowp = rp + "[" + std::to_string(r) + "]";
-        const YAML::Node row = rot_history[r];
-        if (!row.IsSequence() || row.size() != 2) fail(row, rowp, "expected [t, rotation]");
-        const double t = quantity(row[0], rowp + "[0]", dim::time);
-        if (!h.times.empty() && t < h.times.back()) fail(row, rowp, "times must not decrease");
-        h.times.push_back(t);
-        if (nr == 1 && row[1].IsScalar()) h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
-        else h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
-      }
+      const History h = read_rotation_history(rot_history, rp, bc);
       if (scene_.effects.micropolar) bc.rotation = h;
       else warn_effect_off(rot_history, rp, "micropolar");
       return;
     }
-    if (rot.IsDefined()) {
-      const auto rp = p + "." + rotation_key;
-      if (!is_kinematic(bc.type)) fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
-      if (!scene_.effects.micropolar) {
-        warn_effect_off(rot, rp, "micropolar");
-        return;
-      }
-      const Dimension rd = bc.type == BoundaryType::velocity ? Dimension{{0, 0, -1}, true} : dim::angle;
-      const std::size_t nr = d == 2 ? 1 : 3;
-      std::vector<double> r(nr);
-      if (nr == 1 && rot.IsScalar()) r[0] = quantity(rot, rp, rd);
-      else r = quantity_list(rot, rp, rd, nr);
-      History h;
-      if (ramp.IsDefined() || (history.IsDefined() && v.IsDefined())) {
-        h.times = bc.value.times;
-        for (std::size_t row = 0; row < h.times.size(); ++row) {
-          // factor of this row relative to the value (ramp: 0 then 1).
-          double factor = ramp.IsDefined() ? (row == 0 ? 0.0 : 1.0) : quantity(history[row][1], p, dim::none);
-          std::vector<double> rv(nr);
-          for (std::size_t c = 0; c < nr; ++c) rv[c] = factor * r[c];
-          h.values.push_back(rv);
-        }
-      } else {
-        h.times = {0.0};
-        h.values = {r};
-      }
-      bc.rotation = h;
+    if (rot.IsDefined()) read_rotation_value(node, rot, p, p + "." + rotation_key, bc);
+  }
+
+  // Full rotation history [[t, r], ...] (written by the resolved-scene writer).
+  History read_rotation_history(const YAML::Node& rot_history, const std::string& rp, const BoundaryCondition& bc) {
+    if (!rot_history.IsSequence() || rot_history.size() == 0) fail(rot_history, rp, "expected a list of rows [t, rotation]");
+    const Dimension rd = rotation_unit(bc.type);
+    const std::size_t nr = rotation_components();
+    History h;
+    for (std::size_t r = 0; r < rot_history.size(); ++r) {
+      const auto rowp = rp + "[" + std::to_string(r) + "]";
+      const YAML::Node row = rot_history[r];
+      if (!row.IsSequence() || row.size() != 2) fail(row, rowp, "expected [t, rotation]");
+      const double t = quantity(row[0], rowp + "[0]", dim::time);
+      if (!h.times.empty() && t < h.times.back()) fail(row, rowp, "times must not decrease");
+      h.times.push_back(t);
+      if (nr == 1 && row[1].IsScalar()) h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
+      else h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
     }
+    return h;
+  }
+
+  // `rotation` / `rotation_rate`: one value, scaled by the rows of the value's ramp or history.
+  void read_rotation_value(const YAML::Node& node, const YAML::Node& rot, const std::string& p, const std::string& rp,
+                           BoundaryCondition& bc) {
+    if (!is_kinematic(bc.type)) fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
+    if (!scene_.effects.micropolar) {
+      warn_effect_off(rot, rp, "micropolar");
+      return;
+    }
+    const Dimension rd = rotation_unit(bc.type);
+    const std::size_t nr = rotation_components();
+    std::vector<double> r(nr);
+    if (nr == 1 && rot.IsScalar()) r[0] = quantity(rot, rp, rd);
+    else r = quantity_list(rot, rp, rd, nr);
+    const YAML::Node ramp = node["ramp"];
+    const YAML::Node history = node["history"];
+    History h;
+    if (ramp.IsDefined() || (history.IsDefined() && node["value"].IsDefined())) {
+      h.times = bc.value.times;
+      for (std::size_t row = 0; row < h.times.size(); ++row) {
+        // factor of this row relative to the value (ramp: 0 then 1).
+        double factor = ramp.IsDefined() ? (row == 0 ? 0.0 : 1.0) : quantity(history[row][1], p, dim::none);
+        std::vector<double> rv(nr);
+        for (std::size_t c = 0; c < nr; ++c) rv[c] = factor * r[c];
+        h.values.push_back(rv);
+      }
+    } else {
+      h.times = {0.0};
+      h.values = {r};
+    }
+    bc.rotation = h;
   }
 
   void read_boundary_conditions(const YAML::Node& root) {
@@ -695,8 +803,7 @@ class SceneReader {
     for (std::size_t k = 0; k < list.size(); ++k) {
       const auto p = "boundary_conditions[" + std::to_string(k) + "]";
       const YAML::Node node = list[k];
-      check_keys(node, p, {"name", "boundary", "entities", "box", "type", "value", "ramp", "history",
-                           "rotation", "rotation_rate", "rotation_history", "depth"});
+      check_keys(node, p);
       BoundaryCondition bc;
       bc.line = node.Mark().line + 1;
       read_selector_keys(node, p, bc.selector);
@@ -727,7 +834,7 @@ class SceneReader {
 
   void read_time(const YAML::Node& t) {
     const std::string p = "time";
-    check_keys(t, p, {"end", "step", "safety"});
+    check_keys(t, p);
     scene_.time.end = quantity(require(t, p, "end", "end time, e.g. 60 us"), "time.end", dim::time);
     positive(t["end"], "time.end", scene_.time.end);
     const YAML::Node step = t["step"];
@@ -751,7 +858,7 @@ class SceneReader {
     if (scene_.effects.viscoplasticity) out.fields.push_back("plastic_shear_strain");
     if (!o.IsDefined() || o.IsNull()) return;
     const std::string p = "output";
-    check_keys(o, p, {"interval", "load_interval", "fields", "checkpoint_interval"});
+    check_keys(o, p);
     out.interval = quantity_or(o, p, "interval", dim::time, out.interval);
     out.load_interval = quantity_or(o, p, "load_interval", dim::time, 0.0);
     out.checkpoint_interval = quantity_or(o, p, "checkpoint_interval", dim::time, 0.0);
@@ -785,7 +892,7 @@ class SceneReader {
   void read_numerics(const YAML::Node& n) {
     if (!n.IsDefined() || n.IsNull()) return;
     const std::string p = "numerics";
-    check_keys(n, p, {"stabilization", "damping", "energy_check_tolerance"});
+    check_keys(n, p);
     auto& num = scene_.numerics;
     num.stabilization = quantity_or(n, p, "stabilization", dim::none, num.stabilization);
     if (num.stabilization < 0.0) fail(n["stabilization"], "numerics.stabilization", "must be >= 0 (0 disables the zero-energy-mode control)");
@@ -793,10 +900,33 @@ class SceneReader {
     if (num.damping < 0.0) fail(n["damping"], "numerics.damping", "must be >= 0");
     num.energy_check_tolerance = quantity_or(n, p, "energy_check_tolerance", dim::none, num.energy_check_tolerance);
     positive(n["energy_check_tolerance"], "numerics.energy_check_tolerance", num.energy_check_tolerance);
+    if (n["energy_check_start_step"].IsDefined()) {
+      num.energy_check_start_step = integer(n["energy_check_start_step"], "numerics.energy_check_start_step");
+      if (num.energy_check_start_step < 0) fail(n["energy_check_start_step"], "numerics.energy_check_start_step", "must be >= 0");
+    }
+    num.detach_energy_rise = quantity_or(n, p, "detach_energy_rise", dim::none, num.detach_energy_rise);
+    if (num.detach_energy_rise < 0.0) {
+      fail(n["detach_energy_rise"], "numerics.detach_energy_rise", format_number(num.detach_energy_rise) + " must be >= 0 (a share of the stored energy)");
+    }
+    num.overload_factor = quantity_or(n, p, "overload_factor", dim::none, num.overload_factor);
+    positive(n["overload_factor"], "numerics.overload_factor", num.overload_factor, "must be > 0 (a multiple of the breaking energy)");
+    num.damaged_frequency_ratio = quantity_or(n, p, "damaged_frequency_ratio", dim::none, num.damaged_frequency_ratio);
+    if (!(num.damaged_frequency_ratio >= 1.0)) {
+      fail(n["damaged_frequency_ratio"], "numerics.damaged_frequency_ratio",
+           format_number(num.damaged_frequency_ratio) + " must be >= 1 (omega_max^2 is at least the largest point block)");
+    }
   }
 };
 
 }  // namespace
+
+std::vector<std::string> scene_key_paths() {
+  std::vector<std::string> paths;
+  for (const auto& [block, keys] : kBlockKeys) {
+    for (const auto& key : keys) paths.push_back(block.empty() ? key : block + "." + key);
+  }
+  return paths;
+}
 
 std::vector<std::string> EffectSet::names() const {
   std::vector<std::string> out;

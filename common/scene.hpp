@@ -2,6 +2,8 @@
 // Everything here is resolved: SI units, every default filled in, paths absolute.
 #pragma once
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <optional>
@@ -66,14 +68,49 @@ struct BoundaryCondition {
   int line = 0;                 // line in the scene file, for messages
 };
 
+// How w_cr follows from G_cr (solver/bond_breakage.hpp): `lattice` (the bonds of the lattice that
+// cross a plane between two rows cost G_cr per unit area), `continuum` (SPEC section 7's closed
+// forms, their limit for a large horizon factor) or `dissipation` (lattice / rho: a running crack
+// then dissipates G_cr per unit area; solver/damage_calibration.hpp).
+enum class DamageCalibration { lattice, continuum, dissipation };
+
+// How the Drucker-Prager cone is fitted to Mohr-Coulomb (solver/plasticity/drucker_prager_cone.hpp).
+enum class ConeMatch {
+  triaxial_compression,  // outer cone: DP = MC on the compression meridian (default)
+  plane_strain,          // DP = MC at the plane-strain limit state (for the given dilatancy)
+};
+
+// The scene's spelling of an enum value. One table per enum: the parser reads names with it, the
+// resolved-scene writer writes them, and messages list the valid names from it.
+template <class E>
+struct EnumName {
+  E value;
+  const char* name;
+};
+inline constexpr std::array<EnumName<DamageCalibration>, 3> kDamageCalibrationNames{{
+    {DamageCalibration::lattice, "lattice"},
+    {DamageCalibration::continuum, "continuum"},
+    {DamageCalibration::dissipation, "dissipation"},
+}};
+inline constexpr std::array<EnumName<ConeMatch>, 2> kConeMatchNames{{
+    {ConeMatch::triaxial_compression, "triaxial-compression"},
+    {ConeMatch::plane_strain, "plane-strain"},
+}};
+template <class E, std::size_t N>
+constexpr const char* enum_name(const std::array<EnumName<E>, N>& table, E value) {
+  for (const auto& entry : table) {
+    if (entry.value == value) return entry.name;
+  }
+  return "?";
+}
+// Inline, so that libraries which only see the scene's types (solver/plasticity) need not link it.
+inline const char* to_string(DamageCalibration calibration) { return enum_name(kDamageCalibrationNames, calibration); }
+inline const char* to_string(ConeMatch match) { return enum_name(kConeMatchNames, match); }
+
 struct DamageParameters {
   double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
   double no_fail_depth = 0.0;                  // [m] from kinematic and loaded boundaries
-  // How w_cr follows from G_cr (solver/bond_breakage.hpp): "lattice" (the bonds of the lattice
-  // that cross a plane between two rows cost G_cr per unit area), "continuum" (SPEC section 7's
-  // closed forms, their limit for a large horizon factor) or "dissipation" (lattice / rho: a
-  // running crack then dissipates G_cr per unit area; solver/damage_calibration.hpp).
-  std::string calibration = "lattice";
+  DamageCalibration calibration = DamageCalibration::lattice;
   // Damage only inside this box (scene units of length, a 2-D box spans every z): bonds with an
   // end outside never break and cost no bond-work bookkeeping. Empty: the whole body.
   std::optional<Selector> region;
@@ -87,7 +124,7 @@ struct ViscoplasticParameters {
   double hardening = 0.0;          // h [Pa]
   double viscosity = 0.0;          // eta [Pa s]
   double residual_cohesion = 0.0;  // floor of c [Pa]
-  std::string cone_match = "triaxial-compression";  // or "plane-strain"
+  ConeMatch cone_match = ConeMatch::triaxial_compression;
   // Viscoplastic flow only inside this box; outside the points stay elastic and skip the return
   // map. Empty: the whole body.
   std::optional<Selector> region;
@@ -138,6 +175,13 @@ struct Numerics {
   double stabilization = 0.1;      // G_s
   double damping = 0.0;            // mass-proportional damping coefficient [1/s] (quasi-static runs)
   double energy_check_tolerance = 0.05;  // relative unexplained energy growth that stops a run
+  std::int64_t energy_check_start_step = 50;  // the energy check skips the steps before this one
+  // Damage thresholds (solver/bond_breakage.cpp and solver/point_stability.hpp say why these values):
+  double detach_energy_rise = 0.5;       // a point whose stored energy rises by more than this share
+                                         // when it loses bonds is detached
+  double overload_factor = 1.5;          // above this multiple of its family's breaking energy, any
+                                         // rise detaches the point
+  double damaged_frequency_ratio = 3.5;  // allowed omega_max^2 / largest point block of a damaged lattice
 };
 
 struct Scene {

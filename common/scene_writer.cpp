@@ -56,18 +56,7 @@ void emit_row(YAML::Emitter& out, const std::vector<double>& values, const std::
   out << YAML::EndSeq;
 }
 
-}  // namespace
-
-std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
-  YAML::Emitter out;
-  const auto& m = scene.material;
-  out << YAML::Comment("Resolved scene written by mppm " MPPM_VERSION ": SI units, every default filled in.");
-  out << YAML::BeginMap;
-  out << YAML::Key << "mppm" << YAML::Value << scene.format_version;
-  out << YAML::Key << "name" << YAML::Value << scene.name;
-  out << YAML::Key << "dimension" << YAML::Value << scene.dimension;
-  if (scene.dimension == 2) out << YAML::Key << "thickness" << YAML::Value << Num{scene.thickness};
-
+void emit_geometry(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "geometry" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "file" << YAML::Value << scene.geometry.file;
   // The unit is written as a factor name when it is one of the common ones.
@@ -87,7 +76,41 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     }
   }
   out << YAML::EndSeq << YAML::EndMap;
+}
 
+void emit_damage(YAML::Emitter& out, const DamageParameters& damage) {
+  out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{damage.critical_energy_release_rate};
+  out << YAML::Key << "no_fail_depth" << YAML::Value << Num{damage.no_fail_depth};
+  out << YAML::Key << "calibration" << YAML::Value << to_string(damage.calibration);
+  if (damage.region) {
+    out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
+    emit_selector_keys(out, *damage.region);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
+void emit_viscoplasticity(YAML::Emitter& out, const ViscoplasticParameters& vp) {
+  out << YAML::Key << "viscoplasticity" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "model" << YAML::Value << vp.model;
+  out << YAML::Key << "friction_angle" << YAML::Value << degrees(vp.friction_angle);
+  out << YAML::Key << "dilatancy_angle" << YAML::Value << degrees(vp.dilatancy_angle);
+  out << YAML::Key << "cohesion" << YAML::Value << Num{vp.cohesion};
+  out << YAML::Key << "hardening" << YAML::Value << Num{vp.hardening};
+  out << YAML::Key << "viscosity" << YAML::Value << Num{vp.viscosity};
+  out << YAML::Key << "residual_cohesion" << YAML::Value << Num{vp.residual_cohesion};
+  out << YAML::Key << "cone_match" << YAML::Value << to_string(vp.cone_match);
+  if (vp.region) {
+    out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
+    emit_selector_keys(out, *vp.region);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
+void emit_material(YAML::Emitter& out, const Scene& scene) {
+  const auto& m = scene.material;
   out << YAML::Key << "material" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "model" << YAML::Value << m.model;
   out << YAML::Key << "density" << YAML::Value << Num{m.density};
@@ -100,77 +123,57 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
         << Num{m.couple_moduli[1]} << Num{m.couple_moduli[2]} << YAML::EndSeq;
     out << YAML::Key << "length_scale" << YAML::Value << Num{m.length_scale};
   }
-  if (m.damage) {
-    out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{m.damage->critical_energy_release_rate};
-    out << YAML::Key << "no_fail_depth" << YAML::Value << Num{m.damage->no_fail_depth};
-    out << YAML::Key << "calibration" << YAML::Value << m.damage->calibration;
-    if (m.damage->region) {
-      out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
-      emit_selector_keys(out, *m.damage->region);
-      out << YAML::EndMap;
-    }
-    out << YAML::EndMap;
-  }
-  if (m.viscoplasticity) {
-    const auto& vp = *m.viscoplasticity;
-    out << YAML::Key << "viscoplasticity" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "model" << YAML::Value << vp.model;
-    out << YAML::Key << "friction_angle" << YAML::Value << degrees(vp.friction_angle);
-    out << YAML::Key << "dilatancy_angle" << YAML::Value << degrees(vp.dilatancy_angle);
-    out << YAML::Key << "cohesion" << YAML::Value << Num{vp.cohesion};
-    out << YAML::Key << "hardening" << YAML::Value << Num{vp.hardening};
-    out << YAML::Key << "viscosity" << YAML::Value << Num{vp.viscosity};
-    out << YAML::Key << "residual_cohesion" << YAML::Value << Num{vp.residual_cohesion};
-    out << YAML::Key << "cone_match" << YAML::Value << vp.cone_match;
-    if (vp.region) {
-      out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
-      emit_selector_keys(out, *vp.region);
-      out << YAML::EndMap;
-    }
-    out << YAML::EndMap;
-  }
+  if (m.damage) emit_damage(out, *m.damage);
+  if (m.viscoplasticity) emit_viscoplasticity(out, *m.viscoplasticity);
   out << YAML::EndMap;
+}
 
+void emit_effects(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "effects" << YAML::Value << YAML::Flow << scene.effects.names();
   if (scene.effects.gravity) {
     out << YAML::Key << "gravity" << YAML::Value << YAML::Flow << YAML::BeginSeq << Num{scene.gravity[0]} << Num{scene.gravity[1]};
     if (scene.dimension == 3) out << Num{scene.gravity[2]};
     out << YAML::EndSeq;
   }
+}
 
-  out << YAML::Key << "boundary_conditions" << YAML::Value << YAML::BeginSeq;
-  for (const auto& bc : scene.boundary_conditions) {
-    out << YAML::BeginMap;
-    out << YAML::Key << "name" << YAML::Value << bc.name;
-    emit_selector_keys(out, bc.selector);
-    out << YAML::Key << "type" << YAML::Value << to_string(bc.type);
-    if (bc.value.times.size() == 1 && bc.value.times[0] == 0.0) {
-      out << YAML::Key << "value" << YAML::Value;
-      emit_row(out, bc.value.values[0], bc.constrained);
-    } else {
-      out << YAML::Key << "history" << YAML::Value << YAML::BeginSeq;
-      for (std::size_t r = 0; r < bc.value.times.size(); ++r) {
-        out << YAML::Flow << YAML::BeginSeq << Num{bc.value.times[r]};
-        emit_row(out, bc.value.values[r], bc.constrained);
-        out << YAML::EndSeq;
-      }
+void emit_boundary_condition(YAML::Emitter& out, const BoundaryCondition& bc) {
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << bc.name;
+  emit_selector_keys(out, bc.selector);
+  out << YAML::Key << "type" << YAML::Value << to_string(bc.type);
+  if (bc.value.times.size() == 1 && bc.value.times[0] == 0.0) {
+    out << YAML::Key << "value" << YAML::Value;
+    emit_row(out, bc.value.values[0], bc.constrained);
+  } else {
+    out << YAML::Key << "history" << YAML::Value << YAML::BeginSeq;
+    for (std::size_t r = 0; r < bc.value.times.size(); ++r) {
+      out << YAML::Flow << YAML::BeginSeq << Num{bc.value.times[r]};
+      emit_row(out, bc.value.values[r], bc.constrained);
       out << YAML::EndSeq;
     }
-    if (bc.rotation) {
-      out << YAML::Key << "rotation_history" << YAML::Value << YAML::BeginSeq;
-      for (std::size_t r = 0; r < bc.rotation->times.size(); ++r) {
-        out << YAML::Flow << YAML::BeginSeq << Num{bc.rotation->times[r]};
-        emit_row(out, bc.rotation->values[r], {});
-        out << YAML::EndSeq;
-      }
-      out << YAML::EndSeq;
-    }
-    if (!is_kinematic(bc.type)) out << YAML::Key << "depth" << YAML::Value << Num{bc.traction_depth};
-    out << YAML::EndMap;
+    out << YAML::EndSeq;
   }
-  out << YAML::EndSeq;
+  if (bc.rotation) {
+    out << YAML::Key << "rotation_history" << YAML::Value << YAML::BeginSeq;
+    for (std::size_t r = 0; r < bc.rotation->times.size(); ++r) {
+      out << YAML::Flow << YAML::BeginSeq << Num{bc.rotation->times[r]};
+      emit_row(out, bc.rotation->values[r], {});
+      out << YAML::EndSeq;
+    }
+    out << YAML::EndSeq;
+  }
+  if (!is_kinematic(bc.type)) out << YAML::Key << "depth" << YAML::Value << Num{bc.traction_depth};
+  out << YAML::EndMap;
+}
 
+void emit_boundary_conditions(YAML::Emitter& out, const Scene& scene) {
+  out << YAML::Key << "boundary_conditions" << YAML::Value << YAML::BeginSeq;
+  for (const auto& bc : scene.boundary_conditions) emit_boundary_condition(out, bc);
+  out << YAML::EndSeq;
+}
+
+void emit_time(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "time" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "end" << YAML::Value << Num{scene.time.end};
   if (scene.time.step) {
@@ -180,20 +183,31 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
     out << YAML::Key << "safety" << YAML::Value << Num{scene.time.safety};
   }
   out << YAML::EndMap;
+}
 
+void emit_output(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "interval" << YAML::Value << Num{scene.output.interval};
   out << YAML::Key << "load_interval" << YAML::Value << Num{scene.output.load_interval};
   out << YAML::Key << "fields" << YAML::Value << YAML::Flow << scene.output.fields;
   out << YAML::Key << "checkpoint_interval" << YAML::Value << Num{scene.output.checkpoint_interval};
   out << YAML::EndMap;
+}
 
+void emit_numerics(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "numerics" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "stabilization" << YAML::Value << Num{scene.numerics.stabilization};
   out << YAML::Key << "damping" << YAML::Value << Num{scene.numerics.damping};
   out << YAML::Key << "energy_check_tolerance" << YAML::Value << Num{scene.numerics.energy_check_tolerance};
+  out << YAML::Key << "energy_check_start_step" << YAML::Value << scene.numerics.energy_check_start_step;
+  out << YAML::Key << "detach_energy_rise" << YAML::Value << Num{scene.numerics.detach_energy_rise};
+  out << YAML::Key << "overload_factor" << YAML::Value << Num{scene.numerics.overload_factor};
+  out << YAML::Key << "damaged_frequency_ratio" << YAML::Value << Num{scene.numerics.damaged_frequency_ratio};
   out << YAML::EndMap;
+}
 
+void emit_derived(YAML::Emitter& out, const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
+  const auto& m = scene.material;
   out << YAML::Key << "derived" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "horizon_m" << YAML::Value << Num{scene.geometry.horizon()};
   out << YAML::Key << "partial_density_kg_per_m3" << YAML::Value << Num{m.partial_density()};
@@ -203,7 +217,26 @@ std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<
   }
   for (const auto& [key, value] : derived) out << YAML::Key << key << YAML::Value << Num{value};
   out << YAML::EndMap;
+}
 
+}  // namespace
+
+std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
+  YAML::Emitter out;
+  out << YAML::Comment("Resolved scene written by mppm " MPPM_VERSION ": SI units, every default filled in.");
+  out << YAML::BeginMap;
+  out << YAML::Key << "mppm" << YAML::Value << scene.format_version;
+  out << YAML::Key << "name" << YAML::Value << scene.name;
+  out << YAML::Key << "dimension" << YAML::Value << scene.dimension;
+  if (scene.dimension == 2) out << YAML::Key << "thickness" << YAML::Value << Num{scene.thickness};
+  emit_geometry(out, scene);
+  emit_material(out, scene);
+  emit_effects(out, scene);
+  emit_boundary_conditions(out, scene);
+  emit_time(out, scene);
+  emit_output(out, scene);
+  emit_numerics(out, scene);
+  emit_derived(out, scene, derived);
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

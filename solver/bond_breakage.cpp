@@ -44,9 +44,9 @@ double lattice_crossing_sum(int dimension, double horizon_factor) {
 double critical_bond_work(const DamageParameters& damage, int dimension, double spacing, double horizon_factor,
                           double thickness, double stabilization) {
   const double g_cr = damage.critical_energy_release_rate;
-  if (damage.calibration == "continuum")
+  if (damage.calibration == DamageCalibration::continuum)
     return continuum_critical_bond_work(dimension, g_cr, horizon_factor * spacing, thickness);
-  if (damage.calibration == "dissipation") {
+  if (damage.calibration == DamageCalibration::dissipation) {
     const auto rho = released_fraction(dimension, horizon_factor, stabilization);
     if (!rho)
       throw std::invalid_argument("the dissipation calibration is measured for " + released_fraction_ranges(dimension) +
@@ -54,7 +54,7 @@ double critical_bond_work(const DamageParameters& damage, int dimension, double 
                                   std::to_string(horizon_factor) + ", G_s " + std::to_string(stabilization) +
                                   "); use calibration: lattice, or a setting in that range");
     DamageParameters lattice = damage;
-    lattice.calibration = "lattice";
+    lattice.calibration = DamageCalibration::lattice;
     return critical_bond_work(lattice, dimension, spacing, horizon_factor, thickness, stabilization) / *rho;
   }
   // Per cell of the plane (dx t in 2-D, dx^2 in 3-D) the crossing bonds carry S V^2 with V = dx^2 t
@@ -200,7 +200,7 @@ BreakageUpdate BreakageUpdater::run() {
 
   // Points to detach, found after the shape tensors of the changed points are recomputed:
   //  - a singular shape tensor (SPEC section 2);
-  //  - a stored energy more than kEnergyRiseToDetach above the one before the point lost its
+  //  - a stored energy more than numerics.detach_energy_rise (default 0.5) above the one before the point lost its
   //    bonds: breaking bonds takes energy out, but a point left with a lopsided family
   //    renormalizes its shape tensor and can read a larger strain from the bonds it kept, which
   //    puts energy into the model (measured before this rule: up to 1.9 x the work on high-rate
@@ -210,7 +210,7 @@ BreakageUpdate BreakageUpdater::run() {
   //    clean crack turns into an avalanche of detachments across the strip (measured), with 50 %
   //    the strip is as without the rule while the fragments put 1e-6 of the work into the model;
   //  - any rise of the stored energy of an overloaded point, one that stored more than
-  //    kOverloadedBreakingEnergyMultiple times its family's breaking energy before the loss (the
+  //    numerics.overload_factor (default 1.5) times its family's breaking energy before the loss (the
   //    energy it takes to break all its bonds at w_cr, family_breaking_energy). The margin above
   //    is relative, so a point can ratchet up by just under 50 % at every loss: in the 3-D impact
   //    the points crushed at the striker's edges (next to its no-fail zone, bonds into it kept)
@@ -307,8 +307,8 @@ void BreakageUpdater::detach_on_energy_rise() {
     const double before = w.energy_before[static_cast<std::size_t>(w.affected_index[i])];
     const double after = kernel.point_energy(p, f, c, i).total();
     if (!(after > before)) continue;
-    const bool overloaded = before > kOverloadedBreakingEnergyMultiple * family_breaking_energy(p, f, c, i);
-    if (overloaded || after > (1.0 + kEnergyRiseToDetach) * before) {
+    const bool overloaded = before > c.overload_factor * family_breaking_energy(p, f, c, i);
+    if (overloaded || after > (1.0 + c.detach_energy_rise) * before) {
       detach_point(p, i);
       w.detach.push_back(i);
       ++u.energy_detached;

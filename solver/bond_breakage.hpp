@@ -58,8 +58,8 @@ std::vector<double> damage_field(const PointData& points, const BondFamilies& bo
 // release is measured, not assumed: the stored energy of the affected points before minus after,
 // at the same configuration (so the energy balance closes; the bond work W_ij is the breakage
 // criterion, not the measure of what a break dissipates). A point whose stored energy would rise
-// by losing bonds, by more than kEnergyRiseToDetach or at all when it is overloaded
-// (kOverloadedBreakingEnergyMultiple), is detached (see the .cpp for why). A body point whose
+// by losing bonds, by more than c.detach_energy_rise or at all when it is overloaded
+// (c.overload_factor; both from the scene's numerics block), is detached (see the .cpp for why). A body point whose
 // stiffness block exceeds `block_eigenvalue_limit` (point_stability.hpp; 0: no such check) is
 // detached as well: its lopsided family would make the run's time step unstable. Returns the pairs
 // broken in that evaluation (cascade included), the points newly detached (of them for stability)
@@ -71,14 +71,6 @@ struct BreakageUpdate {
   std::size_t energy_detached = 0;    // of them, because losing bonds raised their stored energy
   double released_energy = 0.0;       // stored energy released by the breaks [J]
 };
-// A point whose stored energy would rise by more than this share when it loses bonds is detached
-// (bond_breakage.cpp says why and what was measured).
-inline constexpr double kEnergyRiseToDetach = 0.5;
-// A point that stores more than this multiple of its family's breaking energy (below) is
-// overloaded: it is detached when losing bonds raises its stored energy at all, since no margin
-// is then small against the energy the breaks are meant to take out (bond_breakage.cpp says why
-// and what was measured).
-inline constexpr double kOverloadedBreakingEnergyMultiple = 1.5;
 
 // The energy it takes to break every bond of point i at the critical bond work, the point's half
 // share of each pair: 1/2 w_cr V_i sum_j V_j over its family, broken bonds included [J]. Summed

@@ -25,6 +25,9 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.length_scale = m.length_scale;
   c.micro_inertia = m.micro_inertia();
   c.stabilization = scene.numerics.stabilization;
+  c.detach_energy_rise = scene.numerics.detach_energy_rise;
+  c.overload_factor = scene.numerics.overload_factor;
+  c.damaged_frequency_ratio = scene.numerics.damaged_frequency_ratio;
   if (scene.effects.damage && m.damage)
     try {
       c.critical_bond_work = critical_bond_work(*m.damage, scene.dimension, scene.geometry.spacing,

@@ -231,7 +231,7 @@ double choose_time_step(const Scene& scene, const CriticalTimeStep& critical, do
                      " s, the largest step a run with the damage effect may use (" +
                      number(damage_step / critical.step) + " of the critical step " + number(critical.step) +
                      " s: the lopsided families that broken bonds leave raise the highest frequency by up to " +
-                     number(kDamagedFrequencyRatio) + "x the largest point stiffness; solver/point_stability.hpp) "
+                     number(scene.numerics.damaged_frequency_ratio) + "x the largest point stiffness; solver/point_stability.hpp) "
                      "(expected time.step <= " + number(damage_step) + " s, or time.step: auto)");
   if (dt > critical.step) {
     const double mode_step = critical.limiting_mode == "rotational" ? critical.rotational : critical.translational;

@@ -139,12 +139,12 @@ void Model::advance_internal_forces(double dt, bool with_energy) {
 double Model::damage_critical_step(double critical_step) const {
   if (!effects.damage) return critical_step;
   const double start = max_point_block_eigenvalue(points, bonds, constants);
-  return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(kDamagedFrequencyRatio * start)) : critical_step;
+  return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(constants.damaged_frequency_ratio * start)) : critical_step;
 }
 
 void Model::set_breakage_time_step(double dt) {
   if (!effects.damage) return;
-  block_eigenvalue_limit = 4.0 / (dt * dt) / kDamagedFrequencyRatio;
+  block_eigenvalue_limit = 4.0 / (dt * dt) / constants.damaged_frequency_ratio;
 }
 
 InternalEnergy internal_energy(const Model& model) {

@@ -66,10 +66,10 @@ struct Model {
   void advance_internal_forces(double dt, bool with_energy);
   // Damage: the largest time step a damage run may use, given the start-up critical step: lopsided
   // families left by breaks raise the highest frequency (point_stability.hpp), so it is
-  // min(critical, 2 / sqrt(kDamagedFrequencyRatio x largest point block)); without damage, critical.
+  // min(critical, 2 / sqrt(damaged_frequency_ratio x largest point block)); without damage, critical.
   double damage_critical_step(double critical_step) const;
   // Damage: points whose bonds broke stay stable at the time step dt (point_stability.hpp): a body
-  // point whose block exceeds (2 / dt)^2 / kDamagedFrequencyRatio is detached. Call it once the
+  // point whose block exceeds (2 / dt)^2 / damaged_frequency_ratio is detached. Call it once the
   // step is chosen; no-op without damage.
   void set_breakage_time_step(double dt);
 };

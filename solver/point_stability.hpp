@@ -11,10 +11,12 @@
 // whose family holds it), in O(family) operations. omega_max^2 is kappa times the largest block
 // value: kappa_0 = 1.4 on intact lattices, and up to 3.1 measured on damaged ones (crack faces,
 // fragments: neighbouring lopsided families couple), where the critical step then falls to 0.45
-// of the start-up one. So a point is detached when kDamagedFrequencyRatio times its block value
+// of the start-up one. So a point is detached when the damaged frequency ratio (numerics.
+// damaged_frequency_ratio, default 3.5: the largest omega_max^2 / largest block value a damaged
+// lattice is allowed, measured up to 3.1; CosseratConstants) times its block value
 // exceeds (2 / dt)^2, which keeps omega_max dt <= 2 for kappa up to that ratio; and the time step
 // of a damage run must leave every intact point inside that limit from the start:
-// dt <= 2 / sqrt(kDamagedFrequencyRatio x max block value), about 0.6 of the start-up critical step
+// dt <= 2 / sqrt(ratio x max block value), about 0.6 of the start-up critical step
 // (Model::damage_critical_step).
 #pragma once
 #include <cstddef>
@@ -24,9 +26,6 @@
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
-
-// The largest omega_max^2 / (largest block value) a damaged lattice is allowed (measured up to 3.1).
-inline constexpr double kDamagedFrequencyRatio = 3.5;
 
 // lambda_max(M_i^-1 H_i) [1/s^2] of point i with its bonds and shape tensors as they are; 0 for a
 // detached point.

@@ -219,10 +219,6 @@ SolveResult restart(PointCloud&& cloud, const CheckpointFile& checkpoint, const 
 
 namespace {
 
-// The energy check leaves the first steps alone (energy_guard.hpp); the worst balance error of
-// the end-of-run warning is watched from the same step.
-constexpr std::int64_t kGuardStartStep = 50;
-
 // After a snapshot, the tables, the log and run_info.json are rewritten (each atomically, with
 // an fsync of the file and of the directory) only when kTableFlushInterval of wall time has
 // passed since their last rewrite; at checkpoints, stops, failures and the end always. Ten
@@ -266,7 +262,7 @@ class RunDriver {
   RunDriver(const Scene& scene_in, const SolveOptions& options, const CheckpointFile* resume)
       : scene_in_(scene_in), options_(options), resume_(resume), wall_start_(std::chrono::steady_clock::now()),
         scene_(scene_in), checkpointing_(scene_in.output.checkpoint_interval > 0.0),
-        guard_(scene_in.numerics.energy_check_tolerance, kGuardStartStep) {}
+        guard_(scene_in.numerics.energy_check_tolerance, scene_in.numerics.energy_check_start_step) {}
 
   // `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
   // boundary conditions are built from it; null to leave it as it is.
@@ -462,7 +458,7 @@ void RunDriver::log_start_up_report() {
   if (scene_.effects.damage)
     writer().log("damage: critical bond work w_cr " + text(m.constants.critical_bond_work) + " J/m^6 (G_cr " +
                  text(scene_.material.damage->critical_energy_release_rate) + " J/m^2, " +
-                 scene_.material.damage->calibration + " calibration), no-fail depth " +
+                 to_string(scene_.material.damage->calibration) + " calibration), no-fail depth " +
                  text(scene_.material.damage->no_fail_depth) + " m; largest step of a damage run " +
                  text(plan_.damage_step) + " s (" + text(plan_.damage_step / critical.step) +
                  " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
@@ -563,7 +559,8 @@ void RunDriver::check_and_record(std::int64_t s, bool row) {
   if (!row) return;
   record_rows();
   if (const auto reason = guard_.check(s, dynamics().energy(), dynamics().initial_total_energy())) fail(*reason);
-  if (s >= kGuardStartStep && std::abs(dynamics().balance_error()) > std::abs(worst_balance_))
+  // Watched from the step the energy check starts at (numerics.energy_check_start_step), like the check.
+  if (s >= scene_.numerics.energy_check_start_step && std::abs(dynamics().balance_error()) > std::abs(worst_balance_))
     worst_balance_ = dynamics().balance_error();
 }
 

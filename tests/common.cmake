@@ -3,5 +3,6 @@ set(MPPM_TEST_LIBS mppm_common)
 mppm_add_gtest(test_common unit
   unit/test_units.cpp
   unit/test_scene.cpp
+  unit/test_scene_reference.cpp
   unit/test_snapshot_file.cpp
 )

@@ -2,20 +2,8 @@
 #include "solver/plasticity/drucker_prager_cone.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
 namespace mppm::plasticity {
-
-const char* to_string(ConeMatch match) {
-  return match == ConeMatch::plane_strain ? "plane-strain" : "triaxial-compression";
-}
-
-ConeMatch cone_match_from_string(const std::string& text) {
-  if (text == "triaxial-compression") return ConeMatch::triaxial_compression;
-  if (text == "plane-strain") return ConeMatch::plane_strain;
-  throw std::invalid_argument("unknown cone match '" + text +
-                              "' (expected triaxial-compression or plane-strain)");
-}
 
 ConeCoefficients cone_coefficients(double friction_angle, double dilatancy_angle, ConeMatch match) {
   const double sin_phi = std::sin(friction_angle);

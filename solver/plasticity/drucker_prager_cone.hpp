@@ -2,19 +2,12 @@
 // M_phi, M_psi and the cohesion factor k/c for the two matches a scene can choose
 // (SPEC section 6). The derivations are in README.md.
 #pragma once
-#include <string>
+#include "common/scene.hpp"
 
 namespace mppm::plasticity {
 
-enum class ConeMatch {
-  triaxial_compression,  // outer cone: DP = MC on the compression meridian (default)
-  plane_strain,          // DP = MC at the plane-strain limit state (for the given dilatancy)
-};
-
-// "triaxial-compression" / "plane-strain" (the spelling of the scene key cone_match).
-const char* to_string(ConeMatch match);
-// Throws std::invalid_argument for any other spelling (callers turn it into an InputError).
-ConeMatch cone_match_from_string(const std::string& text);
+// The two matches are the scene's enum (common/scene.hpp, key material.viscoplasticity.cone_match).
+using mppm::ConeMatch;
 
 struct ConeCoefficients {
   double friction_slope = 0.0;   // M_phi: slope of the yield cone, dq/d(-p)

@@ -19,11 +19,7 @@ DruckerPragerParameters drucker_prager_parameters(const Material& material) {
   p.residual_cohesion = vp.residual_cohesion;
   p.viscosity = vp.viscosity;
   p.length_scale = material.length_scale;
-  try {
-    p.cone_match = cone_match_from_string(vp.cone_match);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("viscoplasticity.cone_match: ") + e.what());
-  }
+  p.cone_match = vp.cone_match;
   return p;
 }
 

@@ -72,7 +72,7 @@ Case elastic_bar() {
 Case damage_bar() {
   Case c = elastic_bar();
   c.scene.effects.damage = true;
-  c.scene.material.damage = DamageParameters{20.0, 0.0, "lattice", std::nullopt};
+  c.scene.material.damage = DamageParameters{20.0, 0.0, DamageCalibration::lattice, std::nullopt};
   c.scene.boundary_conditions[1] =
       kinematic_condition("right", BoundaryType::velocity, {0.0, 40e-6}, {{0.0, 0.0}, {6.0, 0.0}});
   c.scene.output.fields = {"displacement", "rotation", "damage", "detached"};

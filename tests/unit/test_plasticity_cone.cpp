@@ -84,12 +84,5 @@ TEST(PlasticityCone, DilatancySlopeNeverExceedsFrictionSlopeWhenPsiAtMostPhi) {
   }
 }
 
-TEST(PlasticityCone, MatchNamesRoundTrip) {
-  EXPECT_EQ(cone_match_from_string("plane-strain"), ConeMatch::plane_strain);
-  EXPECT_EQ(cone_match_from_string("triaxial-compression"), ConeMatch::triaxial_compression);
-  EXPECT_STREQ(to_string(ConeMatch::plane_strain), "plane-strain");
-  EXPECT_THROW(cone_match_from_string("triaxial"), std::invalid_argument);
-}
-
 }  // namespace
 }  // namespace mppm::plasticity

@@ -234,3 +234,72 @@ TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
   EXPECT_EQ(b.output.fields, a.output.fields);
   EXPECT_NE(yaml.find("time_step_s"), std::string::npos);
 }
+
+// The named choices are enums in the Scene, read and written by the same name table.
+TEST(Scene, NamedChoicesAreReadAsEnumsAndWrittenBackByName) {
+  const Scene lattice = parse_scene(kExample, kPath);
+  EXPECT_EQ(lattice.material.damage->calibration, DamageCalibration::lattice);  // the default
+  for (const auto& [value, name] : kDamageCalibrationNames) {
+    const Scene s = parse_scene(kExample, kPath, {std::string("material.damage.calibration=") + name});
+    EXPECT_EQ(s.material.damage->calibration, value) << name;
+    EXPECT_NE(resolved_scene_yaml(s).find(std::string("calibration: ") + name), std::string::npos) << name;
+    EXPECT_EQ(parse_scene(resolved_scene_yaml(s), kPath).material.damage->calibration, value) << name;
+  }
+  const std::string vp = "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, "
+                         "cohesion: 0.35 MPa, viscosity: 0.01 MPa*s}";
+  const Scene outer = parse_scene(kExample, kPath, {"effects=[micropolar,viscoplasticity]", vp});
+  EXPECT_EQ(outer.material.viscoplasticity->cone_match, ConeMatch::triaxial_compression);  // the default
+  for (const auto& [value, name] : kConeMatchNames) {
+    const Scene s = parse_scene(kExample, kPath, {"effects=[micropolar,viscoplasticity]", vp,
+                                                  std::string("material.viscoplasticity.cone_match=") + name});
+    EXPECT_EQ(s.material.viscoplasticity->cone_match, value) << name;
+    EXPECT_STREQ(to_string(value), name);
+    EXPECT_NE(resolved_scene_yaml(s).find(std::string("cone_match: ") + name), std::string::npos) << name;
+  }
+  EXPECT_EQ(error_of(kExample, {"material.damage.calibration=latice"}),
+            kPath + ": --set material.damage.calibration=latice: material.damage.calibration: unknown calibration "
+                    "'latice' (expected lattice, continuum or dissipation)");
+  EXPECT_EQ(error_of(replace(kExample, "no_fail_depth: 2 mm}", "no_fail_depth: 2 mm, calibration: bulk}")),
+            kPath + ":19: material.damage.calibration: unknown calibration 'bulk' (expected lattice, continuum or "
+                    "dissipation)");
+  const auto e = error_of(kExample, {"effects=[micropolar,viscoplasticity]", vp,
+                                     "material.viscoplasticity.cone_match=triaxial"});
+  EXPECT_NE(e.find(": material.viscoplasticity.cone_match: unknown match 'triaxial' (expected triaxial-compression "
+                   "or plane-strain)"),
+            std::string::npos) << e;
+}
+
+// The thresholds of numerics: today's values by default, written to the resolved scene, read back,
+// and a bad value names its key.
+TEST(Scene, NumericsThresholdsDefaultEchoAndValidate) {
+  const Scene s = parse_scene(kExample, kPath);
+  EXPECT_EQ(s.numerics.energy_check_start_step, 50);
+  EXPECT_EQ(s.numerics.detach_energy_rise, 0.5);
+  EXPECT_EQ(s.numerics.overload_factor, 1.5);
+  EXPECT_EQ(s.numerics.damaged_frequency_ratio, 3.5);
+  const std::string yaml = resolved_scene_yaml(s);
+  for (const char* line : {"energy_check_start_step: 50", "detach_energy_rise: 0.5", "overload_factor: 1.5",
+                           "damaged_frequency_ratio: 3.5"}) {
+    EXPECT_NE(yaml.find(line), std::string::npos) << line << "\n" << yaml;
+  }
+  const Scene t = parse_scene(kExample, kPath,
+                              {"numerics.energy_check_start_step=200", "numerics.detach_energy_rise=0.25",
+                               "numerics.overload_factor=3", "numerics.damaged_frequency_ratio=2"});
+  const Scene back = parse_scene(resolved_scene_yaml(t), kPath);
+  EXPECT_EQ(back.numerics.energy_check_start_step, 200);
+  EXPECT_EQ(back.numerics.detach_energy_rise, 0.25);
+  EXPECT_EQ(back.numerics.overload_factor, 3.0);
+  EXPECT_EQ(back.numerics.damaged_frequency_ratio, 2.0);
+  const std::pair<const char*, const char*> bad[] = {
+      {"numerics.energy_check_start_step=-1", "numerics.energy_check_start_step: must be >= 0"},
+      {"numerics.energy_check_start_step=2.5", "numerics.energy_check_start_step: \"2.5\" is not an integer"},
+      {"numerics.detach_energy_rise=-0.1", "numerics.detach_energy_rise: -0.10000000000000001 must be >= 0"},
+      {"numerics.detach_energy_rise=inf", "numerics.detach_energy_rise: \"inf\" is not a finite number"},
+      {"numerics.overload_factor=0", "numerics.overload_factor: 0 must be > 0"},
+      {"numerics.damaged_frequency_ratio=0.5", "numerics.damaged_frequency_ratio: 0.5 must be >= 1"},
+      {"numerics.damaged_frequency_ratio=1 mm", "numerics.damaged_frequency_ratio: \"1 mm\" is a length"}};
+  for (const auto& [set, expected] : bad) {
+    const auto e = error_of(kExample, {set});
+    EXPECT_NE(e.find(expected), std::string::npos) << set << ": " << e;
+  }
+}

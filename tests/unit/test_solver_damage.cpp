@@ -26,7 +26,7 @@ constexpr double kDx = 1e-3;
 Scene damage_scene(int dimension, double g_cr) {
   Scene s = testing::make_scene(dimension, true, kDx, dimension == 2 ? 3.05 : 2.05);
   s.effects.damage = true;
-  s.material.damage = DamageParameters{g_cr, 0.0, "lattice", std::nullopt};
+  s.material.damage = DamageParameters{g_cr, 0.0, DamageCalibration::lattice, std::nullopt};
   return s;
 }
 
@@ -298,16 +298,55 @@ TEST(SolverDamage, BadlyConditionedPointIsDetachedForTheTimeStep) {
   }
 }
 
-// A point that stores more than kOverloadedBreakingEnergyMultiple times its family's breaking
-// energy is detached when losing bonds raises its stored energy at all, by less than
-// kEnergyRiseToDetach too; below that multiple, or when its energy falls, it stays (finding 8 of
-// tests/stability/README.md: points crushed at a striker's edges ratcheted up by less than 50 %
-// per loss). The centre of a lattice under u_x = e (s + s^2 / (20 dx)) (s = x - x_centre) loses
-// the bonds on one side: the right side reads a larger strain (its energy rises by 22 %), the left
-// a smaller one (falls by 20 %).
-// The stored energy does not depend on w_cr, so w_cr sets how overloaded the centre is. Every
-// other point is no-fail: the rule is seen on the centre alone, without a cascade (the bonds are
-// left at their critical work by hand: the kernel books no work on bonds with a no-fail end).
+// The centre of a lattice under u_x = e (s + s^2 / (20 dx)) (s = x - x_centre) loses the bonds on
+// one side: the right side reads a larger strain (its energy rises by 22 %), the left a smaller one
+// (falls by 20 %). `load` is its stored energy before the loss over its family's breaking energy:
+// the stored energy does not depend on w_cr, so w_cr sets how overloaded the centre is. Every other
+// point is no-fail: the rule is seen on the centre alone, without a cascade (the bonds are left at
+// their critical work by hand: the kernel books no work on bonds with a no-fail end).
+struct OneSidedLoss {
+  bool detached = false;
+  std::size_t energy_detached = 0;
+  double energy_ratio = 0.0;  // after / before, if not detached
+};
+OneSidedLoss lose_one_side(double load, bool keep_right, const Numerics& numerics = {}) {
+  Scene scene = damage_scene(2, 100.0);
+  scene.numerics = numerics;
+  Model m = testing::make_model(testing::make_lattice(2, {15, 15, 1}, kDx), scene);
+  PointData& p = m.points;
+  BondFamilies& f = m.bonds;
+  const std::size_t centre = 7 * 15 + 7;
+  const double xc = p.position[centre * 2];
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const double s = p.position[i * 2] - xc;
+    p.displacement[i * 2] = 1e-3 * (s + 0.05 * s * s / kDx);
+  }
+  const double before = m.kernel.point_energy(p, f, m.constants, centre).total();
+  m.constants.critical_bond_work = 1.0;
+  m.constants.critical_bond_work = before / (load * family_breaking_energy(p, f, m.constants, centre));
+  EXPECT_NEAR(before / family_breaking_energy(p, f, m.constants, centre), load, 1e-12);
+  std::fill(p.no_fail.begin(), p.no_fail.end(), 1);
+  p.no_fail[centre] = 0;
+  std::fill(p.bonds_broken.begin(), p.bonds_broken.end(), 0);
+  for (std::int64_t b = f.offset[centre]; b < f.offset[centre + 1]; ++b) {
+    double xi[3];
+    bond_vector(f, p, centre, b, xi);
+    if (keep_right ? xi[0] >= 0.0 : xi[0] <= 0.0) continue;
+    leave_as_reached_critical_work(p, f, m.constants, centre, b);
+  }
+  const BreakageUpdate u = update_after_breakage(p, f, m.constants, m.kernel, 0.0, m.breakage_workspace);
+  OneSidedLoss out;
+  out.detached = p.detached[centre];
+  out.energy_detached = u.energy_detached;
+  if (!out.detached) out.energy_ratio = m.kernel.point_energy(p, f, m.constants, centre).total() / before;
+  return out;
+}
+
+// A point that stores more than numerics.overload_factor times its family's breaking energy is
+// detached when losing bonds raises its stored energy at all, by less than
+// numerics.detach_energy_rise too; below that multiple, or when its energy falls, it stays
+// (finding 8 of tests/stability/README.md: points crushed at a striker's edges ratcheted up by
+// less than 50 % per loss).
 TEST(SolverDamage, OverloadedPointIsDetachedWhenLosingBondsRaisesItsEnergyAtAll) {
   struct Case {
     const char* what;
@@ -320,43 +359,49 @@ TEST(SolverDamage, OverloadedPointIsDetachedWhenLosingBondsRaisesItsEnergyAtAll)
                         {"overloaded, energy falls", 2.0, false, false}};
   double rise_ratio = 0.0, fall_ratio = 0.0;
   for (const Case& k : cases) {
-    Model m = testing::make_model(testing::make_lattice(2, {15, 15, 1}, kDx), damage_scene(2, 100.0));
-    PointData& p = m.points;
-    BondFamilies& f = m.bonds;
-    const std::size_t centre = 7 * 15 + 7;
-    const double xc = p.position[centre * 2];
-    for (std::size_t i = 0; i < p.owned; ++i) {
-      const double s = p.position[i * 2] - xc;
-      p.displacement[i * 2] = 1e-3 * (s + 0.05 * s * s / kDx);
-    }
-    const double before = m.kernel.point_energy(p, f, m.constants, centre).total();
-    m.constants.critical_bond_work = 1.0;
-    m.constants.critical_bond_work = before / (k.load * family_breaking_energy(p, f, m.constants, centre));
-    ASSERT_NEAR(before / family_breaking_energy(p, f, m.constants, centre), k.load, 1e-12);
-    std::fill(p.no_fail.begin(), p.no_fail.end(), 1);
-    p.no_fail[centre] = 0;
-    std::fill(p.bonds_broken.begin(), p.bonds_broken.end(), 0);
-    for (std::int64_t b = f.offset[centre]; b < f.offset[centre + 1]; ++b) {
-      double xi[3];
-      bond_vector(f, p, centre, b, xi);
-      if (k.keep_right ? xi[0] >= 0.0 : xi[0] <= 0.0) continue;
-      leave_as_reached_critical_work(p, f, m.constants, centre, b);
-    }
-    const BreakageUpdate u = update_after_breakage(p, f, m.constants, m.kernel, 0.0, m.breakage_workspace);
-    EXPECT_EQ(static_cast<bool>(p.detached[centre]), k.detached) << k.what;
-    EXPECT_EQ(u.energy_detached, k.detached ? 1u : 0u) << k.what;
-    if (!p.detached[centre]) {
-      const double after = m.kernel.point_energy(p, f, m.constants, centre).total();
-      (k.keep_right ? rise_ratio : fall_ratio) = after / before;
-    }
+    const OneSidedLoss r = lose_one_side(k.load, k.keep_right);
+    EXPECT_EQ(r.detached, k.detached) << k.what;
+    EXPECT_EQ(r.energy_detached, k.detached ? 1u : 0u) << k.what;
+    if (!r.detached) (k.keep_right ? rise_ratio : fall_ratio) = r.energy_ratio;
   }
   std::printf("centre's energy after / before the loss: %.4f keeping the right side, %.4f the left\n", rise_ratio,
               fall_ratio);
   // What makes the first case this rule's: a rise the relative margin lets through.
   EXPECT_GT(rise_ratio, 1.0);
-  EXPECT_LT(rise_ratio, 1.0 + kEnergyRiseToDetach);
+  EXPECT_LT(rise_ratio, 1.0 + Numerics{}.detach_energy_rise);
   EXPECT_GT(fall_ratio, 0.0);
   EXPECT_LT(fall_ratio, 1.0);
+}
+
+// The thresholds come from the scene's numerics block: a rise of 22 % detaches a point that is not
+// overloaded once detach_energy_rise is below it, and the overloaded point of the first case above
+// stays once overload_factor is above its load.
+TEST(SolverDamage, DetachThresholdsFollowTheSceneNumerics) {
+  Numerics strict;
+  strict.detach_energy_rise = 0.1;
+  EXPECT_FALSE(lose_one_side(1.0, true).detached);
+  EXPECT_TRUE(lose_one_side(1.0, true, strict).detached);
+  Numerics tolerant;
+  tolerant.overload_factor = 3.0;
+  EXPECT_TRUE(lose_one_side(2.0, true).detached);
+  EXPECT_FALSE(lose_one_side(2.0, true, tolerant).detached);
+}
+
+// A smaller damaged_frequency_ratio allows a larger time step for a damage run (by the square root
+// of the ratio of the two ratios), and a larger stiffness block before a point is detached.
+TEST(SolverDamage, DamagedFrequencyRatioSetsTheDamageTimeStep) {
+  Scene scene = damage_scene(2, 100.0);
+  Model standard = testing::make_model(testing::make_lattice(2, {12, 12, 1}, kDx), scene);
+  scene.numerics.damaged_frequency_ratio = 2.0;
+  Model relaxed = testing::make_model(testing::make_lattice(2, {12, 12, 1}, kDx), scene);
+  const double critical = critical_time_step(standard).step;
+  const double dt_standard = standard.damage_critical_step(critical);
+  const double dt_relaxed = relaxed.damage_critical_step(critical);
+  ASSERT_LT(dt_relaxed, critical);  // still the damage bound, not the start-up critical step
+  EXPECT_NEAR(dt_relaxed / dt_standard, std::sqrt(3.5 / 2.0), 1e-12);
+  standard.set_breakage_time_step(1e-7);
+  relaxed.set_breakage_time_step(1e-7);
+  EXPECT_NEAR(relaxed.block_eigenvalue_limit / standard.block_eigenvalue_limit, 3.5 / 2.0, 1e-12);
 }
 
 }  // namespace

@@ -171,6 +171,24 @@ TEST(SolverRun, EnergyRowsDoNotChangeTheMotion) {
   EXPECT_EQ(read_text(every + "/" + last), read_text(end + "/" + last));
 }
 
+// Energy the balance does not explain (here a negative damping coefficient, whose work the
+// integrator does not book) stops the run from numerics.energy_check_start_step on; a start after
+// the run's last step lets it finish.
+TEST(SolverRun, EnergyCheckStartsAtTheSceneStep) {
+  BarCase c = bar({24, 6, 1}, 3.05);
+  c.scene.numerics.damping = -5e4;
+  c.scene.time.end = 400e-6;  // about 280 steps: the check starts at step 50 by default
+  c.scene.output.interval = 100e-6;
+  c.scene.output.fields = {"displacement"};
+  const std::string tripped = fresh_directory("energy-check-default");
+  EXPECT_THROW(solve(c.scene, c.cloud, options_for(tripped)), NumericalFailure);
+  const std::string info = read_text(tripped + "/" + run_layout::run_info);
+  EXPECT_NE(info.find("energy grew by"), std::string::npos) << info;
+  c.scene.numerics.energy_check_start_step = 1000000;
+  const std::string late = fresh_directory("energy-check-late");
+  EXPECT_NO_THROW(solve(c.scene, c.cloud, options_for(late)));
+}
+
 TEST(SolverRun, NonFiniteStateStopsWithNumericalFailureAndKeepsTheLastGoodSnapshot) {
   BarCase c = bar({24, 6, 1}, 3.05);
   // A velocity history that turns non-finite after 20 us (the guard must catch it, whatever the cause).

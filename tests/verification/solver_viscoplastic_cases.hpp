@@ -50,7 +50,7 @@ inline CompressionCase compression_case(int nx, int ny_body, double end_time, do
   vp.hardening = 0.0;  // perfectly plastic: the load tends to a limit
   vp.residual_cohesion = 1e4;
   vp.viscosity = viscosity;
-  vp.cone_match = "plane-strain";
+  vp.cone_match = ConeMatch::plane_strain;
   c.scene.material.viscoplasticity = vp;
   const int rows = ny_body + 2 * depth;
   c.cloud = make_lattice(2, {nx, rows, 1}, dx, c.scene.thickness);

@@ -83,7 +83,7 @@ Scene dissipation_scene(int dimension, double horizon_factor, double stabilizati
   s.geometry.spacing = dx;
   s.material.lambda = 0.25 * s.material.mu;  // Poisson ratio 0.1
   s.material.mu_c = s.material.mu;
-  s.material.damage = DamageParameters{300.0, 0.0, "dissipation", std::nullopt};
+  s.material.damage = DamageParameters{300.0, 0.0, DamageCalibration::dissipation, std::nullopt};
   s.numerics.stabilization = stabilization;
   return s;
 }
@@ -157,7 +157,7 @@ TEST(SolverCrackEnergy, NoBondBreaksBelowTheThreshold) {
 TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
   for (int d : {2, 3})
     for (double m : {2.05, 3.05, 4.05, 8.05, 16.05}) {
-      DamageParameters lattice{160.0, 0.0, "lattice", std::nullopt};
+      DamageParameters lattice{160.0, 0.0, DamageCalibration::lattice, std::nullopt};
       const double dx = 1e-3, t = 2e-3;
       const double ratio = critical_bond_work(lattice, d, dx, m, t, 0.1) / continuum_critical_bond_work(d, 160.0, m * dx, t);
       std::printf("dimension %d, horizon factor %.2f: lattice / continuum w_cr = %.4f\n", d, m, ratio);
@@ -169,7 +169,7 @@ TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
         EXPECT_NEAR(ratio, 1.0, 0.03);
       }
     }
-  DamageParameters continuum{160.0, 0.0, "continuum", std::nullopt};
+  DamageParameters continuum{160.0, 0.0, DamageCalibration::continuum, std::nullopt};
   EXPECT_DOUBLE_EQ(critical_bond_work(continuum, 2, 1e-3, 3.05, 2e-3, 0.1), continuum_critical_bond_work(2, 160.0, 3.05e-3, 2e-3));
 }
 

@@ -32,7 +32,7 @@ void set_crack_branching_material(Scene& s) {
                                               : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
   s.effects.micropolar = true;
   s.effects.damage = true;
-  s.material.damage = DamageParameters{160.0, 0.0, "lattice", std::nullopt};
+  s.material.damage = DamageParameters{160.0, 0.0, DamageCalibration::lattice, std::nullopt};
 }
 
 CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
