@@ -396,7 +396,7 @@ void BreakageUpdater::refresh_and_measure_release() {
   kernel.refresh_after_breakage(p, f, c, w.sorted);
   for (std::size_t k = 0; k < w.affected.size(); ++k) {
     const std::size_t i = w.affected[k];
-    const PointEnergy elastic = kernel.elastic_energy(p, c, i);
+    const StoredEnergy elastic = kernel.elastic_energy(p, c, i);
     double after = elastic.force_stress + p.stabilization_energy[i];
     if (!p.rotation.empty()) after += elastic.couple_stress;
     u.released_energy += w.energy_before[k] - after;

@@ -155,7 +155,7 @@ void ExplicitDynamics::evaluate_energy() {
   });
   const double kinetic = sums[0], rotational = sums[1], terms = sums[2];
   energy_.kinetic_terms = terms;
-  const InternalEnergy e = internal_energy(model_);
+  const StoredEnergy e = internal_energy(model_);
   energy_.kinetic = kinetic;
   energy_.rotational_kinetic = rotational;
   energy_.elastic = e.elastic();

@@ -216,12 +216,12 @@ MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::s
 // The elastic energies [J] of point i (1/2 V eps_e : sigma, the out-of-plane term of plane strain
 // included, and 1/2 V kap_e : m) for its strain and wryness, with its plastic state as it is.
 template <int D, class Effects>
-PointEnergy elastic_energies(const PointData& p, const CosseratConstants& c, std::size_t i, const Mat<D>& eps,
+StoredEnergy elastic_energies(const PointData& p, const CosseratConstants& c, std::size_t i, const Mat<D>& eps,
                              [[maybe_unused]] const RMat<rotation_components<D>, D>& kap) {
   constexpr int R = rotation_components<D>;
   constexpr int RD = R * D;
   const double vi = p.volume[i];
-  PointEnergy e;
+  StoredEnergy e;
   if constexpr (Effects::viscoplasticity) {
     const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]);
     e.force_stress = vi * viscoplastic::elastic_energy_density<D>(
@@ -244,7 +244,7 @@ PointEnergy elastic_energies(const PointData& p, const CosseratConstants& c, std
 // here rather than stored by the force pass, which saves two doubles per point for a few
 // operations per point on the steps that report energies.
 template <int D, class Effects>
-PointEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants& c, std::size_t i) {
+StoredEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants& c, std::size_t i) {
   constexpr int R = rotation_components<D>;
   if (p.detached[i]) return {};
   const Mat<D> eps = Eigen::Map<const Mat<D>>(&p.strain[i * D * D]);
@@ -258,17 +258,17 @@ PointEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants&
 // energy row. Summed in chunks fixed by the point count (ordered_point_sums), so the same bits for
 // any thread count; the chunks run in parallel (a stress evaluation per point).
 template <int D, class Effects>
-PointEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
+StoredEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
   const auto sums = ordered_point_sums<3>(p.owned, thread_point_loop(p.owned),
                                           [&](std::size_t lo, std::size_t hi, std::array<double, 3>& acc) {
                                             for (std::size_t i = lo; i < hi; ++i) {
-                                              const PointEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
+                                              const StoredEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
                                               acc[0] += e.force_stress;
                                               acc[1] += e.couple_stress;
                                               acc[2] += p.stabilization_energy[i];
                                             }
                                           });
-  PointEnergy sum;
+  StoredEnergy sum;
   sum.force_stress = sums[0];
   sum.couple_stress = sums[1];
   sum.stabilization = sums[2];
@@ -280,11 +280,11 @@ PointEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
 // gives (elastic_energy_of_point and stabilization_energy). Breakage uses it on the few points
 // whose bonds changed, before and after the change (bond_breakage.cpp).
 template <int D, class Effects>
-PointEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
+StoredEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
                                    const CosseratConstants& c, std::size_t i) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
-  PointEnergy e;
+  StoredEnergy e;
   if (p.detached[i]) return e;
   const double vi = p.volume[i];
   const Mat<D> kinv = unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
@@ -438,8 +438,8 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
 // Pass 2 at point i: adds to the own share that pass 1 left in its force and moment the
 // neighbours' shares, bond by bond: sum_j V_j (A_j xi + C:K_j^-1 U) to the force and
 // sum_j V_j [Q_j xi + g_j Om + 1/2 xi x (A_j xi + C:K_j^-1 U)] to the moment. With
-// accumulate_work (damage) also the bond work and the breaking marks; with WithEnergy the point's
-// stabilization energy.
+// accumulate_work (damage) also the bond work and the count of bonds that reach the critical
+// work (points.bonds_broken); with WithEnergy the point's stabilization energy.
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
 MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConstants& c,
                              std::size_t i, [[maybe_unused]] bool accumulate_work) {
@@ -465,7 +465,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
       Effects::damage && polar ? p.previous_rotation.data() : zero_rotation;
   [[maybe_unused]] const double* __restrict a_sum = Effects::damage ? p.force_tensor_sum.data() : nullptr;
   [[maybe_unused]] const double* __restrict q_sum = Effects::damage && polar ? p.moment_tensor_sum.data() : nullptr;
-  // Point i's values in locals: the loop's stores (bond work, breaking marks) could alias the arrays,
+  // Point i's values in locals: the loop's stores (the bond work) could alias the arrays,
   // which would make the compiler reload them for every bond.
   double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0};
   for (int k = 0; k < D; ++k) ui[k] = u[i * D + k];
@@ -505,7 +505,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   // With energies (the steps that report them), the stabilization energy from the same bonds.
   [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   // One bond; with Work (damage, a bond to a higher index from a point that books work) also its
-  // work increment and breaking mark.
+  // work increment and its count if it reaches the critical work.
   auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
     // Nothing writes the neighbour lists during the force pass: a bond that reaches its critical
     // work here still acts in this evaluation, and update_after_breakage breaks it afterwards.

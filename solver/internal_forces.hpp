@@ -1,5 +1,5 @@
 // Entry point of the internal-force kernel for a runtime effect set: the instantiation is chosen
-// once (compute_internal_forces_function) and then called every step.
+// once (internal_force_functions, when the model is built) and then called every step.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -9,27 +9,25 @@
 #include "solver/cosserat_material.hpp"
 #include "solver/step_advance.hpp"
 #include "solver/point_data.hpp"
+#include "solver/stored_energy.hpp"
 
 namespace mppm::solver {
 
 // The last argument advances the history-dependent state by one step: the viscoplastic state,
-// and with damage the bond work and breakage (nullptr: frozen, bonds as they are). The bonds are
-// written only with damage (the `intact` flags and the work).
+// and with damage the bond work, with the bonds that reach the critical work counted in
+// points.bonds_broken (nullptr: frozen). The force pass writes no neighbour list: the bonds it
+// counts are broken afterwards (update_after_breakage); of the bonds it writes only their work.
 using InternalForceFunction = void (*)(PointData&, BondFamilies&, const CosseratConstants&, const StepAdvance*);
 
-// The energy stored at one point with its bonds and state as they are (kernel::PointEnergy).
-struct PointEnergy {
-  double force_stress = 0.0, couple_stress = 0.0, stabilization = 0.0;
-  double total() const { return force_stress + couple_stress + stabilization; }
-};
-using PointEnergyFunction = PointEnergy (*)(const PointData&, const BondFamilies&, const CosseratConstants&,
-                                            std::size_t point);
+// The energy stored at one point with its bonds and state as they are (kernel::stored_energy_of_point).
+using PointEnergyFunction = StoredEnergy (*)(const PointData&, const BondFamilies&, const CosseratConstants&,
+                                             std::size_t point);
 // The elastic energies of one point at the strain and wryness of the last evaluation
 // (kernel::elastic_energy_of_point; its stabilization is 0: see PointData::stabilization_energy).
-using ElasticEnergyFunction = PointEnergy (*)(const PointData&, const CosseratConstants&, std::size_t point);
+using ElasticEnergyFunction = StoredEnergy (*)(const PointData&, const CosseratConstants&, std::size_t point);
 // Their sums over the owned points, and the sum of the stabilization energies of the last
 // evaluation with energies: the stored energy of an energy row (kernel::stored_energy_sums).
-using StoredEnergySumFunction = PointEnergy (*)(const PointData&, const CosseratConstants&);
+using StoredEnergySumFunction = StoredEnergy (*)(const PointData&, const CosseratConstants&);
 
 // Damage: the forces (and energies) again after bonds broke, for the listed points whose families
 // changed (sorted) and their neighbours (kernel::refresh_after_breakage).

@@ -147,13 +147,8 @@ void Model::set_breakage_time_step(double dt) {
   block_eigenvalue_limit = 4.0 / (dt * dt) / constants.damaged_frequency_ratio;
 }
 
-InternalEnergy internal_energy(const Model& model) {
-  InternalEnergy e;
-  const PointEnergy stored = model.kernel.stored_energy_sums(model.points, model.constants);
-  e.force_stress = stored.force_stress;
-  e.couple_stress = stored.couple_stress;  // 0 without micropolar
-  e.stabilization = stored.stabilization;
-  return e;
+StoredEnergy internal_energy(const Model& model) {
+  return model.kernel.stored_energy_sums(model.points, model.constants);
 }
 
 }  // namespace mppm::solver

@@ -87,13 +87,6 @@ Model build_model(PointCloud&& cloud, const ModelOptions& options);
 
 // Totals of the per-point energies of the last evaluation with energies [J], summed in chunks
 // fixed by the point count (ordered_point_sums.hpp: the same result for any thread count).
-struct InternalEnergy {
-  double force_stress = 0.0;   // 1/2 eps:sigma
-  double couple_stress = 0.0;  // 1/2 kap:m (elastic parts; plane strain: sigma_zz term included)
-  double stabilization = 0.0;
-  double elastic() const { return force_stress + couple_stress; }
-  double total() const { return force_stress + couple_stress + stabilization; }
-};
-InternalEnergy internal_energy(const Model& model);
+StoredEnergy internal_energy(const Model& model);
 
 }  // namespace mppm::solver

@@ -67,7 +67,8 @@ struct PointData {
   std::vector<std::size_t> precut_points;
   std::vector<double> precut_family_volume;
   std::vector<std::uint8_t> no_fail;         // 1: the bonds of this point never break
-  // Bonds that broke in the last step, counted at their lower-index end (both ends are marked 2).
+  // The bonds that reached the critical work in the last advancing force evaluation, counted at
+  // their lower-index end (pass 2 of the force kernel); update_after_breakage breaks them.
   std::vector<std::int32_t> bonds_broken;
   // The state of the previous force evaluation, for the trapezoid rule on the bond work (the
   // pair force of a bond is rebuilt from these per-point arrays instead of being stored per bond):

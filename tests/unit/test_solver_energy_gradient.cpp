@@ -34,7 +34,7 @@ void check_gradient(int dimension, bool micropolar, std::array<int, 3> n, double
   for (auto& u : m.points.displacement) u = 1e-4 * kDx * g(rng);
   for (auto& w : m.points.rotation) w = 1e-4 * g(rng);
   m.compute_internal_forces(true);
-  const InternalEnergy e0 = internal_energy(m);
+  const StoredEnergy e0 = internal_energy(m);
   ASSERT_GT(e0.stabilization, 1e-3 * e0.total()) << "the stabilization must be exercised";
   if (micropolar) {
     ASSERT_GT(e0.couple_stress, 1e-3 * e0.total());

@@ -168,7 +168,7 @@ TEST(SolverPatch, RigidTranslationAndRotationAreStrainFree) {
                           kExact * theta_size);
       }
       EXPECT_LT(max_abs(m.points.force), 1e-10 * force_scale) << "D=" << D << " micropolar=" << micropolar;
-      const InternalEnergy e = internal_energy(m);
+      const StoredEnergy e = internal_energy(m);
       // Round-off only: the stress of a rotation is a difference of equal terms, exact without
       // fused multiply-adds and a few units in the last place of mu theta with them (the force
       // kernel uses them where the processor has them), so the energy is that rounding times
