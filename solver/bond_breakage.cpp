@@ -288,7 +288,7 @@ void BreakageUpdater::record(std::size_t i) {
 }
 
 // The shape tensors of the changed points recomputed; the points they left singular, and those
-// whose stored energy rose too much (kEnergyRiseToDetach, kOverloadedBreakingEnergyMultiple),
+// whose stored energy rose too much (numerics.detach_energy_rise, numerics.overload_factor),
 // detached (w.detach).
 void BreakageUpdater::detach_on_energy_rise() {
   const std::vector<std::size_t>& changed = w.changed;
