@@ -1,4 +1,4 @@
-// The shared command-line contract of the three stages (SCENE.md): positional arguments,
+// The shared command-line contract of the three stages (docs/stages.md): positional arguments,
 // `-o`, `--set key.path=value` (repeatable), `--threads N`, `--quiet`, `--help`, `--version`,
 // plus stage-specific options declared by each main.
 #pragma once

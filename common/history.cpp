@@ -1,4 +1,4 @@
-// Piecewise-linear time histories of boundary values (SPEC section 8).
+// Piecewise-linear time histories of boundary values (docs/theory.md section 8).
 #include <algorithm>
 #include <cstddef>
 

@@ -18,7 +18,7 @@ class NumericalFailure : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Exit codes of SCENE.md.
+// Exit codes of docs/stages.md.
 inline constexpr int kExitSuccess = 0;
 inline constexpr int kExitOther = 1;
 inline constexpr int kExitBadInput = 2;

@@ -1,5 +1,5 @@
 // POINTS.vtp: the VTK XML PolyData file that carries material points from the preprocessor to
-// the solver (SCENE.md "Files between stages"). Binary appended, zlib-compressed, written
+// the solver (docs/stages.md "Files between stages"). Binary appended, zlib-compressed, written
 // atomically by VTK's writer; read by our strict reader (vtk_xml_reader.hpp), which trusts
 // nothing and names the file and the problem in every error.
 #include "common/point_cloud.hpp"

@@ -1,4 +1,4 @@
-// The material points handed from the preprocessor to the solver (POINTS.vtp, SCENE.md).
+// The material points handed from the preprocessor to the solver (POINTS.vtp, docs/stages.md).
 // Structure of arrays; positions in metres; 2-D clouds have z = 0.
 #pragma once
 #include <array>

@@ -1,4 +1,4 @@
-// Pre-crack cuts (SPEC section 8): does the straight bond between two material points cross a
+// Pre-crack cuts (docs/theory.md section 8): does the straight bond between two material points cross a
 // pre-crack (2-D: segments of a curve, 3-D: triangles of a surface, as stored in
 // PointCloud::precrack_vertices)? Exact predicates (CGAL), so the same bonds are cut on every
 // machine and for every thread count. Free of gmsh so that the solver can use it.

@@ -1,4 +1,4 @@
-// Files of a run directory other than snapshots (SCENE.md "Files between stages"):
+// Files of a run directory other than snapshots (docs/stages.md "Files between stages"):
 // the contract between mppm-solve (writer) and mppm-postprocess / restart (readers).
 //
 // load.csv   header: time_s, then for every loaded boundary NAME (scene order) its mean

@@ -986,7 +986,7 @@ double Material::micro_inertia() const {
 }
 
 double Material::bending_modulus(int dimension) const {
-  // 2-D: a3 (SPEC section 5). 3-D: a2, the modulus of m_zx = a2 w_z,x, i.e. of a rotation that
+  // 2-D: a3 (docs/theory.md section 5). 3-D: a2, the modulus of m_zx = a2 w_z,x, i.e. of a rotation that
   // varies across its own axis (the transverse twist the stabilization controls).
   return dimension == 2 ? couple_moduli[2] : couple_moduli[1];
 }

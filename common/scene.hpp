@@ -1,4 +1,4 @@
-// The scene: one YAML file that describes a simulation completely (SCENE.md).
+// The scene: one YAML file that describes a simulation completely (docs/scene.md).
 // Everything here is resolved: SI units, every default filled in, paths absolute.
 #pragma once
 #include <array>
@@ -12,7 +12,7 @@
 
 namespace mppm {
 
-// The effects a scene can call for (SPEC section 10).
+// The effects a scene can call for (docs/theory.md section 10).
 struct EffectSet {
   bool micropolar = false;
   bool viscoplasticity = false;
@@ -48,7 +48,7 @@ struct History {
 enum class BoundaryType { velocity, displacement, traction, pressure };
 const char* to_string(BoundaryType type);
 
-// True for conditions carried by a fictitious layer outside the body (SPEC section 8).
+// True for conditions carried by a fictitious layer outside the body (docs/theory.md section 8).
 inline bool is_kinematic(BoundaryType type) {
   return type == BoundaryType::velocity || type == BoundaryType::displacement;
 }
@@ -69,7 +69,7 @@ struct BoundaryCondition {
 };
 
 // How w_cr follows from G_cr (solver/bond_breakage.hpp): `lattice` (the bonds of the lattice that
-// cross a plane between two rows cost G_cr per unit area), `continuum` (SPEC section 7's closed
+// cross a plane between two rows cost G_cr per unit area), `continuum` (docs/theory.md section 7's closed
 // forms, their limit for a large horizon factor) or `dissipation` (lattice / rho: a running crack
 // then dissipates G_cr per unit area; solver/damage_calibration.hpp).
 enum class DamageCalibration { lattice, continuum, dissipation };
@@ -143,9 +143,9 @@ struct Material {
   std::optional<ViscoplasticParameters> viscoplasticity;
 
   double partial_density() const { return solid_fraction * density; }       // rho [kg/m^3]
-  // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (SPEC section 4).
+  // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (docs/theory.md section 4).
   double micro_inertia() const;
-  // Effective bending modulus B_w [N]: a3 in 2-D (SPEC section 5); a2 in 3-D.
+  // Effective bending modulus B_w [N]: a3 in 2-D (docs/theory.md section 5); a2 in 3-D.
   double bending_modulus(int dimension) const;
 };
 

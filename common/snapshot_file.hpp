@@ -60,7 +60,7 @@ std::string write_snapshot_temporary(int dimension, std::int64_t step, double ti
 // Throws InputError naming the file and what is wrong (missing, truncated, bad checksum).
 Snapshot read_snapshot(const std::string& path);
 
-// Run directory layout (SCENE.md):
+// Run directory layout (docs/stages.md):
 //   scene.resolved.yaml, log.txt, load.csv, energy.csv, run_info.json,
 //   reference.snap   (fields: position(3), volume, region, boundary_id: the points as run)
 //   snapshots/snapshot_000000.snap, ...   (step number in the name, 6+ digits)

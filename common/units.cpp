@@ -208,7 +208,7 @@ Quantity parse_quantity(std::string_view text_in) {
 
 double parse_quantity_as(std::string_view text, const Dimension& expected) {
   const Quantity q = parse_quantity(text);
-  // A bare number is SI of whatever dimension is expected (SCENE.md "Quantities").
+  // A bare number is SI of whatever dimension is expected (docs/scene.md "Quantities").
   const auto t = trim(text);
   double ignored = 0.0;
   if (const auto r = std::from_chars(t.data(), t.data() + t.size(), ignored); r.ptr == t.data() + t.size()) return q.value;

@@ -1,4 +1,4 @@
-// Crack-branching plate (CASES.md case 2), in METRES (scenes: geometry.unit: m).
+// Crack-branching plate (workflows/crack-branching/README.md), in METRES (scenes: geometry.unit: m).
 // 100 mm (x) by 40 mm (y); a zero-width pre-crack `notch` runs from the middle of the left
 // edge to the plate centre. The notch is a separate curve (not embedded): the preprocessor only
 // needs its geometry to cut bonds, and the body stays a plain rectangle. It lies at y = 20 mm,

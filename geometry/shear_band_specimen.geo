@@ -1,4 +1,4 @@
-// Biaxial shear-band specimen (CASES.md case 1), in METRES (scenes: geometry.unit: m).
+// Biaxial shear-band specimen (workflows/shear-band/README.md), in METRES (scenes: geometry.unit: m).
 // 100 mm wide (x) by 200 mm tall (y); at dx = 2.5 mm the lattice is 40 x 80 points.
 W = 0.100;
 H = 0.200;

@@ -1,6 +1,6 @@
-// Crack metrics of SCENE.md "Metrics": crack start, branching and end times, the largest tip
+// Crack metrics of docs/stages.md "Metrics": crack start, branching and end times, the largest tip
 // speed and the grown crack length, from the damage field of a snapshot series.
-// Crack path = points with damage >= 0.35 (SPEC section 7). The pre-crack is the cracked set
+// Crack path = points with damage >= 0.35 (docs/theory.md section 7). The pre-crack is the cracked set
 // of the first snapshot (a run directory does not carry the notch geometry).
 // Tips: cracked points connected to the pre-crack whose path length along the crack (shortest
 // path through cracked points) is a local maximum within one horizon, clustered so that tips
@@ -19,7 +19,7 @@ struct CrackSettings {
   double horizon = 0.0;            // delta [m]
   double damage_threshold = 0.35;  // crack path: damage >= this
   double stop_duration_s = 5e-6;   // "every tip stops for 5 us"
-  // Derived lengths (SCENE.md): start when the leading tip advanced 2 dx; branching needs two
+  // Derived lengths (docs/stages.md): start when the leading tip advanced 2 dx; branching needs two
   // tips more than 2 delta apart; a tip "reaches a boundary" within 2 dx of it.
 };
 

@@ -1,4 +1,4 @@
-// Field name -> SI unit (SCENE.md field names; couple stress is a moment per area: N m/m^2).
+// Field name -> SI unit (docs/stages.md field names; couple stress is a moment per area: N m/m^2).
 #include "postprocess/field_units.hpp"
 
 #include <map>

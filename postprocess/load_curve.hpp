@@ -1,6 +1,6 @@
 // Load curves: the run's load.csv (every component of every loaded boundary) reduced to one
 // displacement and one force per boundary along its loading axis, the main loaded boundary
-// and its peak load (SCENE.md "Metrics").
+// and its peak load (docs/stages.md "Metrics").
 #pragma once
 #include <optional>
 #include <string>

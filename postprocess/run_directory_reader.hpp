@@ -1,4 +1,4 @@
-// Opening a run directory written by mppm-solve (common/run_directory.hpp, SCENE.md) and
+// Opening a run directory written by mppm-solve (common/run_directory.hpp, docs/stages.md) and
 // checking it before any output is written: run_info.json, the resolved scene, the reference
 // points and the list of snapshots. Every problem is an InputError naming the file.
 #pragma once

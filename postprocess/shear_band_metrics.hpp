@@ -1,4 +1,4 @@
-// Shear-band metrics of SCENE.md "Metrics": the inclination of each band to the x axis and the
+// Shear-band metrics of docs/stages.md "Metrics": the inclination of each band to the x axis and the
 // band width, measured from the equivalent plastic shear strain field of a 2-D run.
 // A pure function on plain arrays, so the tests can validate it on synthetic fields.
 #pragma once

@@ -45,7 +45,7 @@ LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>
   tags.facet.assign(n, -1);
   tags.distance.assign(n, std::numeric_limits<double>::infinity());
   // Lattice points exactly at the depth belong to the layer (like family members exactly on
-  // the horizon sphere, SPEC section 1).
+  // the horizon sphere, docs/theory.md section 1).
   const double slack = 1e-9 * grid.spacing;
   const int d = grid.dimension;
   for (const LayerRequest& request : requests) {

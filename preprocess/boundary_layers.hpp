@@ -1,4 +1,4 @@
-// Boundary layers (SPEC section 8, SCENE.md):
+// Boundary layers (docs/theory.md section 8, docs/scene.md):
 // - kinematic (velocity/displacement) boundary k: the lattice points OUTSIDE the body within
 //   `depth` (>= the horizon) of its facets form the fictitious layer, region = k;
 // - traction/pressure boundary k: the lattice points INSIDE within the traction depth of its

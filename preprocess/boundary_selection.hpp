@@ -1,5 +1,5 @@
 // From a scene Selector (physical group name, gmsh entity tags, or box) to the facets it means
-// (SCENE.md). An unknown group or an empty selection is an InputError that names the scene
+// (docs/scene.md). An unknown group or an empty selection is an InputError that names the scene
 // entry and the geometry file and lists what the geometry does offer.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// The uniform lattice: cell centres of a grid aligned with the body's bounding box (SCENE.md:
+// The uniform lattice: cell centres of a grid aligned with the body's bounding box (docs/scene.md:
 // a 100 x 40 mm plate at 0.5 mm gives exactly 200 x 80 points), optionally padded by whole cells
 // on every side to hold the fictitious boundary layers.
 #pragma once

@@ -1,5 +1,5 @@
 // The preprocessing stage as a library call: scene -> geometry (gmsh) -> lattice points with
-// boundary layers, loaded-boundary tags and pre-crack geometry (SCENE.md, SPEC section 8).
+// boundary layers, loaded-boundary tags and pre-crack geometry (docs/scene.md, docs/theory.md section 8).
 // mppm-preprocess is a thin main around it; tests call it directly.
 #pragma once
 #include <cstdint>

@@ -199,7 +199,7 @@ BreakageUpdate BreakageUpdater::run() {
   for (const std::int64_t b : w.breaking) f.break_bond(b);
 
   // Points to detach, found after the shape tensors of the changed points are recomputed:
-  //  - a singular shape tensor (SPEC section 2);
+  //  - a singular shape tensor (docs/theory.md section 2);
   //  - a stored energy more than numerics.detach_energy_rise (default 0.5) above the one before the point lost its
   //    bonds: breaking bonds takes energy out, but a point left with a lopsided family
   //    renormalizes its shape tensor and can read a larger strain from the bonds it kept, which
@@ -367,7 +367,7 @@ void BreakageUpdater::break_bonds_of_detached() {
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       if (!f.acting(b)) continue;
       const auto j = static_cast<std::size_t>(f.neighbor[b]);
-      // A bond with a no-fail end never breaks (SPEC section 7), not even here: the detached
+      // A bond with a no-fail end never breaks (docs/theory.md section 7), not even here: the detached
       // point stays tied to the protected boundary by it (its own stress is zero; the pair
       // force is then the no-fail point's alone).
       if (j < p.owned && p.no_fail[j]) continue;

@@ -1,4 +1,4 @@
-// Energy-based bond breakage (SPEC section 7): the critical bond work calibrated from G_cr, the
+// Energy-based bond breakage (docs/theory.md section 7): the critical bond work calibrated from G_cr, the
 // no-fail zone, the damage field, and the bookkeeping after a step in which bonds broke. The
 // work of each bond is accumulated by the force kernel (internal_force_kernel.hpp), which is
 // where the pair force is at hand; the kernel only counts the bonds that reached the critical
@@ -17,7 +17,7 @@
 namespace mppm::solver {
 
 // w_cr [J/m^6] such that breaking every bond across a plane costs G_cr per unit area of it, for a
-// constant critical work. "continuum" (SPEC section 7): 3-D 4 G_cr / (pi delta^4); 2-D
+// constant critical work. "continuum" (docs/theory.md section 7): 3-D 4 G_cr / (pi delta^4); 2-D
 // 3 G_cr / (2 t delta^3), t the thickness of the plane-strain slice (the point volumes dx^2 t
 // carry it). "lattice" (default): the same statement for the bonds of the lattice itself, whose
 // crossing sum differs from the continuum one by -21 % to +17 % at the usual horizon factors

@@ -1,4 +1,4 @@
-// Families within the horizon (SPEC section 1), stored from both ends in CSR form: the bonds of
+// Families within the horizon (docs/theory.md section 1), stored from both ends in CSR form: the bonds of
 // owned point i are offset[i] .. offset[i+1]-1, each with its neighbour's local index. The
 // reference bond vector xi = x_j - x_i is computed from the positions where it is needed (the
 // same bits as a stored one, and 8 D bytes per bond less to store and stream); only periodic

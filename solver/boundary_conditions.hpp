@@ -1,4 +1,4 @@
-// Boundary conditions on the preprocessor's layers (SPEC section 8): kinematic conditions
+// Boundary conditions on the preprocessor's layers (docs/theory.md section 8): kinematic conditions
 // (velocity / displacement, optional micro-rotation) prescribe the motion of the fictitious
 // layer points of region k = condition k-1; tractions and pressures become a body force
 // density b = t_bar A / sum V on the body points with boundary_id k.

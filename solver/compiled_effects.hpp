@@ -1,4 +1,4 @@
-// The effect set as a compile-time type (SPEC section 10): kernels are templated on it so that
+// The effect set as a compile-time type (docs/theory.md section 10): kernels are templated on it so that
 // an effect that is off is compiled out (no memory, no loop work), and a runtime EffectSet is
 // turned into the matching instantiation exactly once, when the model is built.
 #pragma once

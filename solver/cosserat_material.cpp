@@ -1,4 +1,4 @@
-// Derivation of the Cosserat constants from the scene (SPEC sections 4-5).
+// Derivation of the Cosserat constants from the scene (docs/theory.md sections 4-5).
 #include "solver/cosserat_material.hpp"
 
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// Material constants of the elastic Cosserat solid as the kernels use them (SPEC sections 3-5),
+// Material constants of the elastic Cosserat solid as the kernels use them (docs/theory.md sections 3-5),
 // derived once from the scene, plus the constitutive laws sigma(eps) and m(kap).
 #pragma once
 #include <string>
@@ -16,7 +16,7 @@ struct CosseratConstants {
   double mu = 0.0;
   double mu_c = 0.0;                 // 0 when micropolar is off (classical symmetric stress)
   double a1 = 0.0, a2 = 0.0, a3 = 0.0;
-  // Effective bending modulus B_w: 2-D a3 (SPEC section 5 convention); 3-D a2, the coefficient
+  // Effective bending modulus B_w: 2-D a3 (docs/theory.md section 5 convention); 3-D a2, the coefficient
   // of kap:kap, which is what a plane wryness field w_z,x sees in the 3-D law.
   double bending_modulus = 0.0;
   double density = 0.0;              // rho = solid_fraction * material.density [kg/m^3]

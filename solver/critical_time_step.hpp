@@ -1,4 +1,4 @@
-// The stable time step of the explicit scheme (SPEC section 9): the largest eigenvalue of
+// The stable time step of the explicit scheme (docs/theory.md section 9): the largest eigenvalue of
 // M^-1 K of the actual discrete operator (stabilization included) by a Lanczos (Krylov-refined
 // power) iteration, plus the same for the translational block (w = 0) and the rotational block
 // (u = 0) to name the mode that limits the step and the parameter that drives it.

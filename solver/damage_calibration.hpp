@@ -1,7 +1,7 @@
 // The `dissipation` calibration of the damage effect: the measured share rho of the breaking work
 // that a running crack's breaks remove from the model, per dimension, horizon factor and
 // stabilization coefficient. With w_cr = w_cr(lattice) / rho the crack dissipates G_cr per unit
-// new area (SPEC section 7's verification) instead of rho G_cr.
+// new area (docs/theory.md section 7's verification) instead of rho G_cr.
 //
 // Why rho < 1: a correspondence point that loses bonds renormalizes its shape tensor and keeps the
 // strain of its remaining family, so it keeps part of the energy the broken bonds carried; that

@@ -1,4 +1,4 @@
-// The running energy check of a run (SPEC section 9): energy growth that the external work does
+// The running energy check of a run (docs/theory.md section 9): energy growth that the external work does
 // not explain stops the run. Relative to the largest energy seen so far, so that round-off in a
 // run whose energy is (still, or again) near zero is never mistaken for growth; the scale also
 // holds the size of the kinetic-energy terms (EnergyState::kinetic_terms), so that the round-off

@@ -1,4 +1,4 @@
-// Explicit central-difference integration of u and w (SPEC section 9, velocity-Verlet form:
+// Explicit central-difference integration of u and w (docs/theory.md section 9, velocity-Verlet form:
 // half kick, drift, prescribe, forces, half kick) with the energy bookkeeping of the run:
 // kinetic (translational, rotational), stored elastic, stabilization, and the external work of
 // surface loads, gravity and the prescribed layers (trapezoid rule on force . increment), and

@@ -1,4 +1,4 @@
-// The hot kernel: internal force and moment per unit volume of every owned point (SPEC
+// The hot kernel: internal force and moment per unit volume of every owned point (docs/theory.md
 // sections 2-4), in two passes over the CSR bonds.
 //   pass 1 (per point i): eps_i, kap_i from the composite state and the relative rotation,
 //     sigma_i, m_i, and the per-point tensors A_i = sigma_i K_i^-1 - G_s (C:K_i^-1) eps_i and
@@ -12,7 +12,7 @@
 // Templated on dimension and on the compile-time effect set: an effect that is off costs nothing.
 // Viscoplasticity: sigma = C : (eps - eps_vp), m = m(kap - kap_vp); with a StepAdvance, pass 1
 // first advances each point's plastic state by the return map (once per time step).
-// Damage (SPEC section 7): broken bonds are skipped; with a StepAdvance, pass 2 also adds to each
+// Damage (docs/theory.md section 7): broken bonds are skipped; with a StepAdvance, pass 2 also adds to each
 // bond's work W_ij the trapezoid-rule increment 1/2 (t_old + t) . (U - U_old) + 1/2 (m_old + m) .
 // (Om - Om_old) of its pair force t = T_ij - T_ji and pair moment m = M_ij - M_ji, and counts it
 // as breaking when W_ij >= w_cr (update_after_breakage breaks it). The old pair force is rebuilt
@@ -52,7 +52,7 @@ using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
 #define MPPM_INLINE inline __attribute__((always_inline))
 
 // U = (u_j - u_i) - 1/2 (w_i + w_j) x xi: the composite state, with the MINUS sign of the fix in
-// SPEC section 2 (with `+` a rigid rotation u = theta x x, w = theta would not be strain free).
+// docs/theory.md section 2 (with `+` a rigid rotation u = theta x x, w = theta would not be strain free).
 // Without micropolar, U = u_j - u_i.
 template <int D, int R, bool Polar>
 MPPM_INLINE void composite_state(const double* ui, const double* uj, const double* wi,
@@ -84,7 +84,7 @@ MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, dou
   }
 }
 
-// Twice the stabilization energy density of a point (SPEC section 3), sum_j V_j [z_u . (G_s C:K_i^-1)
+// Twice the stabilization energy density of a point (docs/theory.md section 3), sum_j V_j [z_u . (G_s C:K_i^-1)
 // z_u + g_i |z_w|^2] with z_u = U - eps_i xi and z_w = (w_j - w_i) - kap_i xi. Gathered bond by bond
 // as the second moments uu = sum_j V_j U (x) U (upper triangle) and ww = sum_j V_j |w_j - w_i|^2, four
 // multiply-adds per bond in 2-D (a z per bond was eleven): with eps_i = S K_i^-1 (S = sum_j V_j

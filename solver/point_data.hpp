@@ -59,7 +59,7 @@ struct PointData {
   std::vector<double> plastic_dissipation;        // [J] of the last step (trapezoid rule)
   std::vector<std::uint8_t> plastic_active;       // 1 inside material.viscoplasticity.region
 
-  // Damage state (allocated only when the effect is on, SPEC section 7).
+  // Damage state (allocated only when the effect is on, docs/theory.md section 7).
   // The family volume sum_j V_j before the pre-crack cuts of the points that lost bonds to them
   // (sorted by point); any other point's is the sum over its whole list, broken bonds included
   // (family_volume_of in bond_breakage.hpp), so that the points away from a pre-crack, nearly

@@ -1,7 +1,7 @@
 // The stiffness block of one point's degrees of freedom in closed form (point_stability.hpp).
 //
 // A field that moves only point i, u_i = a, w_i = theta (q = (a, theta)), strains two kinds of
-// points (SPEC sections 2-3; c_i = K_i^-1 s_i with s_i = sum_j b V_j xi_ij, F_i = sum_j b V_j):
+// points (docs/theory.md sections 2-3; c_i = K_i^-1 s_i with s_i = sum_j b V_j xi_ij, F_i = sum_j b V_j):
 //  - point i: U_ij = -a - 1/2 theta x xi_ij for every bond, so eps_i = -a (x) c_i - 1/2 [theta]_x,
 //    kap_i = -theta (x) c_i, and the stabilization residuals z_ij = -a (1 - c_i . xi_ij),
 //    zw_ij = -theta (1 - c_i . xi_ij) give 1/2 V_i (F_i - s_i . c_i)(a . Ck_i a + g_i |theta|^2);

@@ -1,7 +1,7 @@
 // Stability of a point after its bonds changed (damage). Breaking bonds leaves lopsided families
 // whose shape tensor K_i is nearly singular; K_i^-1 then amplifies the point's stiffness and the
 // critical time step of the run falls below the step in use (measured: 0.8 -> 0.4 of the start-up
-// critical step in a strip whose crack ran, and the run blew up). SPEC section 2 detaches points
+// critical step in a strip whose crack ran, and the run blew up). docs/theory.md section 2 detaches points
 // whose K_i is singular; this module decides when K_i is too badly conditioned for the run's step.
 //
 // The measure is the largest eigenvalue of M_i^-1 H_i, H_i the block of the stiffness matrix of

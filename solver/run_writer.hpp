@@ -1,4 +1,4 @@
-// The run directory of mppm-solve (SCENE.md, common/run_directory.hpp, common/snapshot_file.hpp):
+// The run directory of mppm-solve (docs/stages.md, common/run_directory.hpp, common/snapshot_file.hpp):
 // resolved scene, reference points, snapshots, load.csv, energy.csv, log.txt, run_info.json.
 // Tables and the log are kept in memory and rewritten atomically (flush) after snapshots, at most
 // once a second of wall time, and at checkpoints, stops and the end (solve_run.cpp), so no file is

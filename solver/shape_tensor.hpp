@@ -1,5 +1,5 @@
 // Shape tensors K_i = sum_j b w (xi (x) xi) V_j, their inverses, the stabilization tensors built
-// from them, and the detection of detached points (SPEC sections 2-3).
+// from them, and the detection of detached points (docs/theory.md sections 2-3).
 #pragma once
 #include <cstddef>
 #include <vector>

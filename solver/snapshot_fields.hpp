@@ -1,4 +1,4 @@
-// The fields a snapshot can hold, computed from the model's state on demand (SCENE.md
+// The fields a snapshot can hold, computed from the model's state on demand (docs/stages.md
 // output.fields): only fields the run has are written; the others are reported once.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// The mppm-solve command line (SCENE.md "Commands").
+// The mppm-solve command line (docs/stages.md "Commands").
 #include "solver/solve_command.hpp"
 
 #include <iostream>

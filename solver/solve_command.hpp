@@ -1,4 +1,4 @@
-// The mppm-solve command line (SCENE.md) as a library function, so that tests can check its
+// The mppm-solve command line (docs/stages.md) as a library function, so that tests can check its
 // exit codes and messages without starting a process.
 #pragma once
 

@@ -1,4 +1,4 @@
-// One run of mppm-solve as a library call: scene + points -> run directory (SCENE.md).
+// One run of mppm-solve as a library call: scene + points -> run directory (docs/stages.md).
 // Throws InputError for bad input (exit 2) and NumericalFailure after writing the run
 // directory up to the last good snapshot (exit 3).
 #pragma once

@@ -1,4 +1,4 @@
-// The per-point pieces of the viscoplastic force evaluation (SPEC section 6): the stress of the
+// The per-point pieces of the viscoplastic force evaluation (docs/theory.md section 6): the stress of the
 // elastic strain eps - eps_vp (in plane strain with the out-of-plane eps_e,zz = -eps_vp,zz),
 // and the return-map step of one point with its dissipation. Called from pass 1 of the kernel;
 // each point reads and writes only its own state, so the result is the same on any thread count.
@@ -62,7 +62,7 @@ inline ElasticStress<D> elastic_stress(const ElasticStrain<D>& e, const Cosserat
   return s;
 }
 
-// 1/2 eps_e : sigma per unit volume, the out-of-plane term included (SPEC section 9 energy).
+// 1/2 eps_e : sigma per unit volume, the out-of-plane term included (docs/theory.md section 9 energy).
 template <int D>
 inline double elastic_energy_density(const ElasticStrain<D>& e, const ElasticStress<D>& s) {
   double sum = e.in_plane.cwiseProduct(s.in_plane).sum();

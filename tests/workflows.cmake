@@ -6,7 +6,7 @@ add_test(NAME workflows.quickstart_end_to_end
           MPPM_BIN=${CMAKE_BINARY_DIR}/bin OUT=${CMAKE_BINARY_DIR}/workflow-runs/quickstart THREADS=2)
 set_tests_properties(workflows.quickstart_end_to_end PROPERTIES LABELS "regression" TIMEOUT 600)
 
-# The shear-band case (workflows/shear-band, CASES.md case 1) in its reduced form: the five runs
+# The shear-band case (workflows/shear-band, workflows/shear-band/README.md) in its reduced form: the five runs
 # of the friction and dilatancy sweeps on the case's lattice with the long runs' 9 mm platen
 # travel at 4x the platen speed (0.2 m/s, 0.05 s), then check_case.py --quick: two conjugate
 # bands in every run, band angle growing with the dilatancy angle, peak load growing with the

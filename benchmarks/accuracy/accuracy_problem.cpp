@@ -132,7 +132,7 @@ StudyResult run_layer(const StudyParameters& p) {
   return r;
 }
 
-// The energy per unit new crack area (SPEC section 7): Rice's strip under fixed grips
+// The energy per unit new crack area (docs/theory.md section 7): Rice's strip under fixed grips
 // (tests/verification/problems/crack_energy.hpp), 10 mm high and resolved by `resolution` rows,
 // 4 heights long with a notch of one height, the crack-branching material with G_cr = 160 N/m.
 // The measured scalar is the work the broken bonds across the crack absorbed per unit new crack

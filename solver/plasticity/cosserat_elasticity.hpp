@@ -1,4 +1,4 @@
-// Cosserat (micro-polar) isotropic linear elasticity of SPEC section 5, as the plasticity
+// Cosserat (micro-polar) isotropic linear elasticity of docs/theory.md section 5, as the plasticity
 // update needs it: stress from elastic strain, couple stress from elastic wryness, in 2-D
 // (plane strain, 3x3 strain with the z components zero, wryness = grad w_z as a 2-vector)
 // and 3-D. Plain inline functions on fixed-size Eigen types: no allocation.
@@ -36,7 +36,7 @@ struct CosseratElasticity<3> {
 };
 
 // 2-D plane strain: the same stress law on the embedded 3x3 strain; one bending modulus acts
-// on grad w_z (B_w = a3, SPEC section 5).
+// on grad w_z (B_w = a3, docs/theory.md section 5).
 template <>
 struct CosseratElasticity<2> {
   double lambda = 0.0;           // [Pa]

@@ -1,6 +1,6 @@
 // How the Drucker-Prager cone f = q + M_phi p - k(c) is fitted to Mohr-Coulomb: the slopes
 // M_phi, M_psi and the cohesion factor k/c for the two matches a scene can choose
-// (SPEC section 6). The derivations are in README.md.
+// (docs/theory.md section 6). The derivations are in README.md.
 #pragma once
 #include "common/scene.hpp"
 

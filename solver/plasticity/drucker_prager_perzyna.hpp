@@ -1,4 +1,4 @@
-// The micro-polar Drucker-Prager Perzyna material point update of SPEC section 6: model
+// The micro-polar Drucker-Prager Perzyna material point update of docs/theory.md section 6: model
 // constants, the plastic state a point carries, and the backward-Euler return map
 // (scalar Newton on the multiplier, with the eta/dt term, plus the apex return).
 // Pure functions on fixed-size Eigen types: no allocation, no shared state, so a per-point

@@ -1,6 +1,6 @@
 // Stress invariants of the micro-polar Drucker-Prager model: mean stress p, the generalized
 // equivalent stress q = sqrt(3 J2) with couple stresses (de Borst 1991), and the yield and
-// potential functions f = q + M_phi p - k(c), g = q + M_psi p (SPEC section 6).
+// potential functions f = q + M_phi p - k(c), g = q + M_psi p (docs/theory.md section 6).
 #pragma once
 #include <Eigen/Core>
 #include <algorithm>

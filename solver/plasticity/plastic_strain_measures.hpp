@@ -1,5 +1,5 @@
 // Scalar measures of the accumulated plastic deformation for output (snapshot fields
-// plastic_shear_strain and the volumetric part of eps_vp, SPEC section 6).
+// plastic_shear_strain and the volumetric part of eps_vp, docs/theory.md section 6).
 #pragma once
 #include <Eigen/Core>
 #include <algorithm>

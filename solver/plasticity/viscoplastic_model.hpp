@@ -27,7 +27,7 @@ class ViscoplasticModel {
                                 const CosseratElasticity<3>& elasticity, double dt) const = 0;
 };
 
-// "drucker-prager-perzyna": SPEC section 6.
+// "drucker-prager-perzyna": docs/theory.md section 6.
 class DruckerPragerPerzynaModel final : public ViscoplasticModel {
  public:
   explicit DruckerPragerPerzynaModel(const DruckerPragerPerzyna& model) : model_(model) {}

@@ -1,4 +1,4 @@
-// Stability case: fragmentation under a high-rate impact (scenes/fragmentation_block.yaml, SPEC
+// Stability case: fragmentation under a high-rate impact (scenes/fragmentation_block.yaml, docs/theory.md
 // section 7), through mppm::solver::solve and read back from the run directory.
 // Hazard: when an impact breaks most bonds, points are left with few, lopsided or no bonds. A
 // shape tensor that is inverted while (nearly) singular, a point whose lopsided family makes the
@@ -134,7 +134,7 @@ FragmentationRun run_fragmentation(int rise, std::int64_t steps, const std::stri
         const auto& v1 = s.find("velocity")->data;
         for (std::size_t i = 0; i < f.points; ++i) {
           // Ballistic: detached with every bond gone (damage 1). A detached point keeps its bonds
-          // to no-fail points (SPEC section 7: they never break), which still pull it.
+          // to no-fail points (docs/theory.md section 7: they never break), which still pull it.
           if (was[i] == 0.0 || lost[i] != 1.0) continue;
           ++f.ballistic_checked;
           f.ballistic_changed += v0[2 * i] != v1[2 * i] || v0[2 * i + 1] != v1[2 * i + 1];
@@ -249,7 +249,7 @@ TEST(StabilityFragmentation, FasterImpactPutsNoEnergyIntoTheModel) {
   EXPECT_LT(r.worst_balance_error, 5e-3);
 }
 
-// A no-fail point keeps its bonds (SPEC section 7: the no-fail zone protects the loaded
+// A no-fail point keeps its bonds (docs/theory.md section 7: the no-fail zone protects the loaded
 // boundary), also when a neighbour is detached (the cascade leaves bonds to no-fail points).
 TEST(StabilityFragmentation, NoFailPointsKeepTheirBonds) {
   const FragmentationRun f = run_fragmentation(5, 300, "fragmentation-no-fail");

@@ -1,4 +1,4 @@
-// Stability cases: the run-time guards of the solver (SPEC section 9).
+// Stability cases: the run-time guards of the solver (docs/theory.md section 9).
 // 1. A NaN seeded in one point. Hazard: one corrupted value (a bad neighbour, a singular
 //    update) spreads through the families and ends as a field of NaN written to disk, or as
 //    a silent wrong answer when it sits in a quiet corner. Expected: the per-step guard sees it

@@ -1,5 +1,5 @@
 // Stability case: zero-energy (hourglass) modes with the stabilization off and on over a long
-// run (SPEC section 3).
+// run (docs/theory.md section 3).
 // Hazard: the correspondence strain eps_i = [sum U (x) xi V] K^-1 is a weighted average, blind
 // to displacement patterns such as the lattice checkerboard (sum_j sin(k.xi) xi = 0 for
 // k = (pi, pi) / dx at any horizon). Those patterns cost no energy without the zero-energy-mode

@@ -2,11 +2,11 @@
 // `time.step: auto`.
 // Hazard: the micro-inertia I = 1/2 pi rho l^2 vanishes as l^2 while the moduli that resist a
 // micro-rotation do not, so the rotational frequencies grow as 1/l: a step chosen for the
-// translational waves blows up the micro-rotation (SPEC section 9).
+// translational waves blows up the micro-rotation (docs/theory.md section 9).
 // Expected: every run completes with finite values and its energy stays equal to the work the
 // loading pulse did (bounded); the limiting mode is translational at l = 20 mm and switches to
 // rotational as l shrinks, and the auto step then shrinks in proportion to l.
-// The bending modulus follows the seed examples' convention B_w = a3 = mu l^2 (SPEC section 5),
+// The bending modulus follows the seed examples' convention B_w = a3 = mu l^2 (docs/theory.md section 5),
 // so B_w / I = 2 mu / (pi rho) does not depend on l; what grows as 1/l^2 is every modulus that
 // acts on the rotation itself over I: 4 mu_c / I and, at the lattice scale, lambda and mu
 // through the 1/2 (w_i + w_j) x xi term of the composite state (for a high-wavenumber rotation

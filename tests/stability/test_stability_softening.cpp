@@ -1,5 +1,5 @@
 // Stability case: softening viscoplasticity (h = -1 MPa) with the Perzyna viscosity eta from
-// 1e-2 down to 1e-8 MPa s (scenes/softening_block.yaml, SPEC section 6).
+// 1e-2 down to 1e-8 MPa s (scenes/softening_block.yaml, docs/theory.md section 6).
 // Hazard: softening removes the material's own stability, and a small eta makes the
 // viscoplastic update stiff (eta / dt -> 0 in the return map): an explicit (forward-Euler) flow
 // rule or a return map without the eta / dt term blows up or oscillates, and NaN or energy

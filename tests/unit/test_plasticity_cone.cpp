@@ -1,4 +1,4 @@
-// Cone coefficients of the Drucker-Prager / Mohr-Coulomb matches (SPEC section 6), including
+// Cone coefficients of the Drucker-Prager / Mohr-Coulomb matches (docs/theory.md section 6), including
 // the (fix) of the paper's k = 6 c cos(phi) / (3 - cos(phi)) misprint.
 #include <gtest/gtest.h>
 

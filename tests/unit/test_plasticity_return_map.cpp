@@ -1,4 +1,4 @@
-// The micro-polar Drucker-Prager Perzyna material point update (SPEC section 6): elastic
+// The micro-polar Drucker-Prager Perzyna material point update (docs/theory.md section 6): elastic
 // states, the rate-independent limit, backward-Euler normality, the overstress law, apex
 // states, softening with tiny viscosity, non-negative dissipation, 2-D = embedded 3-D,
 // and bitwise-identical results for any number of threads.
@@ -21,7 +21,7 @@ using Eigen::Matrix3d;
 using Eigen::Vector2d;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Case 1 of CASES.md (the shear-band specimen): the material the model is built for.
+// The shear-band case (workflows/shear-band): the material the model is built for.
 struct Case1 {
   CosseratElasticity<2> elastic{13.9e6, 20.8e6, 41.6e6, 83.3};
   DruckerPragerParameters prm;
@@ -43,7 +43,7 @@ double tri_compression_k(double c, double phi) {
   return 6.0 * c * std::cos(phi) / (3.0 - std::sin(phi));
 }
 
-// q = sqrt(3 J2), J2 = 1/4 s:s + 1/4 s:s^T + 1/2 m.m / l^2 (SPEC defaults).
+// q = sqrt(3 J2), J2 = 1/4 s:s + 1/4 s:s^T + 1/2 m.m / l^2 (docs/theory.md section 6).
 double q_of(const Matrix3d& sigma, const Vector2d& m, double l) {
   const Matrix3d s = sigma - sigma.trace() / 3.0 * Matrix3d::Identity();
   const double j2 = 0.25 * (s.cwiseProduct(s).sum() + s.cwiseProduct(s.transpose()).sum()) +

@@ -16,7 +16,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-// Case 1 of CASES.md (the shear-band specimen), reduced to what the parser needs.
+// The shear-band case (workflows/shear-band), reduced to what the parser needs.
 const std::string kScene = R"(mppm: 1
 name: shear-band
 dimension: 2

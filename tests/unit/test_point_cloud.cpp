@@ -88,7 +88,7 @@ TEST(PointCloudFile, RoundTripIsExact) {
   EXPECT_EQ(back.boundaries[1].selector, "'left'");
   EXPECT_EQ(back.boundaries[0].depth, 5e-4);
   EXPECT_EQ(back.boundaries[1].depth, 2.025e-3);
-  // Binary appended and compressed, as SCENE.md promises ParaView.
+  // Binary appended and compressed, as docs/stages.md promises ParaView.
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();

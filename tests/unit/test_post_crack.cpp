@@ -1,6 +1,6 @@
 // Crack metrics on synthetic damage series: a crack that grows at a known speed from a
 // pre-crack, branches at a known time and reaches the boundary; one that stops; one that
-// never grows. Geometry of the crack-branching case (CASES.md case 2): 100 x 40 mm, dx 0.5 mm.
+// never grows. Geometry of the crack-branching case (workflows/crack-branching/README.md): 100 x 40 mm, dx 0.5 mm.
 #include <gtest/gtest.h>
 
 #include <algorithm>

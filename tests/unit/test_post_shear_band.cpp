@@ -14,7 +14,7 @@ using mppm::post::ShearBandSettings;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-// A lattice of the biaxial specimen (CASES.md case 1): 100 mm x 200 mm, cell-centred points.
+// A lattice of the biaxial specimen (workflows/shear-band/README.md): 100 mm x 200 mm, cell-centred points.
 struct Lattice {
   std::vector<double> x, y;
   std::vector<char> include;

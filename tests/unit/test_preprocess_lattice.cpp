@@ -183,7 +183,7 @@ TEST(PreprocessInside3d, VoxelSolidWithNotchAndCavityMatchesBruteForce) {
 }
 
 TEST(PreprocessLattice, RectanglePlatesGiveExactLatticeCounts) {
-  // CASES.md: 100 x 40 mm at 0.5 mm -> 200 x 80; 100 x 200 mm at 2.5 mm -> 40 x 80.
+  // The reference cases: 100 x 40 mm at 0.5 mm -> 200 x 80; 100 x 200 mm at 2.5 mm -> 40 x 80.
   const auto plate = preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, ""));
   EXPECT_EQ(plate.cloud.size(), 200u * 80u);
   std::set<std::pair<long, long>> cells;

@@ -1,4 +1,4 @@
-// Boundary layers and loaded points (SPEC section 8): kinematic layers lie outside the body,
+// Boundary layers and loaded points (docs/theory.md section 8): kinematic layers lie outside the body,
 // reach at least the horizon, carry the right region, and are complete (every lattice point
 // outside the body within the horizon of the boundary, nearest boundary winning, is there);
 // traction/pressure tags lie inside within the traction depth with the outward normal; box and

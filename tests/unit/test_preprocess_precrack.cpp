@@ -1,4 +1,4 @@
-// Pre-cracks (SPEC section 8): the set of lattice bonds that cross a pre-crack, as found by
+// Pre-cracks (docs/theory.md section 8): the set of lattice bonds that cross a pre-crack, as found by
 // common/precrack_crossing (CGAL exact predicates, binned index), equals an independent
 // brute-force count in integer lattice units (exact, no CGAL), in 2-D (the crack-branching
 // plate's notch) and 3-D (a rectangular crack in a box); plus the touching rules by hand.

@@ -1,4 +1,4 @@
-// Scene parsing: SCENE.md example, defaults, --set overrides, error locations, resolved round trip.
+// Scene parsing: example scene, defaults, --set overrides, error locations, resolved round trip.
 #include <gtest/gtest.h>
 
 #include <numbers>
@@ -9,7 +9,7 @@
 using namespace mppm;
 
 namespace {
-// The crack-branching example of SCENE.md (line numbers matter for the error tests).
+// The crack-branching example scene (line numbers matter for the error tests).
 const std::string kExample = R"(mppm: 1
 name: crack-branching
 dimension: 2

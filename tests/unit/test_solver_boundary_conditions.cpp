@@ -1,4 +1,4 @@
-// Boundary conditions (SPEC section 8): exact integration of velocity histories, traction and
+// Boundary conditions (docs/theory.md section 8): exact integration of velocity histories, traction and
 // pressure as body force densities that add up to t_bar A, prescribed micro-rotation of a layer,
 // and the gravity effect (free fall at g, its work booked as external work).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// mppm-solve as the user runs it (SCENE.md "Commands"): scene file + points file -> run
+// mppm-solve as the user runs it (docs/stages.md "Commands"): scene file + points file -> run
 // directory, exit codes 0 / 2, the time-step refusal of the misprinted case-1 couple modulus
 // named on stderr, refusal to overwrite a run, --set overrides.
 #include <gtest/gtest.h>

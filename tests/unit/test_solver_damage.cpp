@@ -1,4 +1,4 @@
-// The damage effect (SPEC section 7) beyond its calibration (verification/test_solver_crack_energy):
+// The damage effect (docs/theory.md section 7) beyond its calibration (verification/test_solver_crack_energy):
 // a body shattered by a violent velocity field stays finite, conserves momentum and closes its
 // energy balance, its detached points move ballistically, and breakage is the same bits on 1 and 2
 // threads; the closed-form stiffness block of point_stability.hpp equals the kernel's; a point left

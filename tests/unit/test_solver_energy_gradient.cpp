@@ -1,4 +1,4 @@
-// Forces and moments are minus the gradient of the total discrete energy (SPEC section 4),
+// Forces and moments are minus the gradient of the total discrete energy (docs/theory.md section 4),
 // stabilization included, checked by central finite differences in 2-D and 3-D, with and
 // without the micropolar effect. This ties the balance laws (reverse-bond states, the
 // 1/2 xi x (T_ij - T_ji) moment term, the folded stabilization of both ends) to the energy.

@@ -1,4 +1,4 @@
-// Families and bond storage (SPEC section 1): the cell-list search finds exactly the points
+// Families and bond storage (docs/theory.md section 1): the cell-list search finds exactly the points
 // within the horizon (tolerance 1e-9 dx), every bond is stored from both ends, and bonds across
 // a pre-crack are cut from both ends before the first step.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Patch tests of the nonlocal kinematics (SPEC section 2, CASES verification): linear fields are
+// Patch tests of the nonlocal kinematics (docs/theory.md section 2, CASES verification): linear fields are
 // reproduced exactly, rigid motions give no strain, force or moment. The rigid-rotation test
 // fails under the misprinted `+` of the composite state (it would give |eps| = 2 theta).
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Linear and angular momentum of a free, unloaded body with random initial velocities and spins
-// are conserved by the discrete balance laws and the velocity-Verlet integrator (SPEC section 4):
+// are conserved by the discrete balance laws and the velocity-Verlet integrator (docs/theory.md section 4):
 // P = sum rho V v, L = sum (x x rho V v + I V spin) with x the reference position.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The run directory of mppm-solve (SCENE.md): files, tables, snapshots, refusal to overwrite,
+// The run directory of mppm-solve (docs/stages.md): files, tables, snapshots, refusal to overwrite,
 // bitwise-identical output for 1 and 2 threads, and the numerical-failure path (exit code 3
 // with the last good snapshot kept).
 #include <gtest/gtest.h>

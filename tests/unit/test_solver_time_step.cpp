@@ -1,6 +1,6 @@
-// The critical time step (SPEC section 9): the Lanczos (refined power-iteration) estimate is the
+// The critical time step (docs/theory.md section 9): the Lanczos (refined power-iteration) estimate is the
 // real stability limit of the scheme, and a given step above it is refused with a message naming
-// the mode and the parameter. CASES.md case 1 as printed (a3 = 83.3 kN) must be refused at dt = 7 us; with
+// the mode and the parameter. workflows/shear-band/README.md as printed (a3 = 83.3 kN) must be refused at dt = 7 us; with
 // the corrected a3 = 83.3 N it is accepted.
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ namespace {
 using testing::make_lattice;
 using testing::make_model;
 
-// CASES.md case 1 material on a small lattice of its spacing and horizon.
+// workflows/shear-band/README.md material on a small lattice of its spacing and horizon.
 Scene shear_band_scene(double a3) {
   Scene s;
   s.path = "case1.yaml";

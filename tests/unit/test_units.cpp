@@ -1,4 +1,4 @@
-// Unit strings: conversion to SI and dimension checking (SCENE.md "Quantities").
+// Unit strings: conversion to SI and dimension checking (docs/scene.md "Quantities").
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Verification (CASES.md): a homogeneous plane-strain biaxial test driven at the material
+// Verification: a homogeneous plane-strain biaxial test driven at the material
 // point reaches the analytic Drucker-Prager limit load as eta -> 0.
 //
 // The test: the specimen (width W, thickness t) is first confined isotropically in plane
@@ -38,7 +38,7 @@ using Eigen::Matrix3d;
 using Eigen::Vector2d;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Case 1 (CASES.md) material and specimen, without softening (h = 0) so a limit exists.
+// Case 1 (shear band) material and specimen, without softening (h = 0) so a limit exists.
 struct Biaxial {
   CosseratElasticity<2> el{13.9e6, 20.8e6, 41.6e6, 83.3};
   DruckerPragerParameters prm;

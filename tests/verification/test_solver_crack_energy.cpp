@@ -1,4 +1,4 @@
-// Calibration of the energy-based bond breakage (SPEC section 7, CASES.md verification): a straight
+// Calibration of the energy-based bond breakage (docs/theory.md section 7; a verification case): a straight
 // crack driven through a strip (2-D) and a slab (3-D) by fixed grips (Rice's strip:
 // tests/verification/problems/crack_energy.hpp).
 //
@@ -27,7 +27,7 @@
 namespace mppm::solver {
 namespace {
 
-// The material of the crack-branching plate (CASES.md case 2) with a chosen horizon factor.
+// The material of the crack-branching plate (workflows/crack-branching/README.md) with a chosen horizon factor.
 Scene crack_scene(int dimension, double horizon_factor) {
   Scene s = testing::make_scene(dimension, true, 0.5e-3, horizon_factor);
   verification::set_crack_branching_material(s);
@@ -73,7 +73,7 @@ TEST(SolverCrackEnergy, SlabBrokenBondsAbsorbCriticalEnergyReleaseRate3d) {
 
 // With `calibration: dissipation` (w_cr = lattice value / rho, solver/damage_calibration.hpp) the
 // energy the breaks remove from the model is G_cr per unit new crack area, the literal statement
-// of SPEC section 7's verification. rho was measured with the crack-branching material at
+// of docs/theory.md section 7's verification. rho was measured with the crack-branching material at
 // dx = 0.5 mm and W H = 1.5 G_cr (lattice calibration); these runs change what the table assumes
 // does not matter: the material (Poisson ratio 0.1 instead of 0.25, mu_c = mu instead of mu / 3),
 // the spacing, G_cr and the drive (W H = 2.2 G_cr here, about 1.6 G_cr / rho). Tolerance 10 %:
@@ -152,7 +152,7 @@ TEST(SolverCrackEnergy, NoBondBreaksBelowTheThreshold) {
   EXPECT_LT(r.largest_bond_work_ratio, 1.0);
 }
 
-// The lattice calibration against the continuum formula of SPEC section 7, which it approaches
+// The lattice calibration against the continuum formula of docs/theory.md section 7, which it approaches
 // for a large horizon (the crossing sum of a disc / ball of lattice points).
 TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
   for (int d : {2, 3})

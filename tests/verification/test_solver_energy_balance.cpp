@@ -1,4 +1,4 @@
-// Energy bookkeeping of an elastic wave case (SPEC section 9): a bar held at one end is hit by a
+// Energy bookkeeping of an elastic wave case (docs/theory.md section 9): a bar held at one end is hit by a
 // velocity pulse of the other end's layer; the pulse runs back and forth for 10^4 steps. The
 // kinetic (translational + rotational), elastic and stabilization energies must account for the
 // external work of the prescribed layer (trapezoid rule on reaction . increment) to 0.5 %.

@@ -1,5 +1,5 @@
 // Static shear of a Cosserat layer of height h with the micro-rotation held at 0 on both faces
-// (CASES.md verification):
+// (a verification case):
 //   lam^2 = 4 mu mu_c / (B (mu + mu_c)),
 //   tau / (U / h) = mu / [1 - 2 mu_c tanh(lam h / 2) / ((mu + mu_c) lam h)].
 // The layer is periodic along x; the preprocessor-style fictitious layers below and above it

@@ -1,4 +1,4 @@
-// Verification of the viscoplastic solver (SPEC section 6) through the real run
+// Verification of the viscoplastic solver (docs/theory.md section 6) through the real run
 // (solve(): scene -> run directory): plane-strain compression of a specimen with tiny eta
 // reaches the analytic Drucker-Prager (plane-strain match: Mohr-Coulomb) limit load, and the
 // energy balance with the plastic dissipation holds.

@@ -1,4 +1,4 @@
-// Wave propagation against the continuum (CASES.md verification): the P-wave speed
+// Wave propagation against the continuum (a verification case): the P-wave speed
 // sqrt((lambda + 2 mu) / rho), and the coupled shear-rotation wave of a Cosserat medium,
 //   (W^2 - (mu + mu_c) k^2 / rho) (W^2 - (B k^2 + 4 mu_c) / I) = 4 mu_c^2 k^2 / (rho I),
 // both branches at one wave number and the cut-off frequency 2 sqrt(mu_c / I) at k = 0.

@@ -82,7 +82,7 @@ def main():
     base = rows[0]
     width, height, nx, ny = crack_case.lattice(args.out, args.base)
     spacing, horizon = base[1]["spacing_m"], base[1]["horizon_m"]
-    lines = ["# Crack branching (CASES.md case 2): results", "",
+    lines = ["# Crack branching (workflows/crack-branching/README.md): results", "",
              "Written by `make report` from the run outputs under `out/` (nothing typed in). "
              f"Plate {width * 1e3:.4g} x {height * 1e3:.4g} mm, {nx} x {ny} points (dx = {spacing * 1e3:g} mm), "
              f"horizon factor {horizon / spacing:.4g}, pre-crack from the left edge to the centre, traction "

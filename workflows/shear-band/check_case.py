@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Physics checks of the shear-band case (CASES.md case 1), on the outputs of its runs.
+"""Physics checks of the shear-band case (workflows/shear-band/README.md), on the outputs of its runs.
 
 Usage: check_case.py --out OUT --runs phi35-psi15 [phi25-psi15 ...] [--quiet]
 
@@ -50,7 +50,7 @@ MAX_RIDGE_DIFFERENCE_DEG = 3.0
 
 
 def sweep_centre(names):
-    """(friction, dilatancy) [deg] where the two sweeps of CASES.md cross, from the run names:
+    """(friction, dilatancy) [deg] where the case's two sweeps cross, from the run names:
     the friction sweep keeps the dilatancy most runs share and the dilatancy sweep the friction
     most runs share (the scene's angles: phi35-psi15 belongs to both sweeps)."""
     angles = [parse_run_name(name) for name in names]

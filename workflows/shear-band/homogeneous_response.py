@@ -8,7 +8,7 @@ because sigma_zz has to build up to the plane-strain limit state (solver/plastic
 homogeneous peak lies against the case's platen travel.
 
 The homogeneous state has no curvature and a symmetric stress, so the micro-polar
-Drucker-Prager model of SPEC section 6 reduces to the classical one: f = q + M_phi p - k c,
+Drucker-Prager model of docs/theory.md section 6 reduces to the classical one: f = q + M_phi p - k c,
 g = q + M_psi p, c = max(c0 + h ebar, c_res), d ebar = d gamma on the cone. The update is the
 rate-independent backward-Euler return (the viscous overstress eta ebar' is ~1e4 Pa s x 0.5/s
 = 5 kPa here, 0.3 % of the strength, and is left out). Cone coefficients: the formulas of

@@ -319,7 +319,7 @@ def main():
     homog_case = [homogeneous(r) for r in case]
     beyond = [r.name for r, (_, at, _) in zip(case, homog_case) if at is None or at > CASE_TRAVEL]
     lines = [
-        "# Shear-band case (CASES.md case 1): results",
+        "# Shear-band case (workflows/shear-band/README.md): results",
         "",
         f"Written by `make report` from `{args.out}/<run>/`; do not edit. Specimen {1e3 * width:.0f} x "
         f"{1e3 * height:.0f} mm, dx = {1e3 * case[0].summary['spacing_m']:g} mm, horizon {1e3 * case[0].summary['horizon_m']:.3g} mm, "

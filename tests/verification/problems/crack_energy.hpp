@@ -1,4 +1,4 @@
-// Energy dissipated per unit new crack area (SPEC section 7, CASES.md verification): a straight
+// Energy dissipated per unit new crack area (docs/theory.md section 7; a verification case): a straight
 // crack is driven through a strip (2-D) or a slab (3-D, periodic through its thickness z) from a
 // pre-crack on the mid-plane y = H/2 by fictitious layers above and below (grips), which open it
 // by a fixed amount and then hold. This is Rice's strip under fixed grips: far ahead of the crack
@@ -17,7 +17,7 @@
 
 namespace mppm::verification {
 
-// The material of the crack-branching plate (CASES.md case 2: lambda = mu = 14 GPa, mu_c = mu / 3,
+// The material of the crack-branching plate (workflows/crack-branching/README.md: lambda = mu = 14 GPa, mu_c = mu / 3,
 // a3 = 56 kN, l = 2 mm, 2650 kg/m^3 at solid fraction 0.95; in 3-D a1 = 0.2 a3, a2 = a3 (a2 > a3
 // keeps the couple-stress energy positive), a3 = 0.3 of it), micropolar and damage with G_cr =
 // 160 N/m and the lattice calibration: the crack problems of the tests, the accuracy study and the

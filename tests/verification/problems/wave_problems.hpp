@@ -1,4 +1,4 @@
-// Wave problems with analytic answers (CASES.md verification), on periodic lattices so that
+// Wave problems with analytic answers (a verification case), on periodic lattices so that
 // there are no boundary reflections: the P wave sqrt((lambda + 2 mu) / rho), the coupled
 // shear-rotation wave of a Cosserat medium,
 //   (W^2 - (mu + mu_c) k^2 / rho) (W^2 - (B k^2 + 4 mu_c) / I) = 4 mu_c^2 k^2 / (rho I),

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes the LAMMPS PERI inputs of the crack-branching plate benchmark (mppm's yardstick).
 
-Owns: the translation of the CASES.md plate (lattice, horizon, material, time step) into LAMMPS
+Owns: the translation of the crack-branching plate (lattice, horizon, material, time step) into LAMMPS
 `peri/lps` and `peri/pmb` inputs, the moduli conversions, and the bond count that the runner
 checks LAMMPS against. Standard library only; run with /usr/bin/python3.
 
@@ -36,7 +36,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from mppm_outputs import write_text  # noqa: E402
 from script_exit import InputError  # noqa: E402
 
-# mppm's family tolerance (SPEC.md section 1): lattice points on the horizon sphere are in.
+# mppm's family tolerance (docs/theory.md section 1): lattice points on the horizon sphere are in.
 FAMILY_TOLERANCE_IN_SPACINGS = 1e-9
 
 
@@ -226,7 +226,7 @@ def main(argv):
         "micromodulus": pmb_micromodulus(args.lame_lambda, args.mu, args.thickness, delta),
     }
     summary = {
-        "case": "crack-branching plate (CASES.md case 2), no notch",
+        "case": "crack-branching plate (workflows/crack-branching/README.md), no notch",
         "points": constants["points"],
         "bonds": constants["bonds"],
         "steps": args.steps,
