@@ -104,9 +104,10 @@ void measure(const char* label, const PointCloud& cloud, bool damage, const std:
   const auto bytes = static_cast<double>(std::filesystem::file_size(path));
   std::printf("%s: %zu points, %zu bonds (model built in %.1f s)\n", label, m.points.owned, m.bonds.bond_count(),
               build_seconds);
-  std::printf("  checkpoint %.1f MB (%.0f bytes per point); write %.2f-%.2f s (%.0f MB/s best), read + restore %.2f-%.2f s\n",
-              bytes / 1e6, bytes / static_cast<double>(m.points.owned), write_min, write_max, bytes / write_min / 1e6,
-              read_min, read_max);
+  std::printf(
+      "  checkpoint %.1f MB (%.0f bytes per point); write %.2f-%.2f s (%.0f MB/s best), read + restore %.2f-%.2f s\n",
+      bytes / 1e6, bytes / static_cast<double>(m.points.owned), write_min, write_max, bytes / write_min / 1e6, read_min,
+      read_max);
   std::filesystem::remove(path);
 }
 

@@ -9,9 +9,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <stdexcept>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include "common/point_cloud.hpp"
@@ -22,9 +22,12 @@ int main(int argc, char** argv) {
   double spacing_mm = 0.27;  // (19777 mm^3 / 1e6)^(1/3): ~1.0e6 points
   std::string output = (std::filesystem::temp_directory_path() / "mppm_bench_points.vtp").string();
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--spacing")) spacing_mm = std::stod(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--threads")) omp_set_num_threads(std::stoi(argv[i + 1]));
-    else if (!std::strcmp(argv[i], "--output")) output = argv[i + 1];
+    if (!std::strcmp(argv[i], "--spacing"))
+      spacing_mm = std::stod(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--threads"))
+      omp_set_num_threads(std::stoi(argv[i + 1]));
+    else if (!std::strcmp(argv[i], "--output"))
+      output = argv[i + 1];
   }
   const std::string scene_text =
       "mppm: 1\nname: bench-preprocess\ndimension: 3\n"
@@ -52,12 +55,12 @@ int main(int argc, char** argv) {
     getrusage(RUSAGE_SELF, &usage);
     std::cout << mppm::pre::format_report(scene, result, output);
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    std::printf("benchmark: %zu points, %d threads: preprocess %.2f s, write %.2f s, total %.2f s "
-                "(read back %.2f s), file %.1f MB, peak memory %.0f MiB (%.0f bytes/point)\n",
-                result.cloud.size(), omp_get_max_threads(), seconds(start, written),
-                seconds(written, end), seconds(start, end), seconds(end, read),
-                static_cast<double>(std::filesystem::file_size(output)) / 1e6, usage.ru_maxrss / 1024.0,
-                usage.ru_maxrss * 1024.0 / static_cast<double>(result.cloud.size()));
+    std::printf(
+        "benchmark: %zu points, %d threads: preprocess %.2f s, write %.2f s, total %.2f s "
+        "(read back %.2f s), file %.1f MB, peak memory %.0f MiB (%.0f bytes/point)\n",
+        result.cloud.size(), omp_get_max_threads(), seconds(start, written), seconds(written, end), seconds(start, end),
+        seconds(end, read), static_cast<double>(std::filesystem::file_size(output)) / 1e6, usage.ru_maxrss / 1024.0,
+        usage.ru_maxrss * 1024.0 / static_cast<double>(result.cloud.size()));
     std::filesystem::remove(output);
     return 0;
   } catch (const std::exception& e) {

@@ -9,10 +9,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <string>
-
-#include <filesystem>
 
 #include "solver/critical_time_step.hpp"
 #include "solver/explicit_dynamics.hpp"
@@ -107,10 +106,17 @@ void whole_run(int threads) {
     cloud.normal_x.push_back(0.0);
     cloud.normal_z.push_back(0.0);
     cloud.normal_y.push_back(0.0);
-    if (cloud.y[i] > 79 * dx) { cloud.boundary_id[i] = 1; ++top; }
-    if (cloud.y[i] < dx) { cloud.boundary_id[i] = 2; ++bottom; }
+    if (cloud.y[i] > 79 * dx) {
+      cloud.boundary_id[i] = 1;
+      ++top;
+    }
+    if (cloud.y[i] < dx) {
+      cloud.boundary_id[i] = 2;
+      ++bottom;
+    }
   }
-  cloud.boundaries = {BoundaryInfo{"top", "traction", 0.1 * 1e-3, top, "", 0.0}, BoundaryInfo{"bottom", "traction", 0.1 * 1e-3, bottom, "", 0.0}};
+  cloud.boundaries = {BoundaryInfo{"top", "traction", 0.1 * 1e-3, top, "", 0.0},
+                      BoundaryInfo{"bottom", "traction", 0.1 * 1e-3, bottom, "", 0.0}};
   Scene s;
   s.path = "bench.yaml";
   s.dimension = 2;

@@ -25,7 +25,8 @@ using namespace mppm;
 
 namespace {
 
-const char* kUsage = R"(usage: mppm-damage-calibration --dimension D --horizon-factors M1,M2,... --stabilizations G1,G2,...
+const char* kUsage =
+    R"(usage: mppm-damage-calibration --dimension D --horizon-factors M1,M2,... --stabilizations G1,G2,...
 
 Drives a crack through a strip (2-D, 80 x 20 points) or a slab (3-D, 30 x 10 x (2m + 1) points,
 periodic through z) by fixed grips (W H = 1.5 G_cr) and prints, per setting, the energy the breaks
@@ -41,7 +42,8 @@ std::vector<double> numbers(const std::string& list, const std::string& option) 
   while (std::getline(s, item, ',')) {
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0') throw InputError(option + ": expected numbers separated by commas, got '" + list + "'");
+    if (item.empty() || *end != '\0')
+      throw InputError(option + ": expected numbers separated by commas, got '" + list + "'");
     out.push_back(v);
   }
   if (out.empty()) throw InputError(option + ": expected at least one number");
@@ -63,14 +65,16 @@ Scene calibration_scene(int dimension, double horizon_factor, double stabilizati
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{"mppm-damage-calibration", kUsage, {"--dimension", "--horizon-factors", "--stabilizations"}, {}};
+  const CommandLineSpec spec{
+      "mppm-damage-calibration", kUsage, {"--dimension", "--horizon-factors", "--stabilizations"}, {}};
   return run_stage(argc, argv, spec, [](const CommandLine& cl) -> int {
     const std::string d = cl.option("--dimension").value_or("2");
     if (d != "2" && d != "3") throw InputError("--dimension: expected 2 or 3, got '" + d + "'");
     const int dimension = d == "2" ? 2 : 3;
     const auto factors = numbers(cl.option("--horizon-factors").value_or("3.05"), "--horizon-factors");
     const auto stabilizations = numbers(cl.option("--stabilizations").value_or("0.1"), "--stabilizations");
-    std::printf("dimension,horizon_factor,stabilization,released_fraction,absorbed_fraction,separated,other_pairs,seconds\n");
+    std::printf(
+        "dimension,horizon_factor,stabilization,released_fraction,absorbed_fraction,separated,other_pairs,seconds\n");
     for (const double m : factors)
       for (const double g : stabilizations) {
         verification::CrackStrip strip;

@@ -39,11 +39,16 @@ int main(int argc, char** argv) {
   std::string dir = (std::filesystem::temp_directory_path() / "mppm_bench_postprocess").string();
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
-    if (arg == "--points" && a + 1 < argc) points = std::stol(argv[++a]);
-    else if (arg == "--snapshots" && a + 1 < argc) snapshots = std::stoi(argv[++a]);
-    else if (arg == "--all-fields") all_fields = true;
-    else if (arg == "--keep") keep = true;
-    else if (arg == "--dir" && a + 1 < argc) dir = argv[++a];
+    if (arg == "--points" && a + 1 < argc)
+      points = std::stol(argv[++a]);
+    else if (arg == "--snapshots" && a + 1 < argc)
+      snapshots = std::stoi(argv[++a]);
+    else if (arg == "--all-fields")
+      all_fields = true;
+    else if (arg == "--keep")
+      keep = true;
+    else if (arg == "--dir" && a + 1 < argc)
+      dir = argv[++a];
     else {
       std::cerr << "usage: mppm-bench-postprocess [--points N] [--snapshots K] [--all-fields] [--keep] [--dir DIR]\n";
       return 2;
@@ -72,7 +77,8 @@ int main(int argc, char** argv) {
 
   std::printf("mppm-bench-postprocess: %lld points, %d snapshots, fields: %s\n",
               static_cast<long long>(mppm::post::testing::fixture_points(fixture)), snapshots,
-              all_fields ? "all (incl. stress, strain)" : "displacement, rotation, velocity, damage, plastic_shear_strain, couple_stress");
+              all_fields ? "all (incl. stress, strain)"
+                         : "displacement, rotation, velocity, damage, plastic_shear_strain, couple_stress");
   std::printf("  generate run directory: %.2f s (%.0f MiB on disk)\n", std::chrono::duration<double>(t1 - t0).count(),
               directory_mib(dir + "/run"));
   std::printf("  postprocess:            %.2f s total, %.2f s per snapshot (%zu frames, %.0f MiB written)\n", seconds,

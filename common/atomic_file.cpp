@@ -102,7 +102,8 @@ std::string write_temporary(const std::string& path, const std::function<void(st
       const std::string why = error ? std::strerror(error) : "write error";
       out.close();
       std::filesystem::remove(temporary, ignored);
-      throw InputError(path + ": writing failed (" + why + "; is the disk full?); the previous file, if any, is unchanged");
+      throw InputError(path + ": writing failed (" + why +
+                       "; is the disk full?); the previous file, if any, is unchanged");
     }
   }
   return temporary;

@@ -20,22 +20,31 @@ std::size_t element_size(CheckpointElement e) {
   switch (e) {
     case CheckpointElement::f64:
     case CheckpointElement::i64:
-    case CheckpointElement::u64: return 8;
-    case CheckpointElement::i32: return 4;
+    case CheckpointElement::u64:
+      return 8;
+    case CheckpointElement::i32:
+      return 4;
     case CheckpointElement::u8:
-    case CheckpointElement::text: return 1;
+    case CheckpointElement::text:
+      return 1;
   }
   return 0;
 }
 
 const char* element_name(CheckpointElement e) {
   switch (e) {
-    case CheckpointElement::f64: return "f64";
-    case CheckpointElement::i64: return "i64";
-    case CheckpointElement::u64: return "u64";
-    case CheckpointElement::i32: return "i32";
-    case CheckpointElement::u8: return "u8";
-    case CheckpointElement::text: return "text";
+    case CheckpointElement::f64:
+      return "f64";
+    case CheckpointElement::i64:
+      return "i64";
+    case CheckpointElement::u64:
+      return "u64";
+    case CheckpointElement::i32:
+      return "i32";
+    case CheckpointElement::u8:
+      return "u8";
+    case CheckpointElement::text:
+      return "text";
   }
   return "?";
 }
@@ -111,7 +120,9 @@ void write_checkpoint_file(const std::string& path, const CheckpointHeader& h,
 CheckpointFile read_checkpoint_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
-    throw InputError(path + ": no checkpoint (not found or not readable; a run writes checkpoints only when its scene sets output.checkpoint_interval)");
+    throw InputError(path +
+                     ": no checkpoint (not found or not readable; a run writes checkpoints only when its scene sets "
+                     "output.checkpoint_interval)");
   std::ostringstream buffer;
   buffer << in.rdbuf();
   CheckpointFile f;
@@ -124,7 +135,8 @@ CheckpointFile read_checkpoint_file(const std::string& path) {
   auto u64 = [&](const char* what) { return r.value<std::uint64_t>(what); };
   char magic[8];
   read(magic, sizeof magic, "the header");
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0) throw InputError(path + ": not an mppm checkpoint (bad magic bytes)");
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
+    throw InputError(path + ": not an mppm checkpoint (bad magic bytes)");
   const auto version = u32("the header");
   if (version != kVersion)
     throw InputError(path + ": checkpoint format version " + std::to_string(version) +
@@ -149,7 +161,8 @@ CheckpointFile read_checkpoint_file(const std::string& path) {
     read(e.name.data(), name_length, "an array name");
     e.element = static_cast<CheckpointElement>(u32("an array header"));
     const std::size_t size = element_size(e.element);
-    if (size == 0) throw InputError(path + ": corrupted checkpoint (array '" + e.name + "' has an unknown element type)");
+    if (size == 0)
+      throw InputError(path + ": corrupted checkpoint (array '" + e.name + "' has an unknown element type)");
     e.count = u64("an array header");
     if (e.count > r.remaining() / size)
       throw InputError(path + ": truncated checkpoint (array '" + e.name + "' needs " + std::to_string(e.count) +

@@ -26,12 +26,30 @@ enum class CheckpointElement : std::uint32_t { f64 = 1, i64 = 2, i32 = 3, u8 = 4
 
 template <class T>
 constexpr CheckpointElement checkpoint_element_of();
-template <> constexpr CheckpointElement checkpoint_element_of<double>() { return CheckpointElement::f64; }
-template <> constexpr CheckpointElement checkpoint_element_of<std::int64_t>() { return CheckpointElement::i64; }
-template <> constexpr CheckpointElement checkpoint_element_of<std::int32_t>() { return CheckpointElement::i32; }
-template <> constexpr CheckpointElement checkpoint_element_of<std::uint8_t>() { return CheckpointElement::u8; }
-template <> constexpr CheckpointElement checkpoint_element_of<std::uint64_t>() { return CheckpointElement::u64; }
-template <> constexpr CheckpointElement checkpoint_element_of<char>() { return CheckpointElement::text; }
+template <>
+constexpr CheckpointElement checkpoint_element_of<double>() {
+  return CheckpointElement::f64;
+}
+template <>
+constexpr CheckpointElement checkpoint_element_of<std::int64_t>() {
+  return CheckpointElement::i64;
+}
+template <>
+constexpr CheckpointElement checkpoint_element_of<std::int32_t>() {
+  return CheckpointElement::i32;
+}
+template <>
+constexpr CheckpointElement checkpoint_element_of<std::uint8_t>() {
+  return CheckpointElement::u8;
+}
+template <>
+constexpr CheckpointElement checkpoint_element_of<std::uint64_t>() {
+  return CheckpointElement::u64;
+}
+template <>
+constexpr CheckpointElement checkpoint_element_of<char>() {
+  return CheckpointElement::text;
+}
 
 struct CheckpointHeader {
   int dimension = 2;

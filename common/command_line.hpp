@@ -12,9 +12,9 @@ namespace mppm {
 
 struct CommandLine {
   std::vector<std::string> positional;
-  std::map<std::string, std::string> options;     // "--points" -> "pts.vtp", "-o" -> "run"
-  std::vector<std::string> overrides;             // the --set values, in order
-  std::vector<std::string> flags;                 // "--force", "--figures" (no value)
+  std::map<std::string, std::string> options;  // "--points" -> "pts.vtp", "-o" -> "run"
+  std::vector<std::string> overrides;          // the --set values, in order
+  std::vector<std::string> flags;              // "--force", "--figures" (no value)
   std::optional<int> threads;
   bool quiet = false;
   bool help = false;
@@ -25,8 +25,8 @@ struct CommandLine {
 };
 
 struct CommandLineSpec {
-  std::string program;                 // "mppm-solve"
-  std::string usage;                   // full --help text
+  std::string program;                     // "mppm-solve"
+  std::string usage;                       // full --help text
   std::vector<std::string> value_options;  // options taking a value, e.g. {"-o", "--points"}
   std::vector<std::string> flag_options;   // options without a value, e.g. {"--force"}
 };
@@ -37,7 +37,6 @@ CommandLine parse_command_line(int argc, char** argv, const CommandLineSpec& spe
 // Runs a stage's body with the shared behaviour: --help/--version, thread count, and the
 // mapping of exceptions to exit codes (InputError -> 2, NumericalFailure -> 3, other -> 1),
 // with the message on stderr prefixed by the program name.
-int run_stage(int argc, char** argv, const CommandLineSpec& spec,
-              const std::function<int(const CommandLine&)>& body);
+int run_stage(int argc, char** argv, const CommandLineSpec& spec, const std::function<int(const CommandLine&)>& body);
 
 }  // namespace mppm

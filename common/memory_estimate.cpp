@@ -65,20 +65,20 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   // bond_families.hpp, boundary_conditions.hpp. The points as read are released when the model is
   // built, before its bonds exist, so they are not part of the peak.
   std::uint64_t p = 0;
-  p += 8 * D + 8 + 4 + 4;                // reference position, volume, region, boundary id
-  p += 3 * 8 * D;                        // displacement, velocity, force
-  p += 2 * 8 * S + 1;                    // K^-1, C:K^-1, detached
-  p += 2 * 8 * D * D;                    // strain, force tensor A
-  p += 8;                                // stabilization energy
+  p += 8 * D + 8 + 4 + 4;                         // reference position, volume, region, boundary id
+  p += 3 * 8 * D;                                 // displacement, velocity, force
+  p += 2 * 8 * S + 1;                             // K^-1, C:K^-1, detached
+  p += 2 * 8 * D * D;                             // strain, force tensor A
+  p += 8;                                         // stabilization energy
   if (R > 0) p += 3 * 8 * R + 8 + 2 * 8 * R * D;  // rotation, spin, moment, g = G_s B_w tr K^-1 / d, wryness, Q
-  p += 8;                                // bond offsets (CSR)
-  p += 1;                                // prescribed-component bits of the boundary conditions
+  p += 8;                                         // bond offsets (CSR)
+  p += 1;                                         // prescribed-component bits of the boundary conditions
   // The cell list of the family search while the bonds are filled: its point list and the cells'
   // starts (one cell per horizon cube, a few points each: 1 B per point rounded up).
   p += 4 + 1;
   // no-fail, broken count, the previous evaluation's displacement and rotation and the sums of its
-  // force / moment tensors with this one's (the bond work's trapezoid rule), the offsets of the bond pairs (the family volumes of
-  // the few points next to a pre-crack are left out)
+  // force / moment tensors with this one's (the bond work's trapezoid rule), the offsets of the bond pairs (the family
+  // volumes of the few points next to a pre-crack are left out)
   if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 2 * 8 + 1;  // plastic strain and wryness, ebar, dissipation, active
   e.bytes_per_point = p;
@@ -110,9 +110,12 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
 std::string format_memory(std::uint64_t bytes) {
   const double b = static_cast<double>(bytes);
   char text[32];
-  if (b >= 1024.0 * 1024 * 1024) std::snprintf(text, sizeof text, "%.2f GiB", b / (1024.0 * 1024 * 1024));
-  else if (b >= 1024.0 * 1024) std::snprintf(text, sizeof text, "%.0f MiB", b / (1024.0 * 1024));
-  else std::snprintf(text, sizeof text, "%.0f KiB", b / 1024.0);
+  if (b >= 1024.0 * 1024 * 1024)
+    std::snprintf(text, sizeof text, "%.2f GiB", b / (1024.0 * 1024 * 1024));
+  else if (b >= 1024.0 * 1024)
+    std::snprintf(text, sizeof text, "%.0f MiB", b / (1024.0 * 1024));
+  else
+    std::snprintf(text, sizeof text, "%.0f KiB", b / 1024.0);
   return text;
 }
 
@@ -134,9 +137,11 @@ void require_memory_fits(const MemoryEstimate& e, std::uint64_t available_bytes,
   if (e.total_bytes <= available_bytes) return;
   std::ostringstream s;
   s << subject << ": the run needs about " << format_memory(e.total_bytes) << " of memory but only "
-    << format_memory(available_bytes) << " is available (points " << format_memory(e.total_bytes - e.fixed_bytes - e.snapshot_bytes - e.bonds * e.bytes_per_bond)
-    << ", " << e.bonds << " bond entries " << format_memory(e.bonds * e.bytes_per_bond) << ", one snapshot "
-    << format_memory(e.snapshot_bytes) << "); use a coarser geometry.spacing (memory falls with its square in "
+    << format_memory(available_bytes) << " is available (points "
+    << format_memory(e.total_bytes - e.fixed_bytes - e.snapshot_bytes - e.bonds * e.bytes_per_bond) << ", " << e.bonds
+    << " bond entries " << format_memory(e.bonds * e.bytes_per_bond) << ", one snapshot "
+    << format_memory(e.snapshot_bytes)
+    << "); use a coarser geometry.spacing (memory falls with its square in "
        "2-D, its cube in 3-D), a smaller horizon_factor, or fewer output.fields";
   throw InputError(s.str());
 }

@@ -19,7 +19,7 @@ struct MemoryEstimateInput {
   // Points with region > 0 or boundary_id > 0 (fictitious layers, loaded surfaces): the integrator
   // keeps the start-of-step state of those only, of every point with gravity or damping.
   std::uint64_t boundary_points = 0;
-  bool damping = false;  // numerics.damping != 0
+  bool damping = false;                      // numerics.damping != 0
   std::vector<std::string> effects;          // scene effects: micropolar, damage, viscoplasticity, ...
   std::vector<std::string> snapshot_fields;  // scene output.fields
 };
@@ -29,8 +29,8 @@ struct MemoryEstimate {
   std::uint64_t bytes_per_point = 0;  // the model's arrays and the points read from the file
   std::uint64_t bytes_per_bond = 0;
   std::uint64_t integrator_bytes = 0;  // the time integrator's start-of-step copies
-  std::uint64_t snapshot_bytes = 0;   // the buffer a snapshot is written through
-  std::uint64_t fixed_bytes = 0;      // program and libraries
+  std::uint64_t snapshot_bytes = 0;    // the buffer a snapshot is written through
+  std::uint64_t fixed_bytes = 0;       // program and libraries
   std::uint64_t total_bytes = 0;
 };
 

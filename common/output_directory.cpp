@@ -29,7 +29,8 @@ void prepare_output_directory(const std::string& directory, bool force, const Ou
       bool earlier_output = false;
       for (const std::string& marker : kind.markers) earlier_output = earlier_output || fs::exists(dir / marker, ec);
       if (!earlier_output)
-        throw InputError(directory + ": not replaced although --force was given: it is not empty and does not look like a " +
+        throw InputError(directory +
+                         ": not replaced although --force was given: it is not empty and does not look like a " +
                          kind.what + " (none of its files is there); choose another " + kind.option);
       // Renamed aside first so that the old output disappears at once: a failure below never
       // leaves a half-deleted mix of old files under the directory's name.

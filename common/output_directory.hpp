@@ -9,8 +9,8 @@
 namespace mppm {
 
 struct OutputDirectoryKind {
-  std::string what;                 // "run directory", "post directory": for the messages
-  std::string option;               // the command-line option that names it, e.g. "-o RUN_DIR"
+  std::string what;    // "run directory", "post directory": for the messages
+  std::string option;  // the command-line option that names it, e.g. "-o RUN_DIR"
   // Names of which at least one exists in an earlier output of this stage. --force deletes
   // only a directory that has one, never e.g. a home directory given to -o by mistake.
   std::vector<std::string> markers;

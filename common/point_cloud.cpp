@@ -161,19 +161,18 @@ void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary: smaller and faster than base64
   writer->SetCompressorTypeToZLib();
-  writer->SetCompressionLevel(1);  // most of the size gain at a fraction of the time
+  writer->SetCompressionLevel(1);   // most of the size gain at a fraction of the time
   writer->SetHeaderTypeToUInt64();  // no 4 GiB limit per array
   writer->WriteToOutputStringOn();
   if (writer->Write() != 1) throw InputError(path + ": VTK could not encode the point cloud");
   const std::string encoded = writer->GetOutputString();
-  write_file_atomically(path, [&](std::ostream& out) { out.write(encoded.data(), static_cast<std::streamsize>(encoded.size())); });
+  write_file_atomically(
+      path, [&](std::ostream& out) { out.write(encoded.data(), static_cast<std::streamsize>(encoded.size())); });
 }
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw InputError(path + ": " + problem);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw InputError(path + ": " + problem); }
 
 const VtkArray& required_array(const VtkArray* array, const char* name, std::int64_t tuples, int components,
                                const std::string& path, const char* where) {
@@ -181,8 +180,8 @@ const VtkArray& required_array(const VtkArray* array, const char* name, std::int
   if (array->is_string()) fail(path, std::string(where) + " array '" + name + "' must be numeric");
   if (array->components != components || array->tuples != tuples) {
     std::ostringstream s;
-    s << where << " array '" << name << "' has " << array->tuples << " x " << array->components
-      << " values (expected " << tuples << " x " << components << ")";
+    s << where << " array '" << name << "' has " << array->tuples << " x " << array->components << " values (expected "
+      << tuples << " x " << components << ")";
     fail(path, s.str());
   }
   return *array;
@@ -223,14 +222,14 @@ void read_cloud_scalars(const VtkPolyDataArrays& file, const std::string& path, 
   cloud.horizon = field_scalar(file, "horizon", path);
   cloud.thickness = field_scalar(file, "thickness", path);
   if (!(cloud.spacing > 0)) fail(path, "field 'spacing' must be positive");
-  if (!(cloud.horizon >= cloud.spacing))
-    fail(path, "field 'horizon' must be at least the spacing");
+  if (!(cloud.horizon >= cloud.spacing)) fail(path, "field 'horizon' must be at least the spacing");
   if (!(cloud.thickness > 0)) fail(path, "field 'thickness' must be positive");
 }
 
 std::vector<BoundaryInfo> read_boundaries(const VtkPolyDataArrays& file, const std::string& path) {
   const double boundary_count_value = field_scalar(file, "boundary_count", path);
-  if (boundary_count_value < 0 || boundary_count_value > 1e6 || boundary_count_value != std::floor(boundary_count_value))
+  if (boundary_count_value < 0 || boundary_count_value > 1e6 ||
+      boundary_count_value != std::floor(boundary_count_value))
     fail(path, "field 'boundary_count' must be a whole number from 0 to 1000000");
   const auto boundary_count = static_cast<std::int32_t>(boundary_count_value);
   std::vector<BoundaryInfo> boundaries;
@@ -239,8 +238,8 @@ std::vector<BoundaryInfo> read_boundaries(const VtkPolyDataArrays& file, const s
   const auto& types = string_array(file, "boundary_types", boundary_count, "type", path);
   const VtkArray& areas =
       required_array(file.field("boundary_areas"), "boundary_areas", boundary_count, 1, path, "field data");
-  const VtkArray& counts = required_array(file.field("boundary_point_counts"), "boundary_point_counts",
-                                          boundary_count, 1, path, "field data");
+  const VtkArray& counts = required_array(file.field("boundary_point_counts"), "boundary_point_counts", boundary_count,
+                                          1, path, "field data");
   // Optional (files from before they were stored): what each layer was made from.
   const bool has_origin = file.field("boundary_selectors") || file.field("boundary_depths");
   const std::vector<std::string>* selectors =
@@ -252,8 +251,7 @@ std::vector<BoundaryInfo> read_boundaries(const VtkPolyDataArrays& file, const s
     BoundaryInfo info;
     info.name = names[static_cast<std::size_t>(k)];
     info.type = types[static_cast<std::size_t>(k)];
-    if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" &&
-        info.type != "pressure")
+    if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" && info.type != "pressure")
       fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
     info.area = finite_value(areas, k, 0, path);
     const double point_count = finite_value(counts, k, 0, path);
@@ -288,8 +286,7 @@ void read_points(const VtkArray& points, const PointArrays& arrays, const std::s
     const double p[3] = {points.numbers[3 * u], points.numbers[3 * u + 1], points.numbers[3 * u + 2]};
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       fail(path, "point " + std::to_string(i) + " has a non-finite coordinate");
-    if (cloud.dimension == 2 && p[2] != 0.0)
-      fail(path, "point " + std::to_string(i) + " has z != 0 in a 2-D cloud");
+    if (cloud.dimension == 2 && p[2] != 0.0) fail(path, "point " + std::to_string(i) + " has z != 0 in a 2-D cloud");
     cloud.x[u] = p[0];
     cloud.y[u] = p[1];
     cloud.z[u] = p[2];
@@ -298,12 +295,11 @@ void read_points(const VtkArray& points, const PointArrays& arrays, const std::s
     cloud.region[u] = integer_value(arrays.region, i, path);
     cloud.boundary_id[u] = integer_value(arrays.boundary_id, i, path);
     if (cloud.region[u] < 0 || cloud.region[u] > boundary_count)
-      fail(path, "point " + std::to_string(i) + " has region " + std::to_string(cloud.region[u]) +
-                     " (expected 0.." + std::to_string(boundary_count) + ")");
-    if (cloud.boundary_id[u] < 0 || cloud.boundary_id[u] > boundary_count)
-      fail(path, "point " + std::to_string(i) + " has boundary_id " +
-                     std::to_string(cloud.boundary_id[u]) + " (expected 0.." +
+      fail(path, "point " + std::to_string(i) + " has region " + std::to_string(cloud.region[u]) + " (expected 0.." +
                      std::to_string(boundary_count) + ")");
+    if (cloud.boundary_id[u] < 0 || cloud.boundary_id[u] > boundary_count)
+      fail(path, "point " + std::to_string(i) + " has boundary_id " + std::to_string(cloud.boundary_id[u]) +
+                     " (expected 0.." + std::to_string(boundary_count) + ")");
     if (cloud.region[u] > 0 && cloud.boundary_id[u] != cloud.region[u])
       fail(path, "layer point " + std::to_string(i) + " has boundary_id != region");
     cloud.normal_x[u] = finite_value(arrays.normal, i, 0, path);
@@ -334,8 +330,7 @@ void read_precrack_vertices(const VtkPolyDataArrays& file, const std::string& pa
 // which crashes on some corrupted files (tests/fuzz/README.md).
 PointCloud read_point_cloud(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    fail(path, "points file not found (run mppm-preprocess first)");
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "points file not found (run mppm-preprocess first)");
   const VtkPolyDataArrays file = read_vtk_polydata_arrays(path);
 
   PointCloud cloud;

@@ -14,10 +14,10 @@ namespace mppm {
 // depth of traction/pressure boundary k, k (the nearest such boundary wins at corners);
 // otherwise 0.
 struct BoundaryInfo {
-  std::string name;               // scene label (physical group name, or "bc<k>")
-  std::string type;               // "velocity", "displacement", "traction", "pressure"
-  double area = 0.0;              // loaded area [m^2] (2-D: length * thickness)
-  std::int64_t point_count = 0;   // layer points (kinematic) or loaded body points (traction)
+  std::string name;              // scene label (physical group name, or "bc<k>")
+  std::string type;              // "velocity", "displacement", "traction", "pressure"
+  double area = 0.0;             // loaded area [m^2] (2-D: length * thickness)
+  std::int64_t point_count = 0;  // layer points (kinematic) or loaded body points (traction)
   // What the layer was made from, so that the solver can refuse a scene that selects or sizes
   // it differently (the layers are fixed in the points file): the scene's selection
   // (Selector::fingerprint) and the layer depth [m] (horizon for kinematic layers, the loaded
@@ -28,11 +28,11 @@ struct BoundaryInfo {
 
 struct PointCloud {
   int dimension = 2;
-  double spacing = 0.0;     // dx [m]
-  double horizon = 0.0;     // delta [m]
-  double thickness = 1.0;   // 2-D thickness [m]
+  double spacing = 0.0;    // dx [m]
+  double horizon = 0.0;    // delta [m]
+  double thickness = 1.0;  // 2-D thickness [m]
   std::vector<double> x, y, z;
-  std::vector<double> volume;           // [m^3]
+  std::vector<double> volume;  // [m^3]
   std::vector<std::int32_t> region;
   std::vector<std::int32_t> boundary_id;
   // Outward unit normal of the boundary a loaded body point belongs to (boundary_id > 0 and

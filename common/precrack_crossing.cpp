@@ -48,8 +48,7 @@ bool bond_crosses_precrack(const Point3& a, const Point3& b, int dimension,
   return false;
 }
 
-PrecrackIndex::PrecrackIndex(int dimension, const std::vector<double>& precrack_vertices,
-                             double cell_size)
+PrecrackIndex::PrecrackIndex(int dimension, const std::vector<double>& precrack_vertices, double cell_size)
     : dimension_(dimension), cell_size_(cell_size > 0.0 ? cell_size : 1.0) {
   const int per = vertices_per_element(dimension);
   const std::size_t stride = 3 * static_cast<std::size_t>(per);
@@ -78,8 +77,7 @@ PrecrackIndex::PrecrackIndex(int dimension, const std::vector<double>& precrack_
     }
     for (auto i = first[0]; i <= last[0]; ++i)
       for (auto j = first[1]; j <= last[1]; ++j)
-        for (auto k = first[2]; k <= last[2]; ++k)
-          entries_.push_back({{i, j, k}, static_cast<std::int32_t>(e)});
+        for (auto k = first[2]; k <= last[2]; ++k) entries_.push_back({{i, j, k}, static_cast<std::int32_t>(e)});
   }
   std::sort(entries_.begin(), entries_.end(), [](const CellEntry& l, const CellEntry& r) {
     return l.cell != r.cell ? l.cell < r.cell : l.element < r.element;
@@ -88,8 +86,7 @@ PrecrackIndex::PrecrackIndex(int dimension, const std::vector<double>& precrack_
 
 bool PrecrackIndex::element_crosses(std::int32_t element, const Point3& a, const Point3& b) const {
   const std::size_t stride = 3 * static_cast<std::size_t>(vertices_per_element(dimension_));
-  return segment_crosses(dimension_, vertices_.data() + static_cast<std::size_t>(element) * stride,
-                         a, b);
+  return segment_crosses(dimension_, vertices_.data() + static_cast<std::size_t>(element) * stride, a, b);
 }
 
 bool PrecrackIndex::crosses(const Point3& a, const Point3& b) const {
@@ -107,10 +104,9 @@ bool PrecrackIndex::crosses(const Point3& a, const Point3& b) const {
     for (auto j = first[1]; j <= last[1]; ++j)
       for (auto k = first[2]; k <= last[2]; ++k) {
         const std::array<std::int64_t, 3> cell{i, j, k};
-        auto it = std::lower_bound(entries_.begin(), entries_.end(), cell,
-                                   [](const CellEntry& e, const std::array<std::int64_t, 3>& key) {
-                                     return e.cell < key;
-                                   });
+        auto it =
+            std::lower_bound(entries_.begin(), entries_.end(), cell,
+                             [](const CellEntry& e, const std::array<std::int64_t, 3>& key) { return e.cell < key; });
         for (; it != entries_.end() && it->cell == cell; ++it)
           if (element_crosses(it->element, a, b)) return true;
       }

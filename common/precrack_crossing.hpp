@@ -40,10 +40,10 @@ class PrecrackIndex {
 
   int dimension_;
   double cell_size_;
-  std::vector<double> vertices_;      // valid (non-degenerate) elements only
+  std::vector<double> vertices_;  // valid (non-degenerate) elements only
   std::size_t elements_ = 0;
   std::array<double, 3> low_{}, high_{};  // bounding box of all elements
-  std::vector<CellEntry> entries_;    // sorted by cell
+  std::vector<CellEntry> entries_;        // sorted by cell
 };
 
 }  // namespace mppm

@@ -10,15 +10,22 @@
 namespace mppm {
 
 Progress::Progress(std::string label, std::int64_t total, bool quiet)
-    : label_(std::move(label)), total_(total), quiet_(quiet), terminal_(::isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : label_(std::move(label)),
+      total_(total),
+      quiet_(quiet),
+      terminal_(::isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 static std::string format_seconds(double s) {
   char buf[32];
   if (!std::isfinite(s) || s < 0) return "?";
-  if (s < 60) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else if (s < 3600) std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60.0));
-  else std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600), std::fmod(s / 60, 60.0));
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60.0));
+  else
+    std::snprintf(buf, sizeof buf, "%.0f h %02.0f min", std::floor(s / 3600), std::fmod(s / 60, 60.0));
   return buf;
 }
 
@@ -34,10 +41,12 @@ void Progress::update(std::int64_t done, const std::string& detail) {
   char line[256];
   std::snprintf(line, sizeof line, "%s %lld/%lld (%.1f%%) %s | %.3g /s | ETA %s", label_.c_str(),
                 static_cast<long long>(done), static_cast<long long>(total_),
-                total_ > 0 ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0,
-                detail.c_str(), rate, format_seconds(eta).c_str());
-  if (terminal_) std::cerr << "\r" << line << "\033[K" << std::flush;
-  else std::cerr << line << "\n";
+                total_ > 0 ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0, detail.c_str(),
+                rate, format_seconds(eta).c_str());
+  if (terminal_)
+    std::cerr << "\r" << line << "\033[K" << std::flush;
+  else
+    std::cerr << line << "\n";
 }
 
 void Progress::finish(const std::string& detail) {

@@ -25,9 +25,15 @@
 namespace mppm::run_files {
 
 inline const std::vector<std::string>& energy_columns() {
-  static const std::vector<std::string> columns{
-      "time_s", "kinetic_J", "rotational_kinetic_J", "elastic_J", "stabilization_J",
-      "plastic_dissipation_J", "fracture_dissipation_J", "external_work_J", "balance_error"};
+  static const std::vector<std::string> columns{"time_s",
+                                                "kinetic_J",
+                                                "rotational_kinetic_J",
+                                                "elastic_J",
+                                                "stabilization_J",
+                                                "plastic_dissipation_J",
+                                                "fracture_dissipation_J",
+                                                "external_work_J",
+                                                "balance_error"};
   return columns;
 }
 

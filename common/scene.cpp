@@ -25,13 +25,20 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kEffectNames{"micropolar", "viscoplasticity", "damage", "gravity"};
 
 // Fields a snapshot can hold, and the effect each one needs (empty: always available).
-const std::vector<std::pair<std::string, std::string>> kOutputFields{
-    {"displacement", ""},      {"velocity", ""},          {"rotation", "micropolar"},
-    {"rotation_rate", "micropolar"}, {"strain", ""},      {"stress", ""},
-    {"wryness", "micropolar"}, {"couple_stress", "micropolar"}, {"porosity", ""},
-    {"damage", "damage"},      {"plastic_strain", "viscoplasticity"},
-    {"plastic_shear_strain", "viscoplasticity"}, {"equivalent_plastic_strain", "viscoplasticity"},
-    {"detached", ""}};
+const std::vector<std::pair<std::string, std::string>> kOutputFields{{"displacement", ""},
+                                                                     {"velocity", ""},
+                                                                     {"rotation", "micropolar"},
+                                                                     {"rotation_rate", "micropolar"},
+                                                                     {"strain", ""},
+                                                                     {"stress", ""},
+                                                                     {"wryness", "micropolar"},
+                                                                     {"couple_stress", "micropolar"},
+                                                                     {"porosity", ""},
+                                                                     {"damage", "damage"},
+                                                                     {"plastic_strain", "viscoplasticity"},
+                                                                     {"plastic_shear_strain", "viscoplasticity"},
+                                                                     {"equivalent_plastic_strain", "viscoplasticity"},
+                                                                     {"detached", ""}};
 
 // The keys each block of a scene accepts, by the path of the block ("" = top level, "[]" = every
 // entry of a list). check_keys reads them from here, so this is the one list of valid keys;
@@ -39,23 +46,28 @@ const std::vector<std::pair<std::string, std::string>> kOutputFields{
 const std::vector<std::string> kSelectorKeys{"boundary", "entities", "box"};
 const std::vector<std::string> kRegionKeys{"box"};
 const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
-    {"", {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects", "gravity",
-          "boundary_conditions", "time", "output", "numerics", "derived", "mppm_version"}},
+    {"",
+     {"mppm", "name", "dimension", "thickness", "geometry", "material", "effects", "gravity", "boundary_conditions",
+      "time", "output", "numerics", "derived", "mppm_version"}},
     {"geometry", {"file", "unit", "spacing", "horizon_factor", "precracks"}},
     {"geometry.precracks[]", kSelectorKeys},
-    {"material", {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli", "length_scale",
-                  "damage", "viscoplasticity"}},
+    {"material",
+     {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli", "length_scale", "damage",
+      "viscoplasticity"}},
     {"material.damage", {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"}},
     {"material.damage.region", kRegionKeys},
-    {"material.viscoplasticity", {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity",
-                                  "residual_cohesion", "cone_match", "region"}},
+    {"material.viscoplasticity",
+     {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity", "residual_cohesion",
+      "cone_match", "region"}},
     {"material.viscoplasticity.region", kRegionKeys},
-    {"boundary_conditions[]", {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation",
-                               "rotation_rate", "rotation_history", "depth"}},
+    {"boundary_conditions[]",
+     {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation", "rotation_rate",
+      "rotation_history", "depth"}},
     {"time", {"end", "step", "safety"}},
     {"output", {"interval", "load_interval", "fields", "checkpoint_interval"}},
-    {"numerics", {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step",
-                  "detach_energy_rise", "overload_factor", "damaged_frequency_ratio"}},
+    {"numerics",
+     {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step", "detach_energy_rise",
+      "overload_factor", "damaged_frequency_ratio"}},
 };
 
 // "boundary_conditions[2]" -> "boundary_conditions[]"
@@ -143,8 +155,12 @@ class SceneReader {
     } catch (const YAML::Exception& e) {
       throw InputError(file_ + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
     }
-    if (!root.IsDefined() || root.IsNull()) throw InputError(file_ + ": the scene is empty (expected a YAML map with keys mppm, dimension, geometry, material, ...)");
-    if (!root.IsMap()) throw InputError(file_ + ":" + std::to_string(root.Mark().line + 1) + ": the scene must be a YAML map of keys (mppm, dimension, geometry, ...)");
+    if (!root.IsDefined() || root.IsNull())
+      throw InputError(file_ +
+                       ": the scene is empty (expected a YAML map with keys mppm, dimension, geometry, material, ...)");
+    if (!root.IsMap())
+      throw InputError(file_ + ":" + std::to_string(root.Mark().line + 1) +
+                       ": the scene must be a YAML map of keys (mppm, dimension, geometry, ...)");
     for (const auto& o : overrides) apply_override(root, o);
 
     scene_.path = file_;
@@ -206,7 +222,8 @@ class SceneReader {
     return parts;
   }
   static bool is_index(const std::string& s) {
-    return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    return !s.empty() &&
+           std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
   }
 
   void apply_override(YAML::Node& root, const std::string& text) {
@@ -234,7 +251,8 @@ class SceneReader {
         // More than 9 digits cannot index a scene list, and std::stoul would throw out_of_range.
         if (!is_index(part) || part.size() > 9 || std::stoul(part) >= node.size()) {
           throw InputError("--set " + text + ": '" + part + "' is not an index of the list " +
-                           (canonical.empty() ? "" : canonical) + " (it has " + std::to_string(node.size()) + " entries, counted from 0)");
+                           (canonical.empty() ? "" : canonical) + " (it has " + std::to_string(node.size()) +
+                           " entries, counted from 0)");
         }
         canonical += "[" + part + "]";
         const std::size_t index = std::stoul(part);
@@ -268,14 +286,17 @@ class SceneReader {
     if (!map.IsMap()) fail(map, path, "expected a map of keys (" + join(allowed) + ")");
     for (const auto& kv : map) {
       // A list or map used as a key ("[a]: 1") has no string value: as<std::string>() would throw.
-      if (!kv.first.IsScalar()) fail(kv.first, path, "a key must be a plain name, not a list or map (expected one of: " + join(allowed) + ")");
+      if (!kv.first.IsScalar())
+        fail(kv.first, path, "a key must be a plain name, not a list or map (expected one of: " + join(allowed) + ")");
       const auto key = kv.first.as<std::string>();
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        fail(kv.first, child_path(path, key), "unknown key (expected one of: " + join(allowed) + ")" + suggestion(key, allowed));
+        fail(kv.first, child_path(path, key),
+             "unknown key (expected one of: " + join(allowed) + ")" + suggestion(key, allowed));
       }
     }
   }
-  YAML::Node require(const YAML::Node& map, const std::string& path, const std::string& key, const std::string& hint = "") {
+  YAML::Node require(const YAML::Node& map, const std::string& path, const std::string& key,
+                     const std::string& hint = "") {
     YAML::Node node = map[key];
     if (!node.IsDefined() || node.IsNull()) {
       fail(map, child_path(path, key), "missing required key" + (hint.empty() ? "" : " (" + hint + ")"));
@@ -283,7 +304,12 @@ class SceneReader {
     return node;
   }
   std::string scalar(const YAML::Node& node, const std::string& path, const std::string& expected) {
-    if (!node.IsScalar()) fail(node, path, "expected " + expected + ", got a " + (node.IsSequence() ? "list" : node.IsMap() ? "map" : "null value"));
+    if (!node.IsScalar())
+      fail(node, path,
+           "expected " + expected + ", got a " +
+               (node.IsSequence() ? "list"
+                : node.IsMap()    ? "map"
+                                  : "null value"));
     note_line(node, path);
     return node.Scalar();
   }
@@ -295,7 +321,8 @@ class SceneReader {
       fail(node, path, e.what());
     }
   }
-  double quantity_or(const YAML::Node& map, const std::string& path, const std::string& key, const Dimension& d, double fallback) {
+  double quantity_or(const YAML::Node& map, const std::string& path, const std::string& key, const Dimension& d,
+                     double fallback) {
     const YAML::Node node = map[key];
     if (!node.IsDefined() || node.IsNull()) return fallback;
     return quantity(node, child_path(path, key), d);
@@ -310,7 +337,8 @@ class SceneReader {
     }
     fail(node, path, "\"" + text + "\" is not an integer");
   }
-  std::vector<double> quantity_list(const YAML::Node& node, const std::string& path, const Dimension& d, std::size_t count) {
+  std::vector<double> quantity_list(const YAML::Node& node, const std::string& path, const Dimension& d,
+                                    std::size_t count) {
     if (!node.IsSequence() || node.size() != count) {
       fail(node, path, "expected a list of " + std::to_string(count) + " values (" + d.to_string() + ")");
     }
@@ -336,7 +364,9 @@ class SceneReader {
   // ---------------------------------------------------------------- sections
   void read_header(const YAML::Node& root) {
     const auto version = integer(require(root, "", "mppm", "the scene format version: mppm: 1"), "mppm");
-    if (version != 1) fail(root["mppm"], "mppm", "unsupported scene format version " + std::to_string(version) + " (this mppm reads version 1)");
+    if (version != 1)
+      fail(root["mppm"], "mppm",
+           "unsupported scene format version " + std::to_string(version) + " (this mppm reads version 1)");
     scene_.format_version = version;
     if (root["name"].IsDefined() && !root["name"].IsNull()) {
       scene_.name = scalar(root["name"], "name", "a name");
@@ -344,10 +374,14 @@ class SceneReader {
       scene_.name = fs::path(file_).stem().string();
     }
     const auto dimension = integer(require(root, "", "dimension", "2 for plane strain or 3"), "dimension");
-    if (dimension != 2 && dimension != 3) fail(root["dimension"], "dimension", std::to_string(dimension) + " is not supported (expected 2 = plane strain, or 3)");
+    if (dimension != 2 && dimension != 3)
+      fail(root["dimension"], "dimension",
+           std::to_string(dimension) + " is not supported (expected 2 = plane strain, or 3)");
     scene_.dimension = dimension;
     if (dimension == 2) {
-      scene_.thickness = quantity(require(root, "", "thickness", "out-of-plane thickness of the plane-strain body, e.g. 1 mm"), "thickness", dim::length);
+      scene_.thickness =
+          quantity(require(root, "", "thickness", "out-of-plane thickness of the plane-strain body, e.g. 1 mm"),
+                   "thickness", dim::length);
       positive(root["thickness"], "thickness", scene_.thickness);
     } else if (root["thickness"].IsDefined()) {
       scene_.warnings.push_back(location(root["thickness"], "thickness") + ": thickness: ignored in 3-D");
@@ -370,12 +404,19 @@ class SceneReader {
       const auto path = "effects[" + std::to_string(k) + "]";
       const auto name = scalar(list[k], path, "an effect name");
       if (!seen.insert(name).second) fail(list[k], path, "'" + name + "' is listed twice");
-      if (name == "micropolar") scene_.effects.micropolar = true;
-      else if (name == "viscoplasticity") scene_.effects.viscoplasticity = true;
-      else if (name == "damage") scene_.effects.damage = true;
-      else if (name == "gravity") scene_.effects.gravity = true;
-      else if (name == "none" && list.size() == 1) {}
-      else fail(list[k], path, "unknown effect '" + name + "' (expected one of: " + join(kEffectNames) + ")" + suggestion(name, kEffectNames));
+      if (name == "micropolar")
+        scene_.effects.micropolar = true;
+      else if (name == "viscoplasticity")
+        scene_.effects.viscoplasticity = true;
+      else if (name == "damage")
+        scene_.effects.damage = true;
+      else if (name == "gravity")
+        scene_.effects.gravity = true;
+      else if (name == "none" && list.size() == 1) {
+      } else
+        fail(list[k], path,
+             "unknown effect '" + name + "' (expected one of: " + join(kEffectNames) + ")" +
+                 suggestion(name, kEffectNames));
     }
   }
 
@@ -385,7 +426,8 @@ class SceneReader {
       s.physical_group = scalar(node, path, "a physical group name");
       return s;
     }
-    if (!node.IsMap()) fail(node, path, "expected a physical group name, {entities: [...]} or {box: [[x0,y0,z0],[x1,y1,z1]]}");
+    if (!node.IsMap())
+      fail(node, path, "expected a physical group name, {entities: [...]} or {box: [[x0,y0,z0],[x1,y1,z1]]}");
     check_keys(node, path);
     read_selector_keys(node, path, s);
     return s;
@@ -431,22 +473,27 @@ class SceneReader {
       ++given;
     }
     if (given != 1) {
-      fail(map, path, given == 0 ? "missing the selection: give one of boundary (physical group name), entities ([tags]) or box ([[x0,y0,z0],[x1,y1,z1]])"
-                                 : "give only one of boundary, entities or box");
+      fail(map, path,
+           given == 0 ? "missing the selection: give one of boundary (physical group name), entities ([tags]) or box "
+                        "([[x0,y0,z0],[x1,y1,z1]])"
+                      : "give only one of boundary, entities or box");
     }
   }
 
   void read_geometry(const YAML::Node& g) {
     const std::string p = "geometry";
     check_keys(g, p);
-    const auto file = scalar(require(g, p, "file", "path of a .geo .msh .step .stp .brep or .stl file"), "geometry.file", "a file path");
+    const auto file = scalar(require(g, p, "file", "path of a .geo .msh .step .stp .brep or .stl file"),
+                             "geometry.file", "a file path");
     fs::path fp(file);
     if (fp.is_relative()) fp = fs::path(dir_) / fp;
     scene_.geometry.file = fp.lexically_normal().string();
     const auto ext = fp.extension().string();
-    static const std::vector<std::string> exts{".geo", ".msh", ".step", ".stp", ".brep", ".stl", ".STEP", ".STP", ".STL", ".BREP"};
+    static const std::vector<std::string> exts{".geo", ".msh",  ".step", ".stp", ".brep",
+                                               ".stl", ".STEP", ".STP",  ".STL", ".BREP"};
     if (std::find(exts.begin(), exts.end(), ext) == exts.end()) {
-      fail(g["file"], "geometry.file", "unsupported file type '" + ext + "' (expected .geo .msh .step .stp .brep or .stl)");
+      fail(g["file"], "geometry.file",
+           "unsupported file type '" + ext + "' (expected .geo .msh .step .stp .brep or .stl)");
     }
     if (g["unit"].IsDefined()) {
       const auto unit = scalar(g["unit"], "geometry.unit", "a length unit (m, mm, cm, um, in, ft)");
@@ -456,17 +503,24 @@ class SceneReader {
         fail(g["unit"], "geometry.unit", e.what());
       }
     }
-    scene_.geometry.spacing = quantity(require(g, p, "spacing", "lattice spacing dx, e.g. 0.5 mm"), "geometry.spacing", dim::length);
+    scene_.geometry.spacing =
+        quantity(require(g, p, "spacing", "lattice spacing dx, e.g. 0.5 mm"), "geometry.spacing", dim::length);
     positive(g["spacing"], "geometry.spacing", scene_.geometry.spacing);
-    scene_.geometry.horizon_factor = quantity(require(g, p, "horizon_factor", "delta / dx, e.g. 3.015 or 4.05"), "geometry.horizon_factor", dim::none);
+    scene_.geometry.horizon_factor = quantity(require(g, p, "horizon_factor", "delta / dx, e.g. 3.015 or 4.05"),
+                                              "geometry.horizon_factor", dim::none);
     if (!(scene_.geometry.horizon_factor >= 1.0)) {
-      fail(g["horizon_factor"], "geometry.horizon_factor", format_number(scene_.geometry.horizon_factor) + " leaves points without neighbours (expected >= 1; 2.05 to 5 is usual)");
+      fail(g["horizon_factor"], "geometry.horizon_factor",
+           format_number(scene_.geometry.horizon_factor) +
+               " leaves points without neighbours (expected >= 1; 2.05 to 5 is usual)");
     }
     if (g["precracks"].IsDefined() && !g["precracks"].IsNull()) {
       const YAML::Node list = g["precracks"];
-      if (!list.IsSequence()) fail(list, "geometry.precracks", "expected a list of physical group names or {entities: [...]} / {box: ...} entries");
+      if (!list.IsSequence())
+        fail(list, "geometry.precracks",
+             "expected a list of physical group names or {entities: [...]} / {box: ...} entries");
       for (std::size_t k = 0; k < list.size(); ++k) {
-        scene_.geometry.precracks.push_back(read_selector(list[k], "geometry.precracks[" + std::to_string(k) + "]", true));
+        scene_.geometry.precracks.push_back(
+            read_selector(list[k], "geometry.precracks[" + std::to_string(k) + "]", true));
       }
     }
   }
@@ -479,41 +533,51 @@ class SceneReader {
       mat.model = scalar(m["model"], "material.model", "a material model name");
       static const std::vector<std::string> models{"cosserat-elastic"};
       if (std::find(models.begin(), models.end(), mat.model) == models.end()) {
-        fail(m["model"], "material.model", "unknown model '" + mat.model + "' (expected one of: " + join(models) +
-                                               "; viscoplasticity is an effect with its own block material.viscoplasticity)" + suggestion(mat.model, models));
+        fail(m["model"], "material.model",
+             "unknown model '" + mat.model + "' (expected one of: " + join(models) +
+                 "; viscoplasticity is an effect with its own block material.viscoplasticity)" +
+                 suggestion(mat.model, models));
       }
     }
-    mat.density = quantity(require(m, p, "density", "skeleton density, e.g. 2650 kg/m^3"), "material.density", dim::density);
+    mat.density =
+        quantity(require(m, p, "density", "skeleton density, e.g. 2650 kg/m^3"), "material.density", dim::density);
     positive(m["density"], "material.density", mat.density);
     mat.solid_fraction = quantity_or(m, p, "solid_fraction", dim::none, 1.0);
     if (!(mat.solid_fraction > 0.0 && mat.solid_fraction <= 1.0)) {
-      fail(m["solid_fraction"], "material.solid_fraction", format_number(mat.solid_fraction) + " is not a volume fraction (expected 0 < phi <= 1)");
+      fail(m["solid_fraction"], "material.solid_fraction",
+           format_number(mat.solid_fraction) + " is not a volume fraction (expected 0 < phi <= 1)");
     }
     mat.lambda = quantity(require(m, p, "lambda", "Lame constant, e.g. 14 GPa"), "material.lambda", dim::pressure);
     mat.mu = quantity(require(m, p, "mu", "shear modulus, e.g. 14 GPa"), "material.mu", dim::pressure);
     positive(m["mu"], "material.mu", mat.mu);
     const int d = scene_.dimension;
     if (!(mat.lambda + 2.0 * mat.mu / d > 0.0)) {
-      fail(m["lambda"], "material.lambda", "lambda + 2 mu / d = " + format_number(mat.lambda + 2.0 * mat.mu / d) + " must be > 0 (bulk modulus)");
+      fail(m["lambda"], "material.lambda",
+           "lambda + 2 mu / d = " + format_number(mat.lambda + 2.0 * mat.mu / d) + " must be > 0 (bulk modulus)");
     }
     const bool polar = scene_.effects.micropolar;
     const std::vector<std::string> polar_keys{"mu_c", "couple_moduli", "length_scale"};
     if (polar) {
-      mat.mu_c = quantity(require(m, p, "mu_c", "Cosserat couple modulus, e.g. 4.667 GPa (micropolar is on)"), "material.mu_c", dim::pressure);
+      mat.mu_c = quantity(require(m, p, "mu_c", "Cosserat couple modulus, e.g. 4.667 GPa (micropolar is on)"),
+                          "material.mu_c", dim::pressure);
       if (mat.mu_c < 0.0) fail(m["mu_c"], "material.mu_c", format_number(mat.mu_c) + " must be >= 0");
-      const auto a = quantity_list(require(m, p, "couple_moduli", "[a1, a2, a3] in N (micropolar is on)"), "material.couple_moduli", dim::force, 3);
+      const auto a = quantity_list(require(m, p, "couple_moduli", "[a1, a2, a3] in N (micropolar is on)"),
+                                   "material.couple_moduli", dim::force, 3);
       mat.couple_moduli = {a[0], a[1], a[2]};
       if (d == 2 && !(a[2] > 0.0)) {
-        fail(m["couple_moduli"], "material.couple_moduli", "in 2-D the bending modulus B_w = a3 must be > 0 (got " + format_number(a[2]) + " N)");
+        fail(m["couple_moduli"], "material.couple_moduli",
+             "in 2-D the bending modulus B_w = a3 must be > 0 (got " + format_number(a[2]) + " N)");
       }
       if (d == 3) {
         // Curvature energy 1/2 [(3a1+a2+a3)|sph|^2 + (a2+a3)|dev|^2 + (a2-a3)|skew|^2] must be positive.
         if (!(3 * a[0] + a[1] + a[2] > 0.0 && a[1] + a[2] > 0.0 && a[1] - a[2] >= 0.0)) {
           fail(m["couple_moduli"], "material.couple_moduli",
-               "a1, a2, a3 make the curvature energy indefinite in 3-D (need 3 a1 + a2 + a3 > 0, a2 + a3 > 0 and a2 >= a3)");
+               "a1, a2, a3 make the curvature energy indefinite in 3-D (need 3 a1 + a2 + a3 > 0, a2 + a3 > 0 and a2 >= "
+               "a3)");
         }
       }
-      mat.length_scale = quantity(require(m, p, "length_scale", "micro-polar length l (mean grain size), e.g. 2 mm"), "material.length_scale", dim::length);
+      mat.length_scale = quantity(require(m, p, "length_scale", "micro-polar length l (mean grain size), e.g. 2 mm"),
+                                  "material.length_scale", dim::length);
       positive(m["length_scale"], "material.length_scale", mat.length_scale);
     } else {
       std::vector<std::string> ignored;  // full paths; the first one's key locates the warning
@@ -533,7 +597,8 @@ class SceneReader {
   }
 
   void warn_effect_off(const YAML::Node& node, const std::string& path, const std::string& effect) {
-    scene_.warnings.push_back(location(node, path) + ": " + path + ": ignored because the effect '" + effect + "' is not listed in effects");
+    scene_.warnings.push_back(location(node, path) + ": " + path + ": ignored because the effect '" + effect +
+                              "' is not listed in effects");
   }
 
   // The parameter block of an effect is read only when the effect is on; given while it is off,
@@ -547,11 +612,14 @@ class SceneReader {
     const YAML::Node node = m["damage"];
     const std::string p = "material.damage";
     if (!effect_block_wanted(node, p, scene_.effects.damage, "damage")) return;
-    if (!node.IsDefined() || node.IsNull()) fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
+    if (!node.IsDefined() || node.IsNull())
+      fail(m, p, "missing: the effect 'damage' needs {critical_energy_release_rate: ..., no_fail_depth: ...}");
     check_keys(node, p);
     DamageParameters dp;
-    dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"), p + ".critical_energy_release_rate", dim::energy_per_area);
-    positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate", dp.critical_energy_release_rate);
+    dp.critical_energy_release_rate = quantity(require(node, p, "critical_energy_release_rate", "G_cr, e.g. 160 N/m"),
+                                               p + ".critical_energy_release_rate", dim::energy_per_area);
+    positive(node["critical_energy_release_rate"], p + ".critical_energy_release_rate",
+             dp.critical_energy_release_rate);
     dp.no_fail_depth = quantity_or(node, p, "no_fail_depth", dim::length, 0.0);
     if (dp.no_fail_depth < 0.0) fail(node["no_fail_depth"], p + ".no_fail_depth", "must be >= 0");
     if (node["calibration"].IsDefined()) {
@@ -577,18 +645,25 @@ class SceneReader {
     const std::string p = "material.viscoplasticity";
     if (!effect_block_wanted(node, p, scene_.effects.viscoplasticity, "viscoplasticity")) return;
     if (!node.IsDefined() || node.IsNull()) {
-      fail(m, p, "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, viscosity}");
+      fail(m, p,
+           "missing: the effect 'viscoplasticity' needs {friction_angle, dilatancy_angle, cohesion, hardening, "
+           "viscosity}");
     }
     check_keys(node, p);
     ViscoplasticParameters vp;
     if (node["model"].IsDefined()) vp.model = scalar(node["model"], p + ".model", "a model name");
     vp.friction_angle = quantity(require(node, p, "friction_angle", "e.g. 35 deg"), p + ".friction_angle", dim::angle);
-    vp.dilatancy_angle = quantity(require(node, p, "dilatancy_angle", "e.g. 15 deg"), p + ".dilatancy_angle", dim::angle);
+    vp.dilatancy_angle =
+        quantity(require(node, p, "dilatancy_angle", "e.g. 15 deg"), p + ".dilatancy_angle", dim::angle);
     const double right = std::numbers::pi / 2;
-    if (!(vp.friction_angle >= 0.0 && vp.friction_angle < right)) fail(node["friction_angle"], p + ".friction_angle", "must be in [0, 90) deg");
-    if (!(vp.dilatancy_angle >= 0.0 && vp.dilatancy_angle < right)) fail(node["dilatancy_angle"], p + ".dilatancy_angle", "must be in [0, 90) deg");
+    if (!(vp.friction_angle >= 0.0 && vp.friction_angle < right))
+      fail(node["friction_angle"], p + ".friction_angle", "must be in [0, 90) deg");
+    if (!(vp.dilatancy_angle >= 0.0 && vp.dilatancy_angle < right))
+      fail(node["dilatancy_angle"], p + ".dilatancy_angle", "must be in [0, 90) deg");
     if (vp.dilatancy_angle > vp.friction_angle) {
-      scene_.warnings.push_back(location(node["dilatancy_angle"], p) + ": " + p + ".dilatancy_angle: larger than the friction angle (the flow dilates more than an associated one)");
+      scene_.warnings.push_back(
+          location(node["dilatancy_angle"], p) + ": " + p +
+          ".dilatancy_angle: larger than the friction angle (the flow dilates more than an associated one)");
     }
     vp.cohesion = quantity(require(node, p, "cohesion", "c0, e.g. 0.35 MPa"), p + ".cohesion", dim::pressure);
     if (vp.cohesion < 0.0) fail(node["cohesion"], p + ".cohesion", "must be >= 0");
@@ -622,7 +697,9 @@ class SceneReader {
 
   // The unit of a condition's value.
   static Dimension value_unit(BoundaryType type) {
-    return type == BoundaryType::velocity ? dim::velocity : type == BoundaryType::displacement ? dim::length : dim::pressure;
+    return type == BoundaryType::velocity       ? dim::velocity
+           : type == BoundaryType::displacement ? dim::length
+                                                : dim::pressure;
   }
   // The unit of a micro-rotation condition: a rate on a velocity layer, an angle on a displacement one.
   static Dimension rotation_unit(BoundaryType type) {
@@ -675,7 +752,8 @@ class SceneReader {
       value[0] = quantity(v, path, unit);
       return value;
     }
-    if (!v.IsSequence() || v.size() != n) fail(v, path, "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+    if (!v.IsSequence() || v.size() != n)
+      fail(v, path, "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
     for (std::size_t c = 0; c < n; ++c) {
       const auto cp = path + "[" + std::to_string(c) + "]";
       const YAML::Node comp = v[c];
@@ -708,11 +786,13 @@ class SceneReader {
         rowv[0] = quantity(row[1], rp + "[1]", unit);
       } else {
         const YAML::Node vals = row[1];
-        if (!vals.IsSequence() || vals.size() != n) fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
+        if (!vals.IsSequence() || vals.size() != n)
+          fail(vals, rp + "[1]", "expected a list of " + std::to_string(n) + " components (" + unit.to_string() + ")");
         for (std::size_t c = 0; c < n; ++c) {
           const YAML::Node comp = vals[c];
           const bool free = is_free_component(comp, rp, bc);
-          if (r > 0 && free == bc.constrained[c]) fail(comp, rp, "a component is free in some rows and prescribed in others");
+          if (r > 0 && free == bc.constrained[c])
+            fail(comp, rp, "a component is free in some rows and prescribed in others");
           bc.constrained[c] = !free;
           rowv[c] = free ? 0.0 : quantity(comp, rp + "[1][" + std::to_string(c) + "]", unit);
         }
@@ -728,17 +808,21 @@ class SceneReader {
     const char* rotation_key = bc.type == BoundaryType::velocity ? "rotation_rate" : "rotation";
     const char* other_key = bc.type == BoundaryType::velocity ? "rotation" : "rotation_rate";
     if (node[other_key].IsDefined()) {
-      fail(node[other_key], p + "." + other_key, std::string("does not fit a ") + to_string(bc.type) + " condition (use " + rotation_key + ")");
+      fail(node[other_key], p + "." + other_key,
+           std::string("does not fit a ") + to_string(bc.type) + " condition (use " + rotation_key + ")");
     }
     const YAML::Node rot = node[rotation_key];
     const YAML::Node rot_history = node["rotation_history"];
     if (rot_history.IsDefined()) {
       const auto rp = p + ".rotation_history";
       if (rot.IsDefined()) fail(rot_history, rp, std::string("give either ") + rotation_key + " or rotation_history");
-      if (!is_kinematic(bc.type)) fail(rot_history, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
+      if (!is_kinematic(bc.type))
+        fail(rot_history, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
       const History h = read_rotation_history(rot_history, rp, bc);
-      if (scene_.effects.micropolar) bc.rotation = h;
-      else warn_effect_off(rot_history, rp, "micropolar");
+      if (scene_.effects.micropolar)
+        bc.rotation = h;
+      else
+        warn_effect_off(rot_history, rp, "micropolar");
       return;
     }
     if (rot.IsDefined()) read_rotation_value(node, rot, p, p + "." + rotation_key, bc);
@@ -746,7 +830,8 @@ class SceneReader {
 
   // Full rotation history [[t, r], ...] (written by the resolved-scene writer).
   History read_rotation_history(const YAML::Node& rot_history, const std::string& rp, const BoundaryCondition& bc) {
-    if (!rot_history.IsSequence() || rot_history.size() == 0) fail(rot_history, rp, "expected a list of rows [t, rotation]");
+    if (!rot_history.IsSequence() || rot_history.size() == 0)
+      fail(rot_history, rp, "expected a list of rows [t, rotation]");
     const Dimension rd = rotation_unit(bc.type);
     const std::size_t nr = rotation_components();
     History h;
@@ -757,8 +842,10 @@ class SceneReader {
       const double t = quantity(row[0], rowp + "[0]", dim::time);
       if (!h.times.empty() && t < h.times.back()) fail(row, rowp, "times must not decrease");
       h.times.push_back(t);
-      if (nr == 1 && row[1].IsScalar()) h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
-      else h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
+      if (nr == 1 && row[1].IsScalar())
+        h.values.push_back({quantity(row[1], rowp + "[1]", rd)});
+      else
+        h.values.push_back(quantity_list(row[1], rowp + "[1]", rd, nr));
     }
     return h;
   }
@@ -766,7 +853,8 @@ class SceneReader {
   // `rotation` / `rotation_rate`: one value, scaled by the rows of the value's ramp or history.
   void read_rotation_value(const YAML::Node& node, const YAML::Node& rot, const std::string& p, const std::string& rp,
                            BoundaryCondition& bc) {
-    if (!is_kinematic(bc.type)) fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
+    if (!is_kinematic(bc.type))
+      fail(rot, rp, "micro-rotation can be prescribed only on velocity or displacement conditions");
     if (!scene_.effects.micropolar) {
       warn_effect_off(rot, rp, "micropolar");
       return;
@@ -774,8 +862,10 @@ class SceneReader {
     const Dimension rd = rotation_unit(bc.type);
     const std::size_t nr = rotation_components();
     std::vector<double> r(nr);
-    if (nr == 1 && rot.IsScalar()) r[0] = quantity(rot, rp, rd);
-    else r = quantity_list(rot, rp, rd, nr);
+    if (nr == 1 && rot.IsScalar())
+      r[0] = quantity(rot, rp, rd);
+    else
+      r = quantity_list(rot, rp, rd, nr);
     const YAML::Node ramp = node["ramp"];
     const YAML::Node history = node["history"];
     History h;
@@ -798,7 +888,8 @@ class SceneReader {
   void read_boundary_conditions(const YAML::Node& root) {
     const YAML::Node list = root["boundary_conditions"];
     if (!list.IsDefined() || list.IsNull()) return;
-    if (!list.IsSequence()) fail(list, "boundary_conditions", "expected a list of conditions {boundary: ..., type: ..., value: ...}");
+    if (!list.IsSequence())
+      fail(list, "boundary_conditions", "expected a list of conditions {boundary: ..., type: ..., value: ...}");
     std::set<std::string> names;
     for (std::size_t k = 0; k < list.size(); ++k) {
       const auto p = "boundary_conditions[" + std::to_string(k) + "]";
@@ -807,26 +898,41 @@ class SceneReader {
       BoundaryCondition bc;
       bc.line = node.Mark().line + 1;
       read_selector_keys(node, p, bc.selector);
-      const auto type = scalar(require(node, p, "type", "velocity, displacement, traction or pressure"), p + ".type", "a condition type");
+      const auto type = scalar(require(node, p, "type", "velocity, displacement, traction or pressure"), p + ".type",
+                               "a condition type");
       static const std::vector<std::string> types{"velocity", "displacement", "traction", "pressure"};
-      if (type == "velocity") bc.type = BoundaryType::velocity;
-      else if (type == "displacement") bc.type = BoundaryType::displacement;
-      else if (type == "traction") bc.type = BoundaryType::traction;
-      else if (type == "pressure") bc.type = BoundaryType::pressure;
-      else fail(node["type"], p + ".type", "unknown type '" + type + "' (expected one of: " + join(types) + ")" + suggestion(type, types));
+      if (type == "velocity")
+        bc.type = BoundaryType::velocity;
+      else if (type == "displacement")
+        bc.type = BoundaryType::displacement;
+      else if (type == "traction")
+        bc.type = BoundaryType::traction;
+      else if (type == "pressure")
+        bc.type = BoundaryType::pressure;
+      else
+        fail(node["type"], p + ".type",
+             "unknown type '" + type + "' (expected one of: " + join(types) + ")" + suggestion(type, types));
       read_boundary_value(node, p, bc);
       if (node["depth"].IsDefined()) {
-        if (is_kinematic(bc.type)) fail(node["depth"], p + ".depth", "only traction and pressure conditions have a loaded depth (kinematic layers are as deep as the horizon)");
+        if (is_kinematic(bc.type))
+          fail(node["depth"], p + ".depth",
+               "only traction and pressure conditions have a loaded depth (kinematic layers are as deep as the "
+               "horizon)");
         bc.traction_depth = quantity(node["depth"], p + ".depth", dim::length);
         positive(node["depth"], p + ".depth", bc.traction_depth);
       } else {
         bc.traction_depth = scene_.geometry.spacing;
       }
-      if (node["name"].IsDefined()) bc.name = scalar(node["name"], p + ".name", "a label");
-      else if (!bc.selector.physical_group.empty()) bc.name = bc.selector.physical_group;
-      else bc.name = "bc" + std::to_string(k + 1);
+      if (node["name"].IsDefined())
+        bc.name = scalar(node["name"], p + ".name", "a label");
+      else if (!bc.selector.physical_group.empty())
+        bc.name = bc.selector.physical_group;
+      else
+        bc.name = "bc" + std::to_string(k + 1);
       if (!names.insert(bc.name).second) {
-        fail(node, p + ".name", "the label '" + bc.name + "' is used by an earlier condition (give each a distinct name: it labels load.csv)");
+        fail(node, p + ".name",
+             "the label '" + bc.name +
+                 "' is used by an earlier condition (give each a distinct name: it labels load.csv)");
       }
       scene_.boundary_conditions.push_back(bc);
     }
@@ -842,10 +948,13 @@ class SceneReader {
       scene_.time.step = quantity(step, "time.step", dim::time);
       positive(step, "time.step", *scene_.time.step);
       if (*scene_.time.step > scene_.time.end) fail(step, "time.step", "is longer than time.end");
-      if (t["safety"].IsDefined()) scene_.warnings.push_back(location(t["safety"], "time.safety") + ": time.safety: ignored because time.step is given");
+      if (t["safety"].IsDefined())
+        scene_.warnings.push_back(location(t["safety"], "time.safety") +
+                                  ": time.safety: ignored because time.step is given");
     }
     scene_.time.safety = quantity_or(t, p, "safety", dim::none, 0.8);
-    if (!(scene_.time.safety > 0.0 && scene_.time.safety <= 1.0)) fail(t["safety"], "time.safety", format_number(scene_.time.safety) + " must be in (0, 1]");
+    if (!(scene_.time.safety > 0.0 && scene_.time.safety <= 1.0))
+      fail(t["safety"], "time.safety", format_number(scene_.time.safety) + " must be in (0, 1]");
   }
 
   void read_output(const YAML::Node& o) {
@@ -863,7 +972,8 @@ class SceneReader {
     out.load_interval = quantity_or(o, p, "load_interval", dim::time, 0.0);
     out.checkpoint_interval = quantity_or(o, p, "checkpoint_interval", dim::time, 0.0);
     for (const char* key : {"interval", "load_interval", "checkpoint_interval"}) {
-      if (o[key].IsDefined() && quantity(o[key], p + "." + key, dim::time) < 0.0) fail(o[key], p + "." + key, "must be >= 0");
+      if (o[key].IsDefined() && quantity(o[key], p + "." + key, dim::time) < 0.0)
+        fail(o[key], p + "." + key, "must be >= 0");
     }
     if (o["fields"].IsDefined()) {
       const YAML::Node f = o["fields"];
@@ -874,14 +984,18 @@ class SceneReader {
       for (std::size_t k = 0; k < f.size(); ++k) {
         const auto fp = "output.fields[" + std::to_string(k) + "]";
         const auto name = scalar(f[k], fp, "a field name");
-        const auto it = std::find_if(kOutputFields.begin(), kOutputFields.end(), [&](const auto& e) { return e.first == name; });
-        if (it == kOutputFields.end()) fail(f[k], fp, "unknown field '" + name + "' (expected one of: " + join(known) + ")" + suggestion(name, known));
+        const auto it =
+            std::find_if(kOutputFields.begin(), kOutputFields.end(), [&](const auto& e) { return e.first == name; });
+        if (it == kOutputFields.end())
+          fail(f[k], fp,
+               "unknown field '" + name + "' (expected one of: " + join(known) + ")" + suggestion(name, known));
         const auto& effect = it->second;
         const bool on = effect.empty() || (effect == "micropolar" && scene_.effects.micropolar) ||
                         (effect == "damage" && scene_.effects.damage) ||
                         (effect == "viscoplasticity" && scene_.effects.viscoplasticity);
         if (!on) {
-          scene_.warnings.push_back(location(f[k], fp) + ": " + fp + ": '" + name + "' is not written because the effect '" + effect + "' is off");
+          scene_.warnings.push_back(location(f[k], fp) + ": " + fp + ": '" + name +
+                                    "' is not written because the effect '" + effect + "' is off");
           continue;
         }
         if (std::find(out.fields.begin(), out.fields.end(), name) == out.fields.end()) out.fields.push_back(name);
@@ -895,25 +1009,30 @@ class SceneReader {
     check_keys(n, p);
     auto& num = scene_.numerics;
     num.stabilization = quantity_or(n, p, "stabilization", dim::none, num.stabilization);
-    if (num.stabilization < 0.0) fail(n["stabilization"], "numerics.stabilization", "must be >= 0 (0 disables the zero-energy-mode control)");
+    if (num.stabilization < 0.0)
+      fail(n["stabilization"], "numerics.stabilization", "must be >= 0 (0 disables the zero-energy-mode control)");
     num.damping = quantity_or(n, p, "damping", dim::rate, num.damping);
     if (num.damping < 0.0) fail(n["damping"], "numerics.damping", "must be >= 0");
     num.energy_check_tolerance = quantity_or(n, p, "energy_check_tolerance", dim::none, num.energy_check_tolerance);
     positive(n["energy_check_tolerance"], "numerics.energy_check_tolerance", num.energy_check_tolerance);
     if (n["energy_check_start_step"].IsDefined()) {
       num.energy_check_start_step = integer(n["energy_check_start_step"], "numerics.energy_check_start_step");
-      if (num.energy_check_start_step < 0) fail(n["energy_check_start_step"], "numerics.energy_check_start_step", "must be >= 0");
+      if (num.energy_check_start_step < 0)
+        fail(n["energy_check_start_step"], "numerics.energy_check_start_step", "must be >= 0");
     }
     num.detach_energy_rise = quantity_or(n, p, "detach_energy_rise", dim::none, num.detach_energy_rise);
     if (num.detach_energy_rise < 0.0) {
-      fail(n["detach_energy_rise"], "numerics.detach_energy_rise", format_number(num.detach_energy_rise) + " must be >= 0 (a share of the stored energy)");
+      fail(n["detach_energy_rise"], "numerics.detach_energy_rise",
+           format_number(num.detach_energy_rise) + " must be >= 0 (a share of the stored energy)");
     }
     num.overload_factor = quantity_or(n, p, "overload_factor", dim::none, num.overload_factor);
-    positive(n["overload_factor"], "numerics.overload_factor", num.overload_factor, "must be > 0 (a multiple of the breaking energy)");
+    positive(n["overload_factor"], "numerics.overload_factor", num.overload_factor,
+             "must be > 0 (a multiple of the breaking energy)");
     num.damaged_frequency_ratio = quantity_or(n, p, "damaged_frequency_ratio", dim::none, num.damaged_frequency_ratio);
     if (!(num.damaged_frequency_ratio >= 1.0)) {
       fail(n["damaged_frequency_ratio"], "numerics.damaged_frequency_ratio",
-           format_number(num.damaged_frequency_ratio) + " must be >= 1 (omega_max^2 is at least the largest point block)");
+           format_number(num.damaged_frequency_ratio) +
+               " must be >= 1 (omega_max^2 is at least the largest point block)");
     }
   }
 };
@@ -973,10 +1092,14 @@ std::string Selector::fingerprint() const {
 
 const char* to_string(BoundaryType type) {
   switch (type) {
-    case BoundaryType::velocity: return "velocity";
-    case BoundaryType::displacement: return "displacement";
-    case BoundaryType::traction: return "traction";
-    case BoundaryType::pressure: return "pressure";
+    case BoundaryType::velocity:
+      return "velocity";
+    case BoundaryType::displacement:
+      return "displacement";
+    case BoundaryType::traction:
+      return "traction";
+    case BoundaryType::pressure:
+      return "pressure";
   }
   return "?";
 }
@@ -995,7 +1118,8 @@ std::string Scene::where(const std::string& key_path) const {
   // The key itself, else the nearest enclosing key that has a line.
   std::string p = key_path;
   while (!p.empty()) {
-    if (auto it = key_lines.find(p); it != key_lines.end()) return path + ":" + std::to_string(it->second) + ": " + key_path;
+    if (auto it = key_lines.find(p); it != key_lines.end())
+      return path + ":" + std::to_string(it->second) + ": " + key_path;
     const auto cut = p.find_last_of(".[");
     if (cut == std::string::npos) break;
     p = p.substr(0, cut);
@@ -1015,7 +1139,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": scene file not found");
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, expected a scene file (.yaml)");
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": is a directory, expected a scene file (.yaml)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the scene file");
   std::ostringstream text;

@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
-#include <utility>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mppm {
@@ -26,8 +26,8 @@ struct EffectSet {
 // Which part of the boundary (or which pre-crack) an entry means: a physical group name,
 // gmsh entity tags, or the boundary of the body inside an axis-aligned box (SI metres).
 struct Selector {
-  std::string physical_group;                         // empty if not used
-  std::vector<int> entities;                          // empty if not used
+  std::string physical_group;                               // empty if not used
+  std::vector<int> entities;                                // empty if not used
   std::optional<std::array<std::array<double, 3>, 2>> box;  // [[x0,y0,z0],[x1,y1,z1]]
 
   std::string describe() const;  // "top", "entities [12, 15]", "box [[..],[..]]"
@@ -38,8 +38,8 @@ struct Selector {
 // A piecewise-linear history of a vector value, held constant outside its table.
 // Constant values have one row; `ramp: t0` gives rows (0, 0) and (t0, value).
 struct History {
-  std::vector<double> times;                 // strictly increasing
-  std::vector<std::vector<double>> values;   // values[row][component]
+  std::vector<double> times;                // strictly increasing
+  std::vector<std::vector<double>> values;  // values[row][component]
 
   std::vector<double> at(double t) const;
   double component_at(double t, std::size_t c) const;
@@ -54,7 +54,7 @@ inline bool is_kinematic(BoundaryType type) {
 }
 
 struct BoundaryCondition {
-  std::string name;        // label used in load.csv, POINTS.vtp and summaries
+  std::string name;  // label used in load.csv, POINTS.vtp and summaries
   Selector selector;
   BoundaryType type = BoundaryType::traction;
   // Components (d of them; 1 for pressure). For kinematic conditions a component may be
@@ -109,7 +109,7 @@ inline const char* to_string(ConeMatch match) { return enum_name(kConeMatchNames
 
 struct DamageParameters {
   double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
-  double no_fail_depth = 0.0;                  // [m] from kinematic and loaded boundaries
+  double no_fail_depth = 0.0;                 // [m] from kinematic and loaded boundaries
   DamageCalibration calibration = DamageCalibration::lattice;
   // Damage only inside this box (scene units of length, a 2-D box spans every z): bonds with an
   // end outside never break and cost no bond-work bookkeeping. Empty: the whole body.
@@ -132,17 +132,17 @@ struct ViscoplasticParameters {
 
 struct Material {
   std::string model = "cosserat-elastic";
-  double density = 0.0;          // skeleton partial density rho^s [kg/m^3]
-  double solid_fraction = 1.0;   // phi0^s
-  double lambda = 0.0;           // [Pa]
-  double mu = 0.0;               // [Pa]
-  double mu_c = 0.0;             // Cosserat couple modulus [Pa]
+  double density = 0.0;                                // skeleton partial density rho^s [kg/m^3]
+  double solid_fraction = 1.0;                         // phi0^s
+  double lambda = 0.0;                                 // [Pa]
+  double mu = 0.0;                                     // [Pa]
+  double mu_c = 0.0;                                   // Cosserat couple modulus [Pa]
   std::array<double, 3> couple_moduli{0.0, 0.0, 0.0};  // a1 a2 a3 [N]
-  double length_scale = 0.0;     // micro-polar length l [m]
+  double length_scale = 0.0;                           // micro-polar length l [m]
   std::optional<DamageParameters> damage;
   std::optional<ViscoplasticParameters> viscoplasticity;
 
-  double partial_density() const { return solid_fraction * density; }       // rho [kg/m^3]
+  double partial_density() const { return solid_fraction * density; }  // rho [kg/m^3]
   // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (docs/theory.md section 4).
   double micro_inertia() const;
   // Effective bending modulus B_w [N]: a3 in 2-D (docs/theory.md section 5); a2 in 3-D.
@@ -150,31 +150,31 @@ struct Material {
 };
 
 struct Geometry {
-  std::string file;                // absolute path
-  double unit = 1.0;               // metres per geometry-file length unit
-  double spacing = 0.0;            // dx [m]
-  double horizon_factor = 0.0;     // delta / dx
+  std::string file;             // absolute path
+  double unit = 1.0;            // metres per geometry-file length unit
+  double spacing = 0.0;         // dx [m]
+  double horizon_factor = 0.0;  // delta / dx
   std::vector<Selector> precracks;
   double horizon() const { return spacing * horizon_factor; }
 };
 
 struct TimeSettings {
-  double end = 0.0;                // [s]
-  std::optional<double> step;      // [s]; empty = auto
-  double safety = 0.8;             // dt = safety * critical when auto
+  double end = 0.0;            // [s]
+  std::optional<double> step;  // [s]; empty = auto
+  double safety = 0.8;         // dt = safety * critical when auto
 };
 
 struct OutputSettings {
-  double interval = 0.0;           // snapshot interval [s] (0 = only first and last)
-  double load_interval = 0.0;      // load/energy rows [s] (0 = every step)
+  double interval = 0.0;       // snapshot interval [s] (0 = only first and last)
+  double load_interval = 0.0;  // load/energy rows [s] (0 = every step)
   std::vector<std::string> fields{"displacement", "rotation", "damage"};
   double checkpoint_interval = 0.0;  // [s] (0 = none)
 };
 
 struct Numerics {
-  double stabilization = 0.1;      // G_s
-  double damping = 0.0;            // mass-proportional damping coefficient [1/s] (quasi-static runs)
-  double energy_check_tolerance = 0.05;  // relative unexplained energy growth that stops a run
+  double stabilization = 0.1;                 // G_s
+  double damping = 0.0;                       // mass-proportional damping coefficient [1/s] (quasi-static runs)
+  double energy_check_tolerance = 0.05;       // relative unexplained energy growth that stops a run
   std::int64_t energy_check_start_step = 50;  // the energy check skips the steps before this one
   // Damage thresholds (solver/bond_breakage.cpp and solver/point_stability.hpp say why these values):
   double detach_energy_rise = 0.5;       // a point whose stored energy rises by more than this share
@@ -185,11 +185,11 @@ struct Numerics {
 };
 
 struct Scene {
-  std::string path;                // absolute path of the scene file
+  std::string path;  // absolute path of the scene file
   int format_version = 1;
   std::string name;
   int dimension = 2;
-  double thickness = 1.0;          // [m], 2-D only
+  double thickness = 1.0;  // [m], 2-D only
   Geometry geometry;
   Material material;
   EffectSet effects;
@@ -198,7 +198,7 @@ struct Scene {
   TimeSettings time;
   OutputSettings output;
   Numerics numerics;
-  std::vector<std::string> warnings;  // non-fatal findings (e.g. parameters of an effect that is off)
+  std::vector<std::string> warnings;     // non-fatal findings (e.g. parameters of an effect that is off)
   std::map<std::string, int> key_lines;  // "boundary_conditions[1].boundary" -> line in the file
 
   // "scene.yaml:12: boundary_conditions[1].boundary" for messages about a key found invalid
@@ -211,12 +211,10 @@ struct Scene {
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
 // Same, from text (tests); `path` is used in messages and to resolve relative paths.
-Scene parse_scene(const std::string& text, const std::string& path,
-                  const std::vector<std::string>& overrides = {});
+Scene parse_scene(const std::string& text, const std::string& path, const std::vector<std::string>& overrides = {});
 
 // The resolved scene as YAML (SI numbers, every default and derived value written out).
 // `derived` adds solver-derived values (e.g. {"time_step_s", 2.5e-8}) under the key `derived`.
-std::string resolved_scene_yaml(const Scene& scene,
-                                const std::vector<std::pair<std::string, double>>& derived = {});
+std::string resolved_scene_yaml(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
 
 }  // namespace mppm

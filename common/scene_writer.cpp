@@ -39,9 +39,7 @@ void emit_selector_keys(YAML::Emitter& out, const Selector& s) {
   }
 }
 
-std::string degrees(double radians) {
-  return shortest(radians * 180.0 / std::numbers::pi) + " deg";
-}
+std::string degrees(double radians) { return shortest(radians * 180.0 / std::numbers::pi) + " deg"; }
 
 void emit_row(YAML::Emitter& out, const std::vector<double>& values, const std::vector<bool>& constrained) {
   if (values.size() == 1 && constrained.size() <= 1) {
@@ -50,8 +48,10 @@ void emit_row(YAML::Emitter& out, const std::vector<double>& values, const std::
   }
   out << YAML::Flow << YAML::BeginSeq;
   for (std::size_t c = 0; c < values.size(); ++c) {
-    if (c < constrained.size() && !constrained[c]) out << "free";
-    else out << Num{values[c]};
+    if (c < constrained.size() && !constrained[c])
+      out << "free";
+    else
+      out << Num{values[c]};
   }
   out << YAML::EndSeq;
 }
@@ -61,7 +61,13 @@ void emit_geometry(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "file" << YAML::Value << scene.geometry.file;
   // The unit is written as a factor name when it is one of the common ones.
   const double u = scene.geometry.unit;
-  const char* unit = u == 1.0 ? "m" : u == 1e-3 ? "mm" : u == 1e-2 ? "cm" : u == 1e-6 ? "um" : u == 0.0254 ? "in" : u == 0.3048 ? "ft" : "m";
+  const char* unit = u == 1.0      ? "m"
+                     : u == 1e-3   ? "mm"
+                     : u == 1e-2   ? "cm"
+                     : u == 1e-6   ? "um"
+                     : u == 0.0254 ? "in"
+                     : u == 0.3048 ? "ft"
+                                   : "m";
   out << YAML::Key << "unit" << YAML::Value << unit;
   out << YAML::Key << "spacing" << YAML::Value << Num{scene.geometry.spacing};
   out << YAML::Key << "horizon_factor" << YAML::Value << Num{scene.geometry.horizon_factor};
@@ -131,7 +137,8 @@ void emit_material(YAML::Emitter& out, const Scene& scene) {
 void emit_effects(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "effects" << YAML::Value << YAML::Flow << scene.effects.names();
   if (scene.effects.gravity) {
-    out << YAML::Key << "gravity" << YAML::Value << YAML::Flow << YAML::BeginSeq << Num{scene.gravity[0]} << Num{scene.gravity[1]};
+    out << YAML::Key << "gravity" << YAML::Value << YAML::Flow << YAML::BeginSeq << Num{scene.gravity[0]}
+        << Num{scene.gravity[1]};
     if (scene.dimension == 3) out << Num{scene.gravity[2]};
     out << YAML::EndSeq;
   }

@@ -35,8 +35,8 @@ void write_snapshot(const Snapshot& s, const std::string& path) {
   std::vector<SnapshotFieldSource> sources;
   for (const auto& f : s.fields) {
     if (f.components <= 0 || f.data.size() != s.point_count * static_cast<std::uint64_t>(f.components)) {
-      throw std::logic_error("snapshot field '" + f.name + "' has " + std::to_string(f.data.size()) +
-                             " values for " + std::to_string(s.point_count) + " points");
+      throw std::logic_error("snapshot field '" + f.name + "' has " + std::to_string(f.data.size()) + " values for " +
+                             std::to_string(s.point_count) + " points");
     }
     sources.push_back({f.name, f.components, [&f](std::uint64_t first, std::uint64_t count, double* out) {
                          const auto c = static_cast<std::uint64_t>(f.components);
@@ -90,14 +90,17 @@ Snapshot read_snapshot(const std::string& path) {
   ChecksummedReader r(path, data, "snapshot");
   char magic[8];
   r.bytes(magic, sizeof magic, "the header");
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0) throw InputError(path + ": not an mppm snapshot (bad magic bytes)");
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
+    throw InputError(path + ": not an mppm snapshot (bad magic bytes)");
   const auto version = r.value<std::uint32_t>("the header");
   if (version != 1 && version != 2)
-    throw InputError(path + ": snapshot format version " + std::to_string(version) + " is not supported (this mppm reads 1 and 2)");
+    throw InputError(path + ": snapshot format version " + std::to_string(version) +
+                     " is not supported (this mppm reads 1 and 2)");
   r.use_checksum(checksum_kind(version));
   Snapshot s;
   s.dimension = static_cast<int>(r.value<std::uint32_t>("the header"));
-  if (s.dimension != 2 && s.dimension != 3) throw InputError(path + ": corrupted snapshot (dimension " + std::to_string(s.dimension) + ")");
+  if (s.dimension != 2 && s.dimension != 3)
+    throw InputError(path + ": corrupted snapshot (dimension " + std::to_string(s.dimension) + ")");
   s.step = r.value<std::int64_t>("the header");
   s.time = r.value<double>("the header");
   s.point_count = r.value<std::uint64_t>("the header");
@@ -106,11 +109,14 @@ Snapshot read_snapshot(const std::string& path) {
   for (std::uint32_t k = 0; k < field_count; ++k) {
     SnapshotField f;
     const auto name_length = r.value<std::uint32_t>("a field name");
-    if (name_length == 0 || name_length > 256) throw InputError(path + ": corrupted snapshot (field name of length " + std::to_string(name_length) + ")");
+    if (name_length == 0 || name_length > 256)
+      throw InputError(path + ": corrupted snapshot (field name of length " + std::to_string(name_length) + ")");
     f.name.resize(name_length);
     r.bytes(f.name.data(), name_length, "a field name");
     f.components = static_cast<int>(r.value<std::uint32_t>("a field header"));
-    if (f.components <= 0 || f.components > 64) throw InputError(path + ": corrupted snapshot (field '" + f.name + "' has " + std::to_string(f.components) + " components)");
+    if (f.components <= 0 || f.components > 64)
+      throw InputError(path + ": corrupted snapshot (field '" + f.name + "' has " + std::to_string(f.components) +
+                       " components)");
     // Compare by division first so a corrupted point count cannot overflow the product.
     if (s.point_count > r.remaining() / sizeof(double) / static_cast<std::uint64_t>(f.components)) {
       throw InputError(path + ": truncated snapshot (field '" + f.name + "' needs " + std::to_string(s.point_count) +
@@ -118,7 +124,8 @@ Snapshot read_snapshot(const std::string& path) {
     }
     const std::uint64_t count = s.point_count * static_cast<std::uint64_t>(f.components);
     if (count * sizeof(double) > r.remaining()) {
-      throw InputError(path + ": truncated snapshot (field '" + f.name + "' needs " + std::to_string(count) + " values; was the run killed while writing?)");
+      throw InputError(path + ": truncated snapshot (field '" + f.name + "' needs " + std::to_string(count) +
+                       " values; was the run killed while writing?)");
     }
     f.data.resize(count);
     r.bytes(f.data.data(), count * sizeof(double), "field data");

@@ -18,7 +18,7 @@
 namespace mppm {
 
 struct SnapshotField {
-  std::string name;        // in words: "displacement", "rotation", "damage", ...
+  std::string name;  // in words: "displacement", "rotation", "damage", ...
   int components = 1;
   std::vector<double> data;
 };

@@ -43,8 +43,8 @@ struct Prefix {
   std::string_view symbol;
   double factor;
 };
-constexpr Prefix kPrefixes[] = {{"G", 1e9}, {"M", 1e6}, {"k", 1e3}, {"c", 1e-2}, {"m", 1e-3},
-                                {"u", 1e-6}, {"\xC2\xB5", 1e-6} /* µ */, {"n", 1e-9}};
+constexpr Prefix kPrefixes[] = {
+    {"G", 1e9}, {"M", 1e6}, {"k", 1e3}, {"c", 1e-2}, {"m", 1e-3}, {"u", 1e-6}, {"\xC2\xB5", 1e-6} /* µ */, {"n", 1e-9}};
 
 struct Scaled {
   double factor = 1.0;
@@ -97,7 +97,8 @@ Scaled parse_unit_expression(std::string_view text, std::string_view whole) {
       continue;
     }
     if (c == '*' || c == '/') {
-      if (expect_token) throw std::invalid_argument("misplaced '" + std::string(1, c) + "' in \"" + std::string(whole) + "\"");
+      if (expect_token)
+        throw std::invalid_argument("misplaced '" + std::string(1, c) + "' in \"" + std::string(whole) + "\"");
       sign = c == '/' ? -1 : +1;
       expect_token = true;
       ++pos;
@@ -123,14 +124,15 @@ Scaled parse_unit_expression(std::string_view text, std::string_view whole) {
     }
     pos = end;
     int power = 1;
-    if (pos < text.size() && (text[pos] == '^' || std::isdigit(static_cast<unsigned char>(text[pos])) ||
-                              text[pos] == '-')) {
+    if (pos < text.size() &&
+        (text[pos] == '^' || std::isdigit(static_cast<unsigned char>(text[pos])) || text[pos] == '-')) {
       if (text[pos] == '^') ++pos;
       int value = 0;
       const auto [ptr, ec] = std::from_chars(text.data() + pos, text.data() + text.size(), value);
       // Bounded so that summing exponents cannot overflow an int (undefined behaviour).
       if (ec != std::errc() || value < -99 || value > 99) {
-        throw std::invalid_argument("bad power in \"" + std::string(whole) + "\" (expected a small integer, e.g. m^3 or s^-2)");
+        throw std::invalid_argument("bad power in \"" + std::string(whole) +
+                                    "\" (expected a small integer, e.g. m^3 or s^-2)");
       }
       pos = static_cast<std::size_t>(ptr - text.data());
       power = value;
@@ -139,7 +141,8 @@ Scaled parse_unit_expression(std::string_view text, std::string_view whole) {
     sign = +1;
     expect_token = false;
   }
-  if (expect_token && !text.empty()) throw std::invalid_argument("unit expression ends early in \"" + std::string(whole) + "\"");
+  if (expect_token && !text.empty())
+    throw std::invalid_argument("unit expression ends early in \"" + std::string(whole) + "\"");
   return result;
 }
 
@@ -155,13 +158,19 @@ const char* dimension_name(const Dimension& d) {
     const char* name;
   };
   static const Named names[] = {
-      {dim::none, "a plain number"},         {dim::length, "a length (e.g. m, mm)"},
-      {dim::mass, "a mass (e.g. kg)"},       {dim::time, "a time (e.g. s, us)"},
-      {dim::angle, "an angle (e.g. deg, rad)"}, {dim::density, "a density (e.g. kg/m^3)"},
-      {dim::pressure, "a pressure or stress (e.g. Pa, MPa)"}, {dim::force, "a force (e.g. N, kN)"},
-      {dim::velocity, "a velocity (e.g. m/s)"}, {dim::acceleration, "an acceleration (e.g. m/s^2)"},
+      {dim::none, "a plain number"},
+      {dim::length, "a length (e.g. m, mm)"},
+      {dim::mass, "a mass (e.g. kg)"},
+      {dim::time, "a time (e.g. s, us)"},
+      {dim::angle, "an angle (e.g. deg, rad)"},
+      {dim::density, "a density (e.g. kg/m^3)"},
+      {dim::pressure, "a pressure or stress (e.g. Pa, MPa)"},
+      {dim::force, "a force (e.g. N, kN)"},
+      {dim::velocity, "a velocity (e.g. m/s)"},
+      {dim::acceleration, "an acceleration (e.g. m/s^2)"},
       {dim::energy_per_area, "an energy per area or force per length (e.g. N/m, J/m^2)"},
-      {dim::viscosity, "a viscosity (e.g. Pa*s, MPa*s)"}, {dim::rate, "a rate (e.g. 1/s, rad/s)"},
+      {dim::viscosity, "a viscosity (e.g. Pa*s, MPa*s)"},
+      {dim::rate, "a rate (e.g. 1/s, rad/s)"},
       {{{2, 1, -2}}, "an energy (e.g. J)"},
   };
   for (const auto& n : names) {
@@ -211,13 +220,14 @@ double parse_quantity_as(std::string_view text, const Dimension& expected) {
   // A bare number is SI of whatever dimension is expected (docs/scene.md "Quantities").
   const auto t = trim(text);
   double ignored = 0.0;
-  if (const auto r = std::from_chars(t.data(), t.data() + t.size(), ignored); r.ptr == t.data() + t.size()) return q.value;
+  if (const auto r = std::from_chars(t.data(), t.data() + t.size(), ignored); r.ptr == t.data() + t.size())
+    return q.value;
   const bool exponents_match = q.dimension.exponent == expected.exponent;
   // Angles are dimensionless in SI, but an angle unit where no angle is expected is a slip.
   const bool angle_ok = !q.dimension.is_angle || expected.is_angle;
   if (!exponents_match || !angle_ok) {
-    throw std::invalid_argument("\"" + std::string(trim(text)) + "\" is " + q.dimension.to_string() +
-                                ", expected " + expected.to_string());
+    throw std::invalid_argument("\"" + std::string(trim(text)) + "\" is " + q.dimension.to_string() + ", expected " +
+                                expected.to_string());
   }
   return q.value;
 }
@@ -226,7 +236,8 @@ double length_unit_in_metres(std::string_view unit) {
   const auto name = trim(unit);
   Scaled s;
   if (!lookup_token(name, s) || s.dimension != dim::length) {
-    throw std::invalid_argument("\"" + std::string(name) + "\" is not a length unit (expected m, mm, cm, um, in or ft)");
+    throw std::invalid_argument("\"" + std::string(name) +
+                                "\" is not a length unit (expected m, mm, cm, um, in or ft)");
   }
   return s.factor;
 }

@@ -26,13 +26,13 @@ inline constexpr Dimension mass{{0, 1, 0}};
 inline constexpr Dimension time{{0, 0, 1}};
 inline constexpr Dimension angle{{0, 0, 0}, true};
 inline constexpr Dimension density{{-3, 1, 0}};
-inline constexpr Dimension pressure{{-1, 1, -2}};         // Pa = N/m^2
-inline constexpr Dimension force{{1, 1, -2}};             // N
-inline constexpr Dimension velocity{{1, 0, -1}};          // m/s
-inline constexpr Dimension acceleration{{1, 0, -2}};      // m/s^2
-inline constexpr Dimension energy_per_area{{0, 1, -2}};   // N/m = J/m^2
-inline constexpr Dimension viscosity{{-1, 1, -1}};        // Pa s
-inline constexpr Dimension rate{{0, 0, -1}};              // 1/s (rotation rate)
+inline constexpr Dimension pressure{{-1, 1, -2}};        // Pa = N/m^2
+inline constexpr Dimension force{{1, 1, -2}};            // N
+inline constexpr Dimension velocity{{1, 0, -1}};         // m/s
+inline constexpr Dimension acceleration{{1, 0, -2}};     // m/s^2
+inline constexpr Dimension energy_per_area{{0, 1, -2}};  // N/m = J/m^2
+inline constexpr Dimension viscosity{{-1, 1, -1}};       // Pa s
+inline constexpr Dimension rate{{0, 0, -1}};             // 1/s (rotation rate)
 }  // namespace dim
 
 struct Quantity {

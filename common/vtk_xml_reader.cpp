@@ -22,9 +22,7 @@
 namespace mppm {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw InputError(path + ": " + problem);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& problem) { throw InputError(path + ": " + problem); }
 
 // ---------------------------------------------------------------------------------------------
 // XML layer
@@ -53,11 +51,13 @@ class XmlParser {
   XmlParser(const std::string& bytes, const std::string& path) : s_(bytes), path_(path) {}
 
   XmlElement parse_document() {
-    if (s_.empty()) fail(path_, "empty file: not a VTK XML PolyData file (expected POINTS.vtp written by mppm-preprocess)");
+    if (s_.empty())
+      fail(path_, "empty file: not a VTK XML PolyData file (expected POINTS.vtp written by mppm-preprocess)");
     if (s_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // UTF-8 byte order mark
     skip_misc();
     if (!starts_with("<") || starts_with("</"))
-      fail(path_, "not a VTK XML PolyData file (no XML element at the start; expected POINTS.vtp written by mppm-preprocess)");
+      fail(path_,
+           "not a VTK XML PolyData file (no XML element at the start; expected POINTS.vtp written by mppm-preprocess)");
     XmlElement root = parse_element(0);
     skip_misc();
     if (pos_ != s_.size()) error("unexpected content after the closing </" + root.name + ">");
@@ -66,18 +66,15 @@ class XmlParser {
 
  private:
   [[noreturn]] void error(const std::string& problem) const {
-    const auto line = 1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(std::min(pos_, s_.size())), '\n');
+    const auto line =
+        1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(std::min(pos_, s_.size())), '\n');
     fail(path_, "malformed XML at line " + std::to_string(line) + ": " + problem);
   }
   bool starts_with(std::string_view prefix) const { return s_.compare(pos_, prefix.size(), prefix) == 0; }
   bool at_end() const { return pos_ >= s_.size(); }
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
-  static bool is_name_start(char c) {
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_' || c == ':';
-  }
-  static bool is_name_char(char c) {
-    return is_name_start(c) || (c >= '0' && c <= '9') || c == '-' || c == '.';
-  }
+  static bool is_name_start(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_' || c == ':'; }
+  static bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9') || c == '-' || c == '.'; }
   void skip_spaces() {
     while (!at_end() && is_space(s_[pos_])) ++pos_;
   }
@@ -90,10 +87,14 @@ class XmlParser {
   void skip_misc() {
     for (;;) {
       skip_spaces();
-      if (starts_with("<!--")) skip_past("-->", "comment");
-      else if (starts_with("<?")) skip_past("?>", "processing instruction");
-      else if (starts_with("<!")) error("document type declarations are not supported");
-      else return;
+      if (starts_with("<!--"))
+        skip_past("-->", "comment");
+      else if (starts_with("<?"))
+        skip_past("?>", "processing instruction");
+      else if (starts_with("<!"))
+        error("document type declarations are not supported");
+      else
+        return;
     }
   }
   std::string read_name() {
@@ -114,11 +115,16 @@ class XmlParser {
       const std::size_t semicolon = s_.find(';', pos_);
       if (semicolon == std::string::npos || semicolon > end || semicolon - pos_ > 10) error("bad entity reference");
       const std::string_view entity(s_.data() + pos_ + 1, semicolon - pos_ - 1);
-      if (entity == "lt") out += '<';
-      else if (entity == "gt") out += '>';
-      else if (entity == "amp") out += '&';
-      else if (entity == "quot") out += '"';
-      else if (entity == "apos") out += '\'';
+      if (entity == "lt")
+        out += '<';
+      else if (entity == "gt")
+        out += '>';
+      else if (entity == "amp")
+        out += '&';
+      else if (entity == "quot")
+        out += '"';
+      else if (entity == "apos")
+        out += '\'';
       else if (entity.size() > 1 && entity[0] == '#') {
         const bool hex = entity[1] == 'x';
         unsigned code = 0;
@@ -146,7 +152,8 @@ class XmlParser {
       if (at_end() || s_[pos_] != '=') error("expected '=' after attribute '" + key + "'");
       ++pos_;
       skip_spaces();
-      if (at_end() || (s_[pos_] != '"' && s_[pos_] != '\'')) error("expected a quoted value for attribute '" + key + "'");
+      if (at_end() || (s_[pos_] != '"' && s_[pos_] != '\''))
+        error("expected a quoted value for attribute '" + key + "'");
       const char quote = s_[pos_++];
       const std::size_t close = s_.find(quote, pos_);
       if (close == std::string::npos) error("unterminated value of attribute '" + key + "'");
@@ -172,7 +179,8 @@ class XmlParser {
   XmlElement parse_element(int depth) {
     if (depth > kMaxXmlDepth) error("elements nested more than " + std::to_string(kMaxXmlDepth) + " deep");
     XmlElement element;
-    element.line = static_cast<std::size_t>(1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(pos_), '\n'));
+    element.line =
+        static_cast<std::size_t>(1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(pos_), '\n'));
     ++pos_;  // '<'
     element.name = read_name();
     parse_attributes(element);
@@ -196,15 +204,18 @@ class XmlParser {
         ++pos_;
         return element;
       }
-      if (starts_with("<!--")) skip_past("-->", "comment");
+      if (starts_with("<!--"))
+        skip_past("-->", "comment");
       else if (starts_with("<![CDATA[")) {
         pos_ += 9;
         const std::size_t end = s_.find("]]>", pos_);
         if (end == std::string::npos) error("unterminated CDATA section");
         element.text.append(s_, pos_, end - pos_);
         pos_ = end + 3;
-      } else if (starts_with("<?")) skip_past("?>", "processing instruction");
-      else if (s_[pos_] == '<') element.children.push_back(parse_element(depth + 1));
+      } else if (starts_with("<?"))
+        skip_past("?>", "processing instruction");
+      else if (s_[pos_] == '<')
+        element.children.push_back(parse_element(depth + 1));
       else {
         const std::size_t next = std::min(s_.find('<', pos_), s_.size());
         append_decoded(element.text, next);
@@ -310,8 +321,9 @@ class ArrayDecoder {
       const std::string bytes = appended_bytes(e, array, values, label);
       decode_binary(bytes, array, values, label);
     } else if (*format == "binary") {
-      fail(path_, label + ": format 'binary' (inline base64) is not supported; write the file with "
-                          "appended raw data or ascii, as mppm-preprocess does");
+      fail(path_, label +
+                      ": format 'binary' (inline base64) is not supported; write the file with "
+                      "appended raw data or ascii, as mppm-preprocess does");
     } else {
       fail(path_, label + " has unknown format '" + *format + "'");
     }
@@ -319,8 +331,8 @@ class ArrayDecoder {
   }
 
  private:
-  std::int64_t integer_attribute(const XmlElement& e, const char* key, std::int64_t fallback,
-                                 std::int64_t min, std::int64_t max, const std::string& label) {
+  std::int64_t integer_attribute(const XmlElement& e, const char* key, std::int64_t fallback, std::int64_t min,
+                                 std::int64_t max, const std::string& label) {
     const std::string* text = e.attribute(key);
     if (!text) return fallback;
     std::int64_t value = 0;
@@ -339,12 +351,16 @@ class ArrayDecoder {
     std::int64_t count = 0;
     std::size_t pos = 0;
     // Reserve no more than the text can hold (two characters per value at least).
-    if (!array.is_string()) array.numbers.reserve(static_cast<std::size_t>(std::min<std::int64_t>(values, static_cast<std::int64_t>(text.size() / 2 + 1))));
+    if (!array.is_string())
+      array.numbers.reserve(
+          static_cast<std::size_t>(std::min<std::int64_t>(values, static_cast<std::int64_t>(text.size() / 2 + 1))));
     for (;;) {
-      while (pos < text.size() && (text[pos] == ' ' || text[pos] == '\t' || text[pos] == '\n' || text[pos] == '\r')) ++pos;
+      while (pos < text.size() && (text[pos] == ' ' || text[pos] == '\t' || text[pos] == '\n' || text[pos] == '\r'))
+        ++pos;
       if (pos >= text.size()) break;
       std::size_t end = pos;
-      while (end < text.size() && text[end] != ' ' && text[end] != '\t' && text[end] != '\n' && text[end] != '\r') ++end;
+      while (end < text.size() && text[end] != ' ' && text[end] != '\t' && text[end] != '\n' && text[end] != '\r')
+        ++end;
       const char* first = text.data() + pos;
       const char* last = text.data() + end;
       double value = 0;
@@ -358,12 +374,16 @@ class ArrayDecoder {
         const auto [ptr, ec] = std::from_chars(first, last, value);
         ok = ec == std::errc() && ptr == last;
       }
-      if (!ok) fail(path_, label + ": \"" + std::string(first, std::min<std::size_t>(end - pos, 40)) + "\" is not " +
-                               (integer ? "an integer" : "a number"));
+      if (!ok)
+        fail(path_, label + ": \"" + std::string(first, std::min<std::size_t>(end - pos, 40)) + "\" is not " +
+                        (integer ? "an integer" : "a number"));
       if (array.is_string()) {
-        if (value < 0 || value > 255) fail(path_, label + ": character code " + std::to_string(static_cast<std::int64_t>(value)) + " out of 0..255");
+        if (value < 0 || value > 255)
+          fail(path_,
+               label + ": character code " + std::to_string(static_cast<std::int64_t>(value)) + " out of 0..255");
         if (value == 0) {
-          if (static_cast<std::int64_t>(array.strings.size()) == values) fail(path_, label + " holds more than " + std::to_string(values) + " strings");
+          if (static_cast<std::int64_t>(array.strings.size()) == values)
+            fail(path_, label + " holds more than " + std::to_string(values) + " strings");
           array.strings.push_back(std::move(current));
           current.clear();
         } else {
@@ -379,7 +399,8 @@ class ArrayDecoder {
     if (array.is_string()) {
       if (!current.empty()) fail(path_, label + ": the last string has no terminating 0");
       if (static_cast<std::int64_t>(array.strings.size()) != values)
-        fail(path_, label + " holds " + std::to_string(array.strings.size()) + " strings (expected " + std::to_string(values) + ")");
+        fail(path_, label + " holds " + std::to_string(array.strings.size()) + " strings (expected " +
+                        std::to_string(values) + ")");
     } else if (count != values) {
       fail(path_, label + " holds " + std::to_string(count) + " values (expected " + std::to_string(values) + ")");
     }
@@ -387,13 +408,16 @@ class ArrayDecoder {
 
   std::uint64_t header_value(std::size_t at) const {
     const auto* p = reinterpret_cast<const unsigned char*>(s_.data()) + at;
-    return format_.header_bytes == 8 ? load<std::uint64_t>(p, format_.swap_bytes) : load<std::uint32_t>(p, format_.swap_bytes);
+    return format_.header_bytes == 8 ? load<std::uint64_t>(p, format_.swap_bytes)
+                                     : load<std::uint32_t>(p, format_.swap_bytes);
   }
 
   // The array's bytes from the appended block, decompressed, every header checked against the
   // block's extent before use.
-  std::string appended_bytes(const XmlElement& e, const VtkArray& array, std::int64_t values, const std::string& label) {
-    if (!format_.appended) fail(path_, label + " is 'appended' but the file has no <AppendedData encoding=\"raw\"> block");
+  std::string appended_bytes(const XmlElement& e, const VtkArray& array, std::int64_t values,
+                             const std::string& label) {
+    if (!format_.appended)
+      fail(path_, label + " is 'appended' but the file has no <AppendedData encoding=\"raw\"> block");
     const std::size_t begin = format_.appended->raw_begin;
     const std::uint64_t block = format_.appended->raw_end - begin;
     const std::int64_t offset = integer_attribute(e, "offset", -1, 0, std::numeric_limits<std::int64_t>::max(), label);
@@ -403,14 +427,16 @@ class ArrayDecoder {
     auto need = [&](std::uint64_t from, std::uint64_t size, const char* what) {
       if (from > block || size > block - from)
         fail(path_, label + ": " + what + " at offset " + std::to_string(from) + " (+" + std::to_string(size) +
-                        " bytes) runs past the end of the appended data (" + std::to_string(block) + " bytes; truncated or corrupted file)");
+                        " bytes) runs past the end of the appended data (" + std::to_string(block) +
+                        " bytes; truncated or corrupted file)");
     };
     const std::uint64_t expected_bytes =
         array.is_string() ? 0 : static_cast<std::uint64_t>(values) * static_cast<std::uint64_t>(type_size(array.type));
     auto check_size = [&](std::uint64_t size) {
       if (!array.is_string() && size != expected_bytes)
-        fail(path_, label + " holds " + std::to_string(size) + " bytes (expected " + std::to_string(values) + " values x " +
-                        std::to_string(type_size(array.type)) + " bytes = " + std::to_string(expected_bytes) + ")");
+        fail(path_, label + " holds " + std::to_string(size) + " bytes (expected " + std::to_string(values) +
+                        " values x " + std::to_string(type_size(array.type)) +
+                        " bytes = " + std::to_string(expected_bytes) + ")");
     };
 
     if (!format_.zlib) {
@@ -426,7 +452,8 @@ class ArrayDecoder {
     const std::uint64_t blocks = header_value(begin + at);
     const std::uint64_t block_size = header_value(begin + at + h);
     const std::uint64_t last_size = header_value(begin + at + 2 * h);
-    if (blocks > (block - at) / h) fail(path_, label + ": corrupted compression header (" + std::to_string(blocks) + " blocks)");
+    if (blocks > (block - at) / h)
+      fail(path_, label + ": corrupted compression header (" + std::to_string(blocks) + " blocks)");
     need(at + 3 * h, blocks * h, "the compressed block sizes");
     if (blocks > 0 && (block_size == 0 || block_size > (std::uint64_t{1} << 32) || last_size > block_size))
       fail(path_, label + ": corrupted compression header (block size " + std::to_string(block_size) + ", last block " +
@@ -438,7 +465,8 @@ class ArrayDecoder {
     std::vector<std::uint64_t> compressed(blocks);
     for (std::uint64_t b = 0; b < blocks; ++b) {
       compressed[b] = header_value(begin + at + (3 + b) * h);
-      if (compressed[b] > block) fail(path_, label + ": corrupted compression header (block " + std::to_string(b) + " size)");
+      if (compressed[b] > block)
+        fail(path_, label + ": corrupted compression header (block " + std::to_string(b) + " size)");
       compressed_total += compressed[b];
       if (compressed_total > block) need(at + (3 + blocks) * h, compressed_total, "the compressed data");
     }
@@ -456,9 +484,10 @@ class ArrayDecoder {
     for (std::uint64_t b = 0; b < blocks; ++b) {
       const std::uint64_t want = b + 1 == blocks ? final_block : block_size;
       const std::size_t got =
-          compressed[b] == 0 ? 0
-                             : zlib->Uncompress(reinterpret_cast<const unsigned char*>(s_.data()) + begin + in, compressed[b],
-                                                reinterpret_cast<unsigned char*>(out.data()) + produced, want);
+          compressed[b] == 0
+              ? 0
+              : zlib->Uncompress(reinterpret_cast<const unsigned char*>(s_.data()) + begin + in, compressed[b],
+                                 reinterpret_cast<unsigned char*>(out.data()) + produced, want);
       if (got != want)
         fail(path_, label + ": compressed block " + std::to_string(b) + " is corrupted (zlib: " +
                         (errors->message.empty() ? std::string("wrong size") : errors->message) + ")");
@@ -480,7 +509,8 @@ class ArrayDecoder {
         pos = end + 1;
       }
       if (static_cast<std::int64_t>(array.strings.size()) != values)
-        fail(path_, label + " holds " + std::to_string(array.strings.size()) + " strings (expected " + std::to_string(values) + ")");
+        fail(path_, label + " holds " + std::to_string(array.strings.size()) + " strings (expected " +
+                        std::to_string(values) + ")");
       return;
     }
     const auto size = static_cast<std::size_t>(type_size(array.type));
@@ -499,10 +529,13 @@ const XmlElement* only_child(const XmlElement& parent, std::string_view name, bo
   const XmlElement* found = nullptr;
   for (const XmlElement& child : parent.children) {
     if (child.name != name) continue;
-    if (found) fail(path, "more than one <" + std::string(name) + "> in <" + parent.name + "> (line " + std::to_string(child.line) + ")");
+    if (found)
+      fail(path, "more than one <" + std::string(name) + "> in <" + parent.name + "> (line " +
+                     std::to_string(child.line) + ")");
     found = &child;
   }
-  if (required && !found) fail(path, "<" + parent.name + "> (line " + std::to_string(parent.line) + ") has no <" + std::string(name) + ">");
+  if (required && !found)
+    fail(path, "<" + parent.name + "> (line " + std::to_string(parent.line) + ") has no <" + std::string(name) + ">");
   return found;
 }
 
@@ -552,14 +585,20 @@ VtkPolyDataArrays read_vtk_polydata_arrays(const std::string& path) {
   FileFormat format;
   const std::string* order = root.attribute("byte_order");
   const bool little = std::endian::native == std::endian::little;
-  if (order && *order == "BigEndian") format.swap_bytes = little;
-  else if (order && *order == "LittleEndian") format.swap_bytes = !little;
-  else if (order) fail(path, "unknown byte_order '" + *order + "'");
+  if (order && *order == "BigEndian")
+    format.swap_bytes = little;
+  else if (order && *order == "LittleEndian")
+    format.swap_bytes = !little;
+  else if (order)
+    fail(path, "unknown byte_order '" + *order + "'");
   const std::string* header = root.attribute("header_type");
-  if (header && *header == "UInt64") format.header_bytes = 8;
-  else if (header && *header != "UInt32") fail(path, "unknown header_type '" + *header + "' (expected UInt32 or UInt64)");
+  if (header && *header == "UInt64")
+    format.header_bytes = 8;
+  else if (header && *header != "UInt32")
+    fail(path, "unknown header_type '" + *header + "' (expected UInt32 or UInt64)");
   const std::string* compressor = root.attribute("compressor");
-  if (compressor && *compressor == "vtkZLibDataCompressor") format.zlib = true;
+  if (compressor && *compressor == "vtkZLibDataCompressor")
+    format.zlib = true;
   else if (compressor && !compressor->empty())
     fail(path, "unsupported compressor '" + *compressor + "' (expected vtkZLibDataCompressor or none)");
   format.appended = only_child(root, "AppendedData", false, path);
@@ -579,14 +618,17 @@ VtkPolyDataArrays read_vtk_polydata_arrays(const std::string& path) {
   {
     const char* last = points_text->data() + points_text->size();
     const auto [ptr, ec] = std::from_chars(points_text->data(), last, result.point_count);
-    if (ec != std::errc() || ptr != last || points_text->empty() || result.point_count < 0 || result.point_count > kMaxValues)
+    if (ec != std::errc() || ptr != last || points_text->empty() || result.point_count < 0 ||
+        result.point_count > kMaxValues)
       fail(path, "<Piece> NumberOfPoints=\"" + *points_text + "\" is not a point count");
   }
   result.field_data = decode_arrays(only_child(*poly, "FieldData", false, path), -1, "field data", decoder, path);
-  result.point_data = decode_arrays(only_child(*piece, "PointData", false, path), result.point_count, "point", decoder, path);
+  result.point_data =
+      decode_arrays(only_child(*piece, "PointData", false, path), result.point_count, "point", decoder, path);
   const XmlElement* points = only_child(*piece, "Points", true, path);
   std::vector<VtkArray> coordinates = decode_arrays(points, result.point_count, "Points", decoder, path);
-  if (coordinates.size() != 1) fail(path, "<Points> must hold exactly one array (it holds " + std::to_string(coordinates.size()) + ")");
+  if (coordinates.size() != 1)
+    fail(path, "<Points> must hold exactly one array (it holds " + std::to_string(coordinates.size()) + ")");
   result.points = std::move(coordinates.front());
   if (result.points.is_string() || result.points.components != 3)
     fail(path, "the point coordinates must be a numeric array with 3 components");

@@ -179,8 +179,7 @@ double grown_length(const Points& p, std::vector<std::size_t> tip_nodes, const s
 
 CrackTracker::CrackTracker(std::vector<double> x, std::vector<double> y, std::vector<double> z,
                            std::vector<char> include, const CrackSettings& settings)
-    : x_(std::move(x)), y_(std::move(y)), z_(std::move(z)), include_(std::move(include)),
-      settings_(settings) {
+    : x_(std::move(x)), y_(std::move(y)), z_(std::move(z)), include_(std::move(include)), settings_(settings) {
   const std::size_t n = x_.size();
   if (y_.size() != n || z_.size() != n || include_.size() != n)
     throw std::invalid_argument("CrackTracker: arrays of different lengths");
@@ -205,8 +204,7 @@ CrackTracker::CrackTracker(std::vector<double> x, std::vector<double> y, std::ve
   PointGrid surface_grid(x_, y_, z_, surface, 2.0 * dx);
   for (std::size_t i : body) {
     bool near = false;
-    surface_grid.for_each_within(x_[i], y_[i], z_[i], 2.0 * dx * (1 + 1e-9),
-                                 [&](std::size_t) { near = true; });
+    surface_grid.for_each_within(x_[i], y_[i], z_[i], 2.0 * dx * (1 + 1e-9), [&](std::size_t) { near = true; });
     near_boundary_[i] = near ? 1 : 0;
   }
 }
@@ -265,8 +263,8 @@ CrackMetrics CrackTracker::finish() const {
   std::optional<std::size_t> start;
   if (reference > 0) {
     start = reference;  // no pre-crack: the crack nucleated in this frame
-    metrics.note = "no pre-crack in the first snapshot; the crack nucleated at t = " +
-                   std::to_string(reference_time_) + " s";
+    metrics.note =
+        "no pre-crack in the first snapshot; the crack nucleated at t = " + std::to_string(reference_time_) + " s";
   } else {
     for (std::size_t k = 1; k < frames_.size(); ++k)
       if (frames_[k].lead_path_length >= 2.0 * dx) {
@@ -295,13 +293,11 @@ CrackMetrics CrackTracker::finish() const {
     if (frames_.back().time < frames_[k].time + settings_.stop_duration_s * (1 - 1e-9)) continue;
     bool stopped = true;
     for (std::size_t m = k + 1;
-         m < frames_.size() && frames_[m].time <= frames_[k].time + settings_.stop_duration_s * (1 + 1e-9);
-         ++m)
+         m < frames_.size() && frames_[m].time <= frames_[k].time + settings_.stop_duration_s * (1 + 1e-9); ++m)
       if (growth(m) - growth(k) >= 2.0 * dx) stopped = false;
     if (stopped) {
       end = k;
-      metrics.end_reason = "every crack tip stopped for " +
-                           std::to_string(settings_.stop_duration_s * 1e6) + " us";
+      metrics.end_reason = "every crack tip stopped for " + std::to_string(settings_.stop_duration_s * 1e6) + " us";
     }
   }
   if (end) metrics.end_time_s = frames_[*end].time;
@@ -313,8 +309,8 @@ CrackMetrics CrackTracker::finish() const {
   for (std::size_t k = first; k <= last; ++k)
     for (std::size_t m = k + 1; m <= last; ++m)
       if (frames_[m].lead_path_length - frames_[k].lead_path_length >= 2.0 * delta) {
-        const double speed = (frames_[m].lead_path_length - frames_[k].lead_path_length) /
-                             (frames_[m].time - frames_[k].time);
+        const double speed =
+            (frames_[m].lead_path_length - frames_[k].lead_path_length) / (frames_[m].time - frames_[k].time);
         if (!metrics.tip_speed_max_m_per_s || speed > *metrics.tip_speed_max_m_per_s)
           metrics.tip_speed_max_m_per_s = speed;
         break;
@@ -323,11 +319,9 @@ CrackMetrics CrackTracker::finish() const {
   return metrics;
 }
 
-CrackMetrics measure_crack(const std::vector<double>& x, const std::vector<double>& y,
-                           const std::vector<double>& z, const std::vector<char>& include,
-                           const std::vector<double>& times,
-                           const std::vector<std::vector<double>>& damage,
-                           const CrackSettings& settings) {
+CrackMetrics measure_crack(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
+                           const std::vector<char>& include, const std::vector<double>& times,
+                           const std::vector<std::vector<double>>& damage, const CrackSettings& settings) {
   if (times.size() != damage.size())
     throw std::invalid_argument("measure_crack: times and damage fields differ in count");
   CrackTracker tracker(x, y, z, include, settings);

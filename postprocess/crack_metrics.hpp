@@ -25,15 +25,15 @@ struct CrackSettings {
 
 struct CrackTip {
   double x = 0, y = 0, z = 0;
-  double path_length = 0;          // along the crack from the pre-crack [m]
+  double path_length = 0;  // along the crack from the pre-crack [m]
 };
 
 struct CrackFrame {
   double time = 0;
   std::size_t cracked_points = 0;
-  double lead_path_length = 0;     // largest path length of any cracked point [m]
-  double crack_length = 0;         // grown crack: union of the tip paths [m]
-  std::vector<CrackTip> tips;      // tips that advanced at least 2 delta
+  double lead_path_length = 0;  // largest path length of any cracked point [m]
+  double crack_length = 0;      // grown crack: union of the tip paths [m]
+  std::vector<CrackTip> tips;   // tips that advanced at least 2 delta
   bool tip_at_boundary = false;
 };
 
@@ -41,7 +41,7 @@ struct CrackMetrics {
   std::optional<double> start_time_s;
   std::optional<double> branch_time_s;
   std::optional<double> end_time_s;
-  std::string end_reason;          // "tip reached a boundary" | "tips stopped for ..." | ""
+  std::string end_reason;  // "tip reached a boundary" | "tips stopped for ..." | ""
   std::optional<double> tip_speed_max_m_per_s;
   std::optional<double> crack_length_m;  // grown length at the end (or last snapshot)
   std::vector<CrackFrame> frames;
@@ -51,8 +51,8 @@ struct CrackMetrics {
 class CrackTracker {
  public:
   // x, y, z: positions [m] (z zero in 2-D); include: nonzero for body points (not layers).
-  CrackTracker(std::vector<double> x, std::vector<double> y, std::vector<double> z,
-               std::vector<char> include, const CrackSettings& settings);
+  CrackTracker(std::vector<double> x, std::vector<double> y, std::vector<double> z, std::vector<char> include,
+               const CrackSettings& settings);
 
   // Frames in increasing time. The first frame's cracked set is the pre-crack.
   void add_frame(double time, const std::vector<double>& damage);
@@ -64,7 +64,7 @@ class CrackTracker {
  private:
   std::vector<double> x_, y_, z_;
   std::vector<char> include_;
-  std::vector<char> near_boundary_;   // within 2 dx of the body's free surface
+  std::vector<char> near_boundary_;  // within 2 dx of the body's free surface
   CrackSettings settings_;
   std::vector<std::size_t> precrack_;
   bool have_reference_ = false;
@@ -73,10 +73,8 @@ class CrackTracker {
 };
 
 // The same, for a whole series at once (tests, small runs).
-CrackMetrics measure_crack(const std::vector<double>& x, const std::vector<double>& y,
-                           const std::vector<double>& z, const std::vector<char>& include,
-                           const std::vector<double>& times,
-                           const std::vector<std::vector<double>>& damage,
-                           const CrackSettings& settings);
+CrackMetrics measure_crack(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
+                           const std::vector<char>& include, const std::vector<double>& times,
+                           const std::vector<std::vector<double>>& damage, const CrackSettings& settings);
 
 }  // namespace mppm::post

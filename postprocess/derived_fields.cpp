@@ -17,7 +17,8 @@ std::vector<double> per_tensor(const std::vector<double>& stress, const char* na
   const auto n = static_cast<std::int64_t>(stress.size() / 9);
   std::vector<double> values(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) values[static_cast<std::size_t>(i)] = invariant(&stress[static_cast<std::size_t>(i) * 9]);
+  for (std::int64_t i = 0; i < n; ++i)
+    values[static_cast<std::size_t>(i)] = invariant(&stress[static_cast<std::size_t>(i) * 9]);
   return values;
 }
 

@@ -27,8 +27,7 @@ std::optional<std::string> find_program(const std::string& program);
 // Runs argv[0] with the arguments, waits, returns the exit status (128 + signal if killed).
 // With `quiet`, the child's stdout goes to /dev/null; stderr is always passed through.
 // `environment` entries ("NAME=value") are added to (or replace in) the child's environment.
-int run_program(const std::vector<std::string>& argv, bool quiet,
-                const std::vector<std::string>& environment = {});
+int run_program(const std::vector<std::string>& argv, bool quiet, const std::vector<std::string>& environment = {});
 
 // Where pvbatch finds ParaView's Python modules. Debian 12's python3-paraview conflicts with
 // python3-vtk9 (which libvtk9-dev needs), so the build machine keeps it unpacked aside:

@@ -29,11 +29,21 @@ std::string json_quote(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buffer[8];
@@ -50,8 +60,12 @@ std::string json_quote(const std::string& text) {
 void JsonValue::write(std::ostream& out, int indent) const {
   const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
   switch (kind_) {
-    case Kind::null: out << "null"; break;
-    case Kind::boolean: out << (boolean_ ? "true" : "false"); break;
+    case Kind::null:
+      out << "null";
+      break;
+    case Kind::boolean:
+      out << (boolean_ ? "true" : "false");
+      break;
     case Kind::number: {
       if (!std::isfinite(number_)) {
         out << "null";
@@ -73,7 +87,9 @@ void JsonValue::write(std::ostream& out, int indent) const {
       }
       break;
     }
-    case Kind::string: out << json_quote(string_); break;
+    case Kind::string:
+      out << json_quote(string_);
+      break;
     case Kind::array: {
       bool scalars = true;
       for (const auto& item : items_)

@@ -31,8 +31,16 @@ class JsonValue {
     if (v) *this = JsonValue(*v);
   }
 
-  static JsonValue array() { JsonValue v; v.kind_ = Kind::array; return v; }
-  static JsonValue object() { JsonValue v; v.kind_ = Kind::object; return v; }
+  static JsonValue array() {
+    JsonValue v;
+    v.kind_ = Kind::array;
+    return v;
+  }
+  static JsonValue object() {
+    JsonValue v;
+    v.kind_ = Kind::object;
+    return v;
+  }
 
   Kind kind() const { return kind_; }
   // Object: sets (or replaces) a key, keeping first-insertion order.

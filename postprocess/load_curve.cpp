@@ -63,8 +63,8 @@ LoadTable read_load_table(const std::string& path) {
         table.notes.push_back(path + ": dropped an incomplete last line (the run was stopped while writing it)");
         break;
       }
-      throw InputError(path + ":" + std::to_string(number) + ": expected " +
-                       std::to_string(table.columns.size()) + " numbers separated by commas");
+      throw InputError(path + ":" + std::to_string(number) + ": expected " + std::to_string(table.columns.size()) +
+                       " numbers separated by commas");
     }
     table.rows.push_back(std::move(row));
   }
@@ -98,7 +98,8 @@ LoadCurve make_load_curve(const LoadTable& table) {
     double p = 0.0;
     if (column < 0) return -1.0;
     for (const auto& row : table.rows)
-      if (std::isfinite(row[static_cast<std::size_t>(column)])) p = std::max(p, std::fabs(row[static_cast<std::size_t>(column)]));
+      if (std::isfinite(row[static_cast<std::size_t>(column)]))
+        p = std::max(p, std::fabs(row[static_cast<std::size_t>(column)]));
     return p;
   };
   for (auto& b : curve.boundaries) {
@@ -154,7 +155,8 @@ PeakLoad find_peak_load(const LoadCurve& curve, const std::vector<std::string>& 
       at = r;
   if (at) {
     result.peak_load_N = std::fabs(curve.force[b][*at]);
-    if (std::isfinite(curve.displacement[b][*at])) result.displacement_at_peak_m = std::fabs(curve.displacement[b][*at]);
+    if (std::isfinite(curve.displacement[b][*at]))
+      result.displacement_at_peak_m = std::fabs(curve.displacement[b][*at]);
     result.time_at_peak_s = curve.time[*at];
   }
   return result;

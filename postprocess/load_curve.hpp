@@ -9,28 +9,28 @@
 namespace mppm::post {
 
 struct LoadTable {
-  std::vector<std::string> columns;          // header of load.csv
-  std::vector<std::vector<double>> rows;     // rows[r][c]
+  std::vector<std::string> columns;       // header of load.csv
+  std::vector<std::vector<double>> rows;  // rows[r][c]
   std::vector<std::string> notes;
 };
 
 struct LoadedBoundary {
   std::string name;
-  std::vector<int> displacement_columns;     // one per axis (d of them)
+  std::vector<int> displacement_columns;  // one per axis (d of them)
   std::vector<int> force_columns;
-  int axis = 0;                              // loading axis: 0 x, 1 y, 2 z
+  int axis = 0;  // loading axis: 0 x, 1 y, 2 z
 };
 
 struct LoadCurve {
-  std::vector<double> time;                  // [s]
-  std::vector<LoadedBoundary> boundaries;    // load.csv order
+  std::vector<double> time;                              // [s]
+  std::vector<LoadedBoundary> boundaries;                // load.csv order
   std::vector<std::vector<double>> displacement, force;  // [boundary][row] along the axis
 };
 
 struct PeakLoad {
   std::string boundary;
   int axis = 0;
-  std::optional<double> peak_load_N;          // max |F| along the axis
+  std::optional<double> peak_load_N;             // max |F| along the axis
   std::optional<double> displacement_at_peak_m;  // |u| along the axis at that row
   std::optional<double> time_at_peak_s;
 };

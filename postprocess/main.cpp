@@ -55,17 +55,18 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  const mppm::CommandLineSpec spec{
-      "mppm-postprocess", kUsage,
-      {"-o", "--fields", "--times", "--warp-scale", "--compression"},
-      {"--figures", "--partial", "--no-plot", "--force"}};
+  const mppm::CommandLineSpec spec{"mppm-postprocess",
+                                   kUsage,
+                                   {"-o", "--fields", "--times", "--warp-scale", "--compression"},
+                                   {"--figures", "--partial", "--no-plot", "--force"}};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) -> int {
     using mppm::InputError;
     if (cl.positional.size() != 1)
       throw InputError("expected one run directory (mppm-postprocess RUN_DIR -o POST_DIR; see --help)");
     const auto output = cl.option("-o");
     if (!output) throw InputError("missing -o POST_DIR (the output directory; see --help)");
-    if (!cl.overrides.empty()) throw InputError("--set does not apply to mppm-postprocess (it reads the resolved scene)");
+    if (!cl.overrides.empty())
+      throw InputError("--set does not apply to mppm-postprocess (it reads the resolved scene)");
     mppm::post::PostprocessOptions options;
     options.run_directory = cl.positional[0];
     options.output_directory = *output;
@@ -88,10 +89,14 @@ int main(int argc, char** argv) {
       }
     }
     if (const auto kind = cl.option("--compression")) {
-      if (*kind == "zlib") options.compression = mppm::post::VtuCompression::zlib;
-      else if (*kind == "lz4") options.compression = mppm::post::VtuCompression::lz4;
-      else if (*kind == "none") options.compression = mppm::post::VtuCompression::none;
-      else throw InputError("--compression: '" + *kind + "' (expected zlib, lz4 or none)");
+      if (*kind == "zlib")
+        options.compression = mppm::post::VtuCompression::zlib;
+      else if (*kind == "lz4")
+        options.compression = mppm::post::VtuCompression::lz4;
+      else if (*kind == "none")
+        options.compression = mppm::post::VtuCompression::none;
+      else
+        throw InputError("--compression: '" + *kind + "' (expected zlib, lz4 or none)");
     }
     try {
       const auto result = mppm::post::postprocess_run(options);

@@ -76,7 +76,9 @@ std::vector<std::string> pvbatch_command(const std::string& pvbatch, const std::
   // -noreset: Xvfb otherwise resets when pvbatch's first (probing) connection closes, and a
   // connection made during the reset fails ("bad X server connection") on a loaded machine.
   const std::string display = std::to_string(100 + ::getpid() % 800);
-  if (xvfb) return {*xvfb, "-a", "-n", display, "-s", "-screen 0 1920x1080x24 -nolisten tcp -noreset", pvbatch, script, spec_path};
+  if (xvfb)
+    return {*xvfb,   "-a",   "-n",     display, "-s", "-screen 0 1920x1080x24 -nolisten tcp -noreset",
+            pvbatch, script, spec_path};
   return {pvbatch, "--force-offscreen-rendering", script, spec_path};
 }
 
@@ -91,8 +93,7 @@ void plot_load_curve(const std::string& post_directory, const std::string& main_
     throw ExternalToolError("/usr/bin/python3 is missing: install the Debian packages python3 and python3-matplotlib");
   const fs::path png = post / "load_curve.png";
   const std::string temporary = temporary_with_extension(png);
-  const int status = run_program({python, script, (post / "load_curve.csv").string(), temporary,
-                                  main_boundary}, true);
+  const int status = run_program({python, script, (post / "load_curve.csv").string(), temporary, main_boundary}, true);
   if (status != 0 || !fs::exists(temporary)) {
     std::error_code ec;
     fs::remove(temporary, ec);
@@ -108,8 +109,9 @@ std::vector<std::string> render_figures(const std::string& post_directory, const
   const std::string script = companion_script(kFigureScript, settings.script_directory);
   const auto pvbatch = find_program("pvbatch");
   if (!pvbatch)
-    throw ExternalToolError("--figures needs ParaView's pvbatch, which is not on PATH: install the Debian "
-                            "packages paraview, xvfb and xauth");
+    throw ExternalToolError(
+        "--figures needs ParaView's pvbatch, which is not on PATH: install the Debian "
+        "packages paraview, xvfb and xauth");
   const auto xvfb = find_program("xvfb-run");
   const std::vector<std::string> environment = paraview_python_environment();
   const fs::path post(post_directory);

@@ -20,7 +20,7 @@ struct FigureFrame {
 };
 
 struct FigureSettings {
-  double spacing = 0.0;          // dx [m]
+  double spacing = 0.0;  // dx [m]
   int dimension = 2;
   double warp_scale = 1.0;       // displacement scale of the deformed configuration
   std::string script_directory;  // empty = next to the executable
@@ -29,7 +29,6 @@ struct FigureSettings {
 // POST_DIR/figures/FIELD_STEP.png of each field at each frame; returns the files written.
 // Throws ExternalToolError if pvbatch is missing or rendering fails (no image is left then).
 std::vector<std::string> render_figures(const std::string& post_directory, const FigureSettings& settings,
-                                        const std::vector<FigureFrame>& frames,
-                                        const std::vector<std::string>& fields);
+                                        const std::vector<FigureFrame>& frames, const std::vector<std::string>& fields);
 
 }  // namespace mppm::post

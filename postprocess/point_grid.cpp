@@ -8,9 +8,8 @@
 
 namespace mppm::post {
 
-PointGrid::PointGrid(const std::vector<double>& x, const std::vector<double>& y,
-                     const std::vector<double>& z, const std::vector<std::size_t>& members,
-                     double cell)
+PointGrid::PointGrid(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& z,
+                     const std::vector<std::size_t>& members, double cell)
     : x_(x), y_(y), z_(z), cell_(cell) {
   if (!(cell > 0.0)) throw std::invalid_argument("PointGrid: cell size must be positive");
   if (members.empty()) {
@@ -31,9 +30,7 @@ PointGrid::PointGrid(const std::vector<double>& x, const std::vector<double>& y,
   x0_ = lo[0];
   y0_ = lo[1];
   z0_ = lo[2];
-  auto count = [&](int c) {
-    return static_cast<std::int64_t>(std::floor((hi[c] - lo[c]) / cell)) + 1;
-  };
+  auto count = [&](int c) { return static_cast<std::int64_t>(std::floor((hi[c] - lo[c]) / cell)) + 1; };
   nx_ = count(0);
   ny_ = count(1);
   nz_ = count(2);

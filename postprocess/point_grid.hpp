@@ -20,16 +20,14 @@ class PointGrid {
   void for_each_within(double px, double py, double pz, double radius, Visit&& visit) const;
 
  private:
-  std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return (k * ny_ + j) * nx_ + i;
-  }
+  std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) const { return (k * ny_ + j) * nx_ + i; }
   const std::vector<double>& x_;
   const std::vector<double>& y_;
   const std::vector<double>& z_;
   double cell_ = 1.0;
   double x0_ = 0.0, y0_ = 0.0, z0_ = 0.0;
   std::int64_t nx_ = 1, ny_ = 1, nz_ = 1;
-  std::vector<std::size_t> start_;   // CSR over cells: start_[c] .. start_[c+1]
+  std::vector<std::size_t> start_;  // CSR over cells: start_[c] .. start_[c+1]
   std::vector<std::size_t> points_;
 };
 

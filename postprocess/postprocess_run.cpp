@@ -87,8 +87,9 @@ FrameArrays frame_arrays(const Snapshot& snapshot, std::vector<std::string>& not
         embedded[9 * i + 4] = stress->data[4 * i + 3];
       }
       tensor = &embedded;
-      const std::string note = "stress has the 4 in-plane components only: von_mises_stress and mean_stress "
-                               "are those of the in-plane state (sigma_zz taken as 0)";
+      const std::string note =
+          "stress has the 4 in-plane components only: von_mises_stress and mean_stress "
+          "are those of the in-plane state (sigma_zz taken as 0)";
       if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
     } else {
       const std::string note = "stress has " + std::to_string(stress->components) +
@@ -121,21 +122,20 @@ std::vector<int> integer_field(const Snapshot& reference, const char* name) {
 void check_snapshot(const Snapshot& snapshot, const RunDirectory& run, const SnapshotEntry& entry,
                     const std::vector<std::pair<std::string, int>>& layout) {
   if (static_cast<std::int64_t>(snapshot.point_count) != run.info.points)
-    throw InputError(entry.path + ": holds " + std::to_string(snapshot.point_count) +
-                     " points, the run has " + std::to_string(run.info.points));
+    throw InputError(entry.path + ": holds " + std::to_string(snapshot.point_count) + " points, the run has " +
+                     std::to_string(run.info.points));
   if (snapshot.dimension != run.info.dimension)
-    throw InputError(entry.path + ": dimension " + std::to_string(snapshot.dimension) +
-                     " differs from the run's " + std::to_string(run.info.dimension));
+    throw InputError(entry.path + ": dimension " + std::to_string(snapshot.dimension) + " differs from the run's " +
+                     std::to_string(run.info.dimension));
   if (std::fabs(snapshot.time - entry.time) > 1e-9 * std::max(1.0, std::fabs(entry.time)) + 1e-15)
     throw InputError(entry.path + ": time " + std::to_string(snapshot.time) + " s differs from run_info.json (" +
                      std::to_string(entry.time) + " s)");
   for (const auto& [name, components] : layout) {
     const SnapshotField* same = snapshot.find(name);
-    if (!same)
-      throw InputError(entry.path + ": field '" + name + "' is missing (the first snapshot has it)");
+    if (!same) throw InputError(entry.path + ": field '" + name + "' is missing (the first snapshot has it)");
     if (same->components != components)
-      throw InputError(entry.path + ": field '" + name + "' has " + std::to_string(same->components) +
-                       " components, " + std::to_string(components) + " in the first snapshot");
+      throw InputError(entry.path + ": field '" + name + "' has " + std::to_string(same->components) + " components, " +
+                       std::to_string(components) + " in the first snapshot");
   }
 }
 
@@ -151,7 +151,8 @@ std::string format_time(double seconds) {
 }
 
 // Snapshot indices for the figures.
-std::vector<std::size_t> figure_frames(const std::vector<std::string>& times, const std::vector<SnapshotEntry>& snapshots) {
+std::vector<std::size_t> figure_frames(const std::vector<std::string>& times,
+                                       const std::vector<SnapshotEntry>& snapshots) {
   std::vector<std::size_t> frames;
   if (times.empty()) return {snapshots.size() - 1};
   if (times.size() == 1 && times[0] == "all") {
@@ -174,7 +175,8 @@ std::vector<std::size_t> figure_frames(const std::vector<std::string>& times, co
       if (std::fabs(snapshots[k].time - t) < std::fabs(snapshots[best].time - t)) best = k;
     if (std::fabs(snapshots[best].time - t) > 0.5 * gap + 1e-12 * std::fabs(t))
       throw InputError("--times: no snapshot near " + text + " (the run has snapshots from " +
-                       std::to_string(snapshots.front().time) + " s to " + std::to_string(snapshots.back().time) + " s)");
+                       std::to_string(snapshots.front().time) + " s to " + std::to_string(snapshots.back().time) +
+                       " s)");
     if (std::find(frames.begin(), frames.end(), best) == frames.end()) frames.push_back(best);
   }
   std::sort(frames.begin(), frames.end());
@@ -228,11 +230,13 @@ void prepare_post_directory(const PostprocessOptions& options) {
   };
   const fs::path run_path = directory_path(options.run_directory);
   const fs::path post_path = directory_path(post);
-  if (!ec && std::mismatch(post_path.begin(), post_path.end(), run_path.begin(), run_path.end()).first == post_path.end())
+  if (!ec &&
+      std::mismatch(post_path.begin(), post_path.end(), run_path.begin(), run_path.end()).first == post_path.end())
     throw InputError(options.output_directory + ": the post directory must not be (or contain) the run directory " +
                      options.run_directory);
-  prepare_output_directory(options.output_directory, options.force,
-                           {"post directory", "-o POST_DIR", {"results.pvd", "summary.json", "load_curve.csv", kVtuDirectory}});
+  prepare_output_directory(
+      options.output_directory, options.force,
+      {"post directory", "-o POST_DIR", {"results.pvd", "summary.json", "load_curve.csv", kVtuDirectory}});
   fs::create_directories(post / kVtuDirectory, ec);
   if (ec) throw InputError(options.output_directory + ": cannot create the output directory (" + ec.message() + ")");
 }
@@ -322,7 +326,8 @@ std::vector<std::string> kinematic_boundary_names(const YAML::Node& scene) {
   if (const YAML::Node bcs = scene["boundary_conditions"]; bcs && bcs.IsSequence())
     for (const auto& bc : bcs) {
       const std::string type = bc["type"] ? bc["type"].as<std::string>() : "";
-      if ((type == "velocity" || type == "displacement") && bc["name"]) kinematic.push_back(bc["name"].as<std::string>());
+      if ((type == "velocity" || type == "displacement") && bc["name"])
+        kinematic.push_back(bc["name"].as<std::string>());
     }
   return kinematic;
 }
@@ -407,11 +412,12 @@ void add_shear_band_metrics(JsonValue& summary, std::vector<std::string>& notes,
                             const PointGeometry& points, const SeriesResult& series) {
   const bool has_plastic = !series.last_plastic_shear.empty();
   if (has_plastic && run.info.dimension == 2) {
-    const std::vector<char> interior = points_away_from_boundaries(points.x, points.y, points.z, points.region,
-                                                                   points.boundary_id, 2.0 * run.horizon);
+    const std::vector<char> interior =
+        points_away_from_boundaries(points.x, points.y, points.z, points.region, points.boundary_id, 2.0 * run.horizon);
     ShearBandSettings settings;
     settings.spacing = run.spacing;
-    const ShearBandResult bands = measure_shear_bands(points.x, points.y, series.last_plastic_shear, interior, settings);
+    const ShearBandResult bands =
+        measure_shear_bands(points.x, points.y, series.last_plastic_shear, interior, settings);
     set_shear_band_entries(summary, bands, series.last_plastic_time);
     if (!bands.note.empty()) notes.push_back("shear bands: " + bands.note);
   } else if (has_plastic) {
@@ -431,7 +437,8 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
     summary.set("crack_length_m", m.crack_length_m);
     summary.set("crack_damage_threshold", crack->damage_threshold());
     if (!m.note.empty()) notes.push_back("crack: " + m.note);
-  } else if (has_damage || std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
+  } else if (has_damage ||
+             std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
     if (run.info.dimension != 2) notes.push_back("crack metrics are measured in 2-D runs only");
   }
 }

@@ -13,12 +13,12 @@ namespace mppm::post {
 struct PostprocessOptions {
   std::string run_directory;
   std::string output_directory;
-  bool force = false;                    // --force: replace an earlier post directory
+  bool force = false;  // --force: replace an earlier post directory
   bool quiet = false;
-  bool allow_unfinished = false;         // --partial: a run whose status is still "running"
-  bool plot_load_curve = true;           // load_curve.png through matplotlib
+  bool allow_unfinished = false;  // --partial: a run whose status is still "running"
+  bool plot_load_curve = true;    // load_curve.png through matplotlib
   VtuCompression compression = VtuCompression::zlib;
-  std::string script_directory;          // helper scripts; empty = next to the executable
+  std::string script_directory;  // helper scripts; empty = next to the executable
   // Figures (--figures, --fields, --times, --warp-scale).
   bool figures = false;
   std::vector<std::string> figure_fields;  // empty = damage, plastic_shear_strain, rotation (those present)
@@ -28,9 +28,9 @@ struct PostprocessOptions {
 
 struct PostprocessResult {
   JsonValue summary;
-  std::vector<std::string> notes;        // also in summary.json "notes"
+  std::vector<std::string> notes;  // also in summary.json "notes"
   std::size_t frames = 0;
-  std::vector<std::string> figures;      // PNG files written
+  std::vector<std::string> figures;  // PNG files written
 };
 
 // Throws InputError (bad run directory or options), ExternalToolError (python/pvbatch).

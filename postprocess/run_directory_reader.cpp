@@ -79,8 +79,7 @@ RunInfo read_run_info(const std::string& path) {
   if (const YAML::Node effects = root["effects"]; effects && effects.IsSequence())
     for (const auto& e : effects) info.effects.push_back(e.as<std::string>());
   const YAML::Node snapshots = root["snapshots"];
-  if (!snapshots || !snapshots.IsSequence())
-    throw InputError(path + ": key 'snapshots' is missing or not a list");
+  if (!snapshots || !snapshots.IsSequence()) throw InputError(path + ": key 'snapshots' is missing or not a list");
   for (const auto& s : snapshots) {
     SnapshotEntry entry;
     entry.path = required<std::string>(s, "file", path);
@@ -137,13 +136,11 @@ void check_snapshot_list(RunInfo& info, const fs::path& dir, const fs::path& inf
     const fs::path file = fs::path(entry.path).is_absolute() ? fs::path(entry.path) : dir / entry.path;
     entry.path = file.string();
     if (!fs::exists(file))
-      throw InputError(entry.path + ": snapshot listed in " + std::string(run_layout::run_info) +
-                       " is missing");
+      throw InputError(entry.path + ": snapshot listed in " + std::string(run_layout::run_info) + " is missing");
   }
   for (std::size_t k = 1; k < info.snapshots.size(); ++k)
     if (!(info.snapshots[k].time > info.snapshots[k - 1].time))
-      throw InputError(info_path.string() + ": snapshot times are not increasing (snapshot " +
-                       std::to_string(k) + ")");
+      throw InputError(info_path.string() + ": snapshot times are not increasing (snapshot " + std::to_string(k) + ")");
 }
 
 // scene.resolved.yaml, and the spacing, horizon and thickness from it.
@@ -159,8 +156,8 @@ void read_resolved_scene(RunDirectory& run, const fs::path& dir) {
   const std::string scene_file = scene_path.string();
   if (!run.scene.IsMap()) throw InputError(scene_file + ": expected a YAML map");
   run.spacing = scene_quantity(run.scene["geometry"]["spacing"], "geometry.spacing", dim::length, scene_file);
-  const double factor = scene_quantity(run.scene["geometry"]["horizon_factor"], "geometry.horizon_factor",
-                                       dim::none, scene_file);
+  const double factor =
+      scene_quantity(run.scene["geometry"]["horizon_factor"], "geometry.horizon_factor", dim::none, scene_file);
   run.horizon = factor * run.spacing;
   if (!(run.spacing > 0) || !(factor > 0))
     throw InputError(scene_file + ": geometry.spacing and geometry.horizon_factor must be positive");
@@ -185,7 +182,8 @@ void read_reference(RunDirectory& run, const fs::path& dir) {
   for (const auto& [name, components] : needed) {
     const SnapshotField* field = run.reference.find(name);
     if (!field)
-      throw InputError(reference_file + ": field '" + name + "' is missing (expected position, volume, "
+      throw InputError(reference_file + ": field '" + name +
+                       "' is missing (expected position, volume, "
                        "region, boundary_id)");
     if (field->components != components)
       throw InputError(reference_file + ": field '" + name + "' has " + std::to_string(field->components) +

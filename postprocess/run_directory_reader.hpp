@@ -13,13 +13,13 @@
 namespace mppm::post {
 
 struct SnapshotEntry {
-  std::string path;      // absolute or relative to the current directory
+  std::string path;  // absolute or relative to the current directory
   std::int64_t step = 0;
   double time = 0.0;
 };
 
 struct RunInfo {
-  std::string status;    // "completed" | "numerical_failure" | "interrupted" | "running"
+  std::string status;  // "completed" | "numerical_failure" | "interrupted" | "running"
   std::string message;
   std::int64_t points = 0, bonds = 0, steps = 0, detached_points = 0;
   double time_s = 0.0, wall_seconds = 0.0;
@@ -32,11 +32,11 @@ struct RunInfo {
 struct RunDirectory {
   std::string path;
   RunInfo info;
-  YAML::Node scene;          // scene.resolved.yaml as written by the solver
-  double spacing = 0.0;      // dx [m]
-  double horizon = 0.0;      // delta [m]
-  double thickness = 1.0;    // 2-D thickness [m]
-  Snapshot reference;        // position(3), volume, region, boundary_id
+  YAML::Node scene;                // scene.resolved.yaml as written by the solver
+  double spacing = 0.0;            // dx [m]
+  double horizon = 0.0;            // delta [m]
+  double thickness = 1.0;          // 2-D thickness [m]
+  Snapshot reference;              // position(3), volume, region, boundary_id
   std::vector<std::string> notes;  // things the user should know (partial run, ...)
 };
 

@@ -21,8 +21,8 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr int kAngleBins = 720;  // 0.25 deg: finer than the refinement needs
 
 struct Line {
-  double cx = 0, cy = 0;     // a point on the line
-  double direction = 0;      // [rad], in [0, pi)
+  double cx = 0, cy = 0;        // a point on the line
+  double direction = 0;         // [rad], in [0, pi)
   double sin_d = 0, cos_d = 1;  // of direction, cached: distances are evaluated per point
   Line() = default;
   Line(double x0, double y0, double d) : cx(x0), cy(y0), direction(d), sin_d(std::sin(d)), cos_d(std::cos(d)) {}
@@ -36,9 +36,8 @@ double angular_distance_deg(double a_deg, double b_deg) {
 }
 
 // Weighted principal axis of the given points: the band's centre line.
-Line principal_axis(const std::vector<double>& x, const std::vector<double>& y,
-                    const std::vector<double>& w, const std::vector<std::size_t>& points,
-                    const Line& fallback) {
+Line principal_axis(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& w,
+                    const std::vector<std::size_t>& points, const Line& fallback) {
   double sw = 0, sx = 0, sy = 0;
   for (std::size_t i : points) {
     sw += w[i];
@@ -70,8 +69,8 @@ struct StrainField {
   const std::vector<double>& y;
   const std::vector<double>& strain;
   const ShearBandSettings& settings;
-  std::vector<std::size_t> interior;     // included points with a finite strain
-  std::vector<std::size_t> band_points;  // interior points at or above the threshold
+  std::vector<std::size_t> interior;              // included points with a finite strain
+  std::vector<std::size_t> band_points;           // interior points at or above the threshold
   double xmin = 0, xmax = 0, ymin = 0, ymax = 0;  // bounding box of the interior
   // Strain profiles across a band: half-window, bin width and bin count.
   double window = 0, bin_width = 0;
@@ -130,10 +129,13 @@ struct Peak {
 class HoughTransform {
  public:
   explicit HoughTransform(const StrainField& field)
-      : field_(field), cx_(0.5 * (field.xmin + field.xmax)), cy_(0.5 * (field.ymin + field.ymax)),
+      : field_(field),
+        cx_(0.5 * (field.xmin + field.xmax)),
+        cy_(0.5 * (field.ymin + field.ymax)),
         radius_(std::hypot(field.xmax - field.xmin, field.ymax - field.ymin) * 0.5 + field.settings.spacing),
         offset_bins_(static_cast<std::size_t>(std::ceil(2.0 * radius_ / field.settings.spacing)) + 1),
-        sin_table_(kAngleBins), cos_table_(kAngleBins) {
+        sin_table_(kAngleBins),
+        cos_table_(kAngleBins) {
     for (int a = 0; a < kAngleBins; ++a) {
       const double direction = a * (180.0 / kAngleBins) * kDegree;
       sin_table_[a] = std::sin(direction);
@@ -306,8 +308,8 @@ struct Slice {
 
 // Slices of `slice` length along lines[k] (index = along / slice) of the interior points
 // within `half` of it.
-std::map<long, Slice> slices_along(const StrainField& field, const std::vector<Line>& lines, std::size_t k,
-                                   double half, double slice, double along_sin, double along_cos) {
+std::map<long, Slice> slices_along(const StrainField& field, const std::vector<Line>& lines, std::size_t k, double half,
+                                   double slice, double along_sin, double along_cos) {
   std::map<long, Slice> slices;
   for (std::size_t i : field.interior) {
     const double d = lines[k].signed_distance(field.x[i], field.y[i]);
@@ -404,8 +406,7 @@ void describe_bands(const StrainField& field, const std::vector<Line>& lines,
 }  // namespace
 
 ShearBandResult measure_shear_bands(const std::vector<double>& x, const std::vector<double>& y,
-                                    const std::vector<double>& strain,
-                                    const std::vector<char>& include,
+                                    const std::vector<double>& strain, const std::vector<char>& include,
                                     const ShearBandSettings& settings) {
   const std::size_t n = x.size();
   if (y.size() != n || strain.size() != n || include.size() != n)
@@ -427,7 +428,8 @@ ShearBandResult measure_shear_bands(const std::vector<double>& x, const std::vec
   // keep the stronger one only.
   if (lines.size() == 2 &&
       angular_distance_deg(lines[0].direction / kDegree, lines[1].direction / kDegree) < settings.min_separation_deg) {
-    result.note = "the second line converged to within " + std::to_string(static_cast<int>(settings.min_separation_deg)) +
+    result.note = "the second line converged to within " +
+                  std::to_string(static_cast<int>(settings.min_separation_deg)) +
                   " degrees of the first band's direction: one band";
     lines.pop_back();
     members.pop_back();

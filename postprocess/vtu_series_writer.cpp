@@ -74,7 +74,8 @@ VtuSeriesWriter::VtuSeriesWriter(const Snapshot& reference, VtuCompression compr
       auto array = vtkSmartPointer<vtkIntArray>::New();
       array->SetName(name);
       array->SetNumberOfTuples(n);
-      for (vtkIdType i = 0; i < n; ++i) array->SetValue(i, static_cast<int>(std::lround(field->data[static_cast<std::size_t>(i)])));
+      for (vtkIdType i = 0; i < n; ++i)
+        array->SetValue(i, static_cast<int>(std::lround(field->data[static_cast<std::size_t>(i)])));
       impl_->reference_arrays.push_back(array);
     }
 }
@@ -112,14 +113,18 @@ void VtuSeriesWriter::write_frame(const std::string& path, double time, std::int
   writer->EncodeAppendedDataOff();  // raw binary: smaller and faster than base64
   writer->SetHeaderTypeToUInt64();  // arrays above 4 GiB stay readable
   switch (impl_->compression) {
-    case VtuCompression::none: writer->SetCompressorTypeToNone(); break;
+    case VtuCompression::none:
+      writer->SetCompressorTypeToNone();
+      break;
     case VtuCompression::zlib: {
       vtkNew<vtkZLibDataCompressor> compressor;
       compressor->SetCompressionLevel(1);  // most of the size gain at a fraction of the time
       writer->SetCompressor(compressor);
       break;
     }
-    case VtuCompression::lz4: writer->SetCompressorTypeToLZ4(); break;
+    case VtuCompression::lz4:
+      writer->SetCompressorTypeToLZ4();
+      break;
   }
   if (writer->Write() != 1) {
     std::error_code ec;

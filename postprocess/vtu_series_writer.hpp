@@ -15,7 +15,7 @@ namespace mppm::post {
 struct PointArray {
   std::string name;
   int components = 1;
-  const double* data = nullptr;   // not owned; points * components values
+  const double* data = nullptr;  // not owned; points * components values
 };
 
 enum class VtuCompression { none, zlib, lz4 };
@@ -29,8 +29,7 @@ class VtuSeriesWriter {
   VtuSeriesWriter& operator=(const VtuSeriesWriter&) = delete;
 
   // Writes one frame; arrays beyond the reference ones (volume, region, boundary_id).
-  void write_frame(const std::string& path, double time, std::int64_t step,
-                   const std::vector<PointArray>& arrays);
+  void write_frame(const std::string& path, double time, std::int64_t step, const std::vector<PointArray>& arrays);
 
  private:
   struct Impl;
@@ -39,7 +38,7 @@ class VtuSeriesWriter {
 
 struct PvdEntry {
   double time = 0.0;
-  std::string file;   // relative to the .pvd
+  std::string file;  // relative to the .pvd
 };
 
 // results.pvd text (VTK Collection).

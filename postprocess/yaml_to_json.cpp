@@ -43,7 +43,8 @@ JsonValue scalar_to_json(const YAML::Node& node, bool is_name) {
 
 JsonValue convert(const YAML::Node& node, bool is_name) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar: return scalar_to_json(node, is_name);
+    case YAML::NodeType::Scalar:
+      return scalar_to_json(node, is_name);
     case YAML::NodeType::Sequence: {
       auto array = JsonValue::array();
       for (const auto& item : node) array.push(convert(item, is_name));
@@ -57,7 +58,8 @@ JsonValue convert(const YAML::Node& node, bool is_name) {
       }
       return object;
     }
-    default: return JsonValue();
+    default:
+      return JsonValue();
   }
 }
 

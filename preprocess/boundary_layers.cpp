@@ -12,9 +12,8 @@ namespace mppm::pre {
 namespace {
 
 // Lattice index ranges of the facet's bounding box grown by `reach`; false if empty.
-bool lattice_range_near_facet(const LatticeGrid& grid, const FacetMesh& boundary, std::size_t f,
-                              double reach, std::array<std::int64_t, 3>& first,
-                              std::array<std::int64_t, 3>& last) {
+bool lattice_range_near_facet(const LatticeGrid& grid, const FacetMesh& boundary, std::size_t f, double reach,
+                              std::array<std::int64_t, 3>& first, std::array<std::int64_t, 3>& last) {
   const int d = grid.dimension;
   first = {0, 0, 0};
   last = {0, 0, 0};
@@ -24,11 +23,10 @@ bool lattice_range_near_facet(const LatticeGrid& grid, const FacetMesh& boundary
       lo = std::min(lo, boundary.vertex(f, c)[a]);
       hi = std::max(hi, boundary.vertex(f, c)[a]);
     }
-    first[a] = std::max<std::int64_t>(
-        0, static_cast<std::int64_t>(std::ceil((lo - reach - grid.origin[a]) / grid.spacing)));
+    first[a] =
+        std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((lo - reach - grid.origin[a]) / grid.spacing)));
     last[a] = std::min<std::int64_t>(
-        grid.count[a] - 1,
-        static_cast<std::int64_t>(std::floor((hi + reach - grid.origin[a]) / grid.spacing)));
+        grid.count[a] - 1, static_cast<std::int64_t>(std::floor((hi + reach - grid.origin[a]) / grid.spacing)));
     if (first[a] > last[a]) return false;
   }
   return true;
@@ -36,9 +34,8 @@ bool lattice_range_near_facet(const LatticeGrid& grid, const FacetMesh& boundary
 
 }  // namespace
 
-LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>& inside,
-                        const FacetMesh& boundary, const std::vector<LayerRequest>& requests,
-                        bool inside_side) {
+LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>& inside, const FacetMesh& boundary,
+                        const std::vector<LayerRequest>& requests, bool inside_side) {
   const auto n = static_cast<std::size_t>(grid.size());
   LayerTags tags;
   tags.boundary.assign(n, 0);
@@ -58,8 +55,7 @@ LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>
           for (std::int64_t i = first[0]; i <= last[0]; ++i) {
             const auto index = static_cast<std::size_t>(grid.index(i, j, k));
             if ((inside[index] != 0) != inside_side) continue;
-            const Vec3 p{grid.coordinate(0, i), grid.coordinate(1, j),
-                         d == 2 ? 0.0 : grid.coordinate(2, k)};
+            const Vec3 p{grid.coordinate(0, i), grid.coordinate(1, j), d == 2 ? 0.0 : grid.coordinate(2, k)};
             const double dist = distance(p, closest_point_on_facet(boundary, f, p));
             if (dist <= reach && dist < tags.distance[index]) {
               tags.distance[index] = dist;
@@ -72,8 +68,8 @@ LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>
   return tags;
 }
 
-void drop_points_nearer_to_other_facets(LayerTags& tags, const LatticeGrid& grid,
-                                        const FacetMesh& boundary, double reach) {
+void drop_points_nearer_to_other_facets(LayerTags& tags, const LatticeGrid& grid, const FacetMesh& boundary,
+                                        double reach) {
   const double slack = 1e-9 * grid.spacing;
   const int d = grid.dimension;
   std::vector<std::uint8_t> drop(tags.boundary.size(), 0);
@@ -85,10 +81,8 @@ void drop_points_nearer_to_other_facets(LayerTags& tags, const LatticeGrid& grid
         for (std::int64_t i = first[0]; i <= last[0]; ++i) {
           const auto index = static_cast<std::size_t>(grid.index(i, j, k));
           if (tags.boundary[index] == 0 || drop[index]) continue;
-          const Vec3 p{grid.coordinate(0, i), grid.coordinate(1, j),
-                       d == 2 ? 0.0 : grid.coordinate(2, k)};
-          if (distance(p, closest_point_on_facet(boundary, f, p)) < tags.distance[index] - slack)
-            drop[index] = 1;
+          const Vec3 p{grid.coordinate(0, i), grid.coordinate(1, j), d == 2 ? 0.0 : grid.coordinate(2, k)};
+          if (distance(p, closest_point_on_facet(boundary, f, p)) < tags.distance[index] - slack) drop[index] = 1;
         }
   }
   for (std::size_t index = 0; index < drop.size(); ++index)

@@ -19,25 +19,24 @@
 namespace mppm::pre {
 
 struct LayerRequest {
-  std::int32_t boundary = 0;          // k, 1-based
-  double depth = 0.0;                 // [m]
-  std::vector<std::size_t> facets;    // into the body boundary
+  std::int32_t boundary = 0;        // k, 1-based
+  double depth = 0.0;               // [m]
+  std::vector<std::size_t> facets;  // into the body boundary
 };
 
-struct LayerTags {                    // per lattice point (LatticeGrid::index)
+struct LayerTags {                     // per lattice point (LatticeGrid::index)
   std::vector<std::int32_t> boundary;  // 0 = none, else k
   std::vector<std::int32_t> facet;     // nearest facet of that boundary
   std::vector<double> distance;        // to it [m]
 };
 
 // `inside_side`: true tags points of the body (traction), false points outside it (layers).
-LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>& inside,
-                        const FacetMesh& boundary, const std::vector<LayerRequest>& requests,
-                        bool inside_side);
+LayerTags assign_layers(const LatticeGrid& grid, const std::vector<std::uint8_t>& inside, const FacetMesh& boundary,
+                        const std::vector<LayerRequest>& requests, bool inside_side);
 
 // Removes the tagged points that are nearer (by more than 1e-9 dx) to some facet of the whole
 // `boundary` than to the boundary they were given; `reach` bounds the distances of tagged points.
-void drop_points_nearer_to_other_facets(LayerTags& tags, const LatticeGrid& grid,
-                                        const FacetMesh& boundary, double reach);
+void drop_points_nearer_to_other_facets(LayerTags& tags, const LatticeGrid& grid, const FacetMesh& boundary,
+                                        double reach);
 
 }  // namespace mppm::pre

@@ -35,28 +35,29 @@ std::vector<int> selected_entities(const Selector& selector, const GeometryModel
       if (g.name != selector.physical_group) continue;
       if (g.dimension != d - 1)
         throw InputError(context + ": physical group '" + g.name + "' in " + model.file + " is a " +
-                         (g.dimension == 3 ? "volume" : g.dimension == 2 ? "surface" : g.dimension == 1 ? "curve" : "point") +
-                         " group (expected a physical " + facet_kind(d) + " in a " +
-                         std::to_string(d) + "-D scene; available: " + model.describe_groups() + ")");
+                         (g.dimension == 3   ? "volume"
+                          : g.dimension == 2 ? "surface"
+                          : g.dimension == 1 ? "curve"
+                                             : "point") +
+                         " group (expected a physical " + facet_kind(d) + " in a " + std::to_string(d) +
+                         "-D scene; available: " + model.describe_groups() + ")");
       found = true;
       tags.insert(tags.end(), g.entities.begin(), g.entities.end());
     }
     if (!found)
-      throw InputError(context + ": unknown physical group '" + selector.physical_group + "' in " +
-                       model.file + " (available: " + model.describe_groups() + ")");
+      throw InputError(context + ": unknown physical group '" + selector.physical_group + "' in " + model.file +
+                       " (available: " + model.describe_groups() + ")");
   }
   for (int tag : selector.entities) {
     if (!std::binary_search(model.facet_entities.begin(), model.facet_entities.end(), tag))
-      throw InputError(context + ": " + model.file + " has no " + facet_kind(d) + " entity " +
-                       std::to_string(tag) + " (" + facet_kind(d) + " entities: " +
-                       list(model.facet_entities) + ")");
+      throw InputError(context + ": " + model.file + " has no " + facet_kind(d) + " entity " + std::to_string(tag) +
+                       " (" + facet_kind(d) + " entities: " + list(model.facet_entities) + ")");
     tags.push_back(tag);
   }
   for (int tag : tags)
     if (!std::binary_search(allowed.begin(), allowed.end(), tag))
-      throw InputError(context + ": " + facet_kind(d) + " entity " + std::to_string(tag) + " of " +
-                       model.file + " is not on the boundary of the body (boundary entities: " +
-                       list(allowed) + ")");
+      throw InputError(context + ": " + facet_kind(d) + " entity " + std::to_string(tag) + " of " + model.file +
+                       " is not on the boundary of the body (boundary entities: " + list(allowed) + ")");
   std::sort(tags.begin(), tags.end());
   tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
   return tags;
@@ -67,8 +68,7 @@ bool facet_in_box(const FacetMesh& mesh, std::size_t f, const std::array<std::ar
   for (int c = 0; c < mesh.dimension; ++c) {
     const Vec3& p = mesh.vertex(f, c);
     for (int a = 0; a < mesh.dimension; ++a)
-      if (p[a] < std::min(box[0][a], box[1][a]) - tolerance ||
-          p[a] > std::max(box[0][a], box[1][a]) + tolerance)
+      if (p[a] < std::min(box[0][a], box[1][a]) - tolerance || p[a] > std::max(box[0][a], box[1][a]) + tolerance)
         return false;
   }
   return true;
@@ -80,8 +80,8 @@ double model_size(const FacetMesh& mesh) {
   return size;
 }
 
-std::string no_selection(const Selector& selector, const GeometryModel& model,
-                         const std::string& context, const char* what) {
+std::string no_selection(const Selector& selector, const GeometryModel& model, const std::string& context,
+                         const char* what) {
   return context + ": " + selector.describe() + " selects no " + what + " of " + model.file +
          " (physical groups: " + model.describe_groups() + ")";
 }
@@ -124,8 +124,8 @@ std::vector<double> select_precrack_vertices(const Selector& selector, const Geo
       if (std::binary_search(tags.begin(), tags.end(), mesh.entity[f])) add(f);
   }
   if (vertices.empty())
-    throw InputError(no_selection(selector, model, context,
-                                  model.dimension == 2 ? "pre-crack curve" : "pre-crack surface"));
+    throw InputError(
+        no_selection(selector, model, context, model.dimension == 2 ? "pre-crack curve" : "pre-crack surface"));
   return vertices;
 }
 

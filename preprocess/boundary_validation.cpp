@@ -34,8 +34,7 @@ void drop_degenerate_facets(FacetMesh& mesh) {
   kept.vertices = std::move(mesh.vertices);
   for (std::size_t f = 0; f < mesh.facet_count(); ++f) {
     const std::int64_t* c = &mesh.facets[f * mesh.dimension];
-    const bool repeated = mesh.dimension == 2 ? c[0] == c[1]
-                                              : (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]);
+    const bool repeated = mesh.dimension == 2 ? c[0] == c[1] : (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]);
     if (!repeated) kept.add_facet(c, mesh.entity[f]);
   }
   mesh = std::move(kept);
@@ -65,8 +64,8 @@ void reject_crossing_segments(const FacetMesh& mesh, const std::string& file) {
       if (ca[0] == cb[0] || ca[0] == cb[1] || ca[1] == cb[0] || ca[1] == cb[1]) continue;
       if (CGAL::do_intersect(Kernel::Segment_2(Point2(a0[0], a0[1]), Point2(a1[0], a1[1])),
                              Kernel::Segment_2(Point2(b0[0], b0[1]), Point2(b1[0], b1[1]))))
-        throw InputError(file + ": boundary curves of the body cross each other near " +
-                         where(a0, 2) + " (expected a body bounded by closed, non-crossing curves)");
+        throw InputError(file + ": boundary curves of the body cross each other near " + where(a0, 2) +
+                         " (expected a body bounded by closed, non-crossing curves)");
     }
   }
 }
@@ -81,8 +80,7 @@ void orient_2d(FacetMesh& mesh, const std::string& file) {
     throw InputError(file + ": the boundary of the body is " +
                      (incident[v].size() == 1 ? std::string("not closed (a curve ends at ")
                                               : std::string("not a simple curve (") +
-                                                    std::to_string(incident[v].size()) +
-                                                    " boundary curves meet at ") +
+                                                    std::to_string(incident[v].size()) + " boundary curves meet at ") +
                      where(mesh.vertices[v], 2) + ")");
   }
   // Walk the loops: make consecutive segments head to tail.
@@ -127,8 +125,7 @@ void orient_2d(FacetMesh& mesh, const std::string& file) {
         if (a.y() > b.y()) std::swap(a, b);
         const CGAL::Orientation o = CGAL::orientation(a, b, v);
         if (o == CGAL::COLLINEAR)
-          throw InputError(file + ": boundary curves of the body touch or cross near " +
-                           where({v.x(), v.y(), 0.0}, 2));
+          throw InputError(file + ": boundary curves of the body touch or cross near " + where({v.x(), v.y(), 0.0}, 2));
         if (o == CGAL::LEFT_TURN) ++crossings;
       }
       depth += crossings % 2;
@@ -190,12 +187,14 @@ void validate_and_orient_3d(FacetMesh& mesh, const std::string& file) {
   CGAL::Surface_mesh<Kernel::Point_3> surface;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, surface);
   if (surface.number_of_faces() != n || !CGAL::is_closed(surface))
-    throw InputError(file + ": the boundary surface of the body cannot be oriented consistently "
-                            "(non-orientable or non-manifold surface)");
+    throw InputError(file +
+                     ": the boundary surface of the body cannot be oriented consistently "
+                     "(non-orientable or non-manifold surface)");
   if (PMP::does_self_intersect(surface))
-    throw InputError(file + ": the boundary surface of the body intersects itself (or has "
-                            "degenerate triangles); a 3-D body needs a closed surface without "
-                            "self-intersections");
+    throw InputError(file +
+                     ": the boundary surface of the body intersects itself (or has "
+                     "degenerate triangles); a 3-D body needs a closed surface without "
+                     "self-intersections");
   PMP::orient_to_bound_a_volume(surface);
   // Faces were created in polygon order: copy the final orientation back facet by facet.
   std::size_t t = 0;
@@ -215,8 +214,7 @@ void validate_and_orient_3d(FacetMesh& mesh, const std::string& file) {
     const bool reversed = (corner[0] == a && corner[1] == d && corner[2] == b) ||
                           (corner[0] == d && corner[1] == b && corner[2] == a) ||
                           (corner[0] == b && corner[1] == a && corner[2] == d);
-    if (k != 3 || (!same && !reversed))
-      throw std::logic_error("boundary orientation: CGAL reordered the faces");
+    if (k != 3 || (!same && !reversed)) throw std::logic_error("boundary orientation: CGAL reordered the faces");
     if (reversed) std::swap(c[1], c[2]);
     ++t;
   }
@@ -230,8 +228,7 @@ void validate_and_orient_boundary(FacetMesh& boundary, const std::string& file) 
   if (boundary.dimension == 2) {
     reject_crossing_segments(boundary, file);
     orient_2d(boundary, file);
-  }
-  else
+  } else
     validate_and_orient_3d(boundary, file);
 }
 

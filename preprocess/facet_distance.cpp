@@ -33,8 +33,7 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return axpy(a, d2 / (d2 - d6), ac);
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return axpy(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), sub(c, b));
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return axpy(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), sub(c, b));
   const double denominator = va + vb + vc;
   if (denominator == 0.0) return closest_point_on_segment(p, a, b);  // degenerate triangle
   const double v = vb / denominator, w = vc / denominator;

@@ -15,10 +15,10 @@ using Vec3 = std::array<double, 3>;
 
 // Segments (dimension 2: 2 vertices each) or triangles (dimension 3: 3 vertices each).
 struct FacetMesh {
-  int dimension = 2;                  // of the body; a facet has `dimension` vertices
-  std::vector<Vec3> vertices;         // [m]
-  std::vector<std::int64_t> facets;   // vertex indices, `dimension` per facet
-  std::vector<int> entity;            // gmsh entity tag of each facet
+  int dimension = 2;                 // of the body; a facet has `dimension` vertices
+  std::vector<Vec3> vertices;        // [m]
+  std::vector<std::int64_t> facets;  // vertex indices, `dimension` per facet
+  std::vector<int> entity;           // gmsh entity tag of each facet
 
   std::size_t facet_count() const { return entity.size(); }
   const Vec3& vertex(std::size_t facet, int corner) const {
@@ -38,9 +38,9 @@ struct PhysicalGroup {
 };
 
 struct GeometryModel {
-  std::string file;                  // for messages
+  std::string file;  // for messages
   int dimension = 2;
-  FacetMesh facets;                  // every entity of dimension d-1 (boundary, pre-cracks, ...)
+  FacetMesh facets;                    // every entity of dimension d-1 (boundary, pre-cracks, ...)
   std::vector<int> boundary_entities;  // the d-1 entities that bound the body (sorted)
   std::vector<int> facet_entities;     // every d-1 entity (sorted)
   std::vector<PhysicalGroup> groups;   // every physical group, all dimensions
@@ -66,9 +66,9 @@ struct GeometryModel {
 struct GeometryRequest {
   std::string file;
   int dimension = 2;
-  double unit = 1.0;         // metres per file unit (.step/.stp carry their own unit)
-  double facet_size = 0.0;   // [m]
-  bool verbose = false;      // let gmsh talk
+  double unit = 1.0;        // metres per file unit (.step/.stp carry their own unit)
+  double facet_size = 0.0;  // [m]
+  bool verbose = false;     // let gmsh talk
 };
 
 GeometryModel read_geometry(const GeometryRequest& request);

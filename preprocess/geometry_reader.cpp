@@ -5,8 +5,8 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <set>
@@ -107,13 +107,11 @@ std::vector<int> sorted_unique(std::vector<int> tags) {
 // The file's extension, lower case; throws if the file is missing or of an unknown format.
 std::string checked_geometry_extension(const std::string& file) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw InputError(file + ": geometry file not found");
+  if (!std::filesystem::is_regular_file(file, ec)) throw InputError(file + ": geometry file not found");
   const std::string ext = lower_extension(file);
   static const std::set<std::string> known{".geo", ".msh", ".step", ".stp", ".brep", ".stl"};
   if (!known.count(ext))
-    throw InputError(file + ": unsupported geometry format '" + ext +
-                     "' (expected .geo .msh .step .stp .brep .stl)");
+    throw InputError(file + ": unsupported geometry format '" + ext + "' (expected .geo .msh .step .stp .brep .stl)");
   return ext;
 }
 
@@ -124,8 +122,9 @@ std::vector<int> read_groups_and_body(GeometryModel& model, int d) {
   gmsh::vectorpair higher;
   gmsh::model::getEntities(higher, d + 1 <= 3 ? d + 1 : 3);
   if (d == 2 && !higher.empty())
-    throw InputError(model.file + ": the scene is 2-D (dimension: 2) but the geometry has volumes "
-                                  "(expected planar surfaces in the xy plane)");
+    throw InputError(model.file +
+                     ": the scene is 2-D (dimension: 2) but the geometry has volumes "
+                     "(expected planar surfaces in the xy plane)");
   gmsh::vectorpair body;
   gmsh::model::getEntities(body, d);
   gmsh::vectorpair groups;
@@ -162,8 +161,9 @@ void find_boundary_entities(GeometryModel& model, const std::vector<int>& body_t
     gmsh::model::getBoundary(body_dimtags, boundary, true, false, false);
     for (const auto& [bdim, btag] : boundary) model.boundary_entities.push_back(std::abs(btag));
   } else if (d == 3 && ext != ".stl" && ext != ".msh") {
-    throw InputError(file + ": the scene is 3-D (dimension: 3) but the geometry has no volume "
-                            "(expected a solid; a 2-D geometry needs dimension: 2)");
+    throw InputError(file +
+                     ": the scene is 3-D (dimension: 3) but the geometry has no volume "
+                     "(expected a solid; a 2-D geometry needs dimension: 2)");
   } else if (d == 3) {
     // A surface mesh without a volume (.stl, surface-only .msh): the surfaces are the
     // boundary; whether they close a volume is checked later.
@@ -236,8 +236,7 @@ std::unordered_map<std::size_t, std::int64_t> copy_nodes(GeometryModel& model, d
   node_index.reserve(all_node_tags.size());
   for (std::size_t n = 0; n < all_node_tags.size(); ++n) {
     Vec3 p{coords[3 * n] * scale, coords[3 * n + 1] * scale, coords[3 * n + 2] * scale};
-    auto [it, inserted] =
-        by_position.emplace(p, static_cast<std::int64_t>(model.facets.vertices.size()));
+    auto [it, inserted] = by_position.emplace(p, static_cast<std::int64_t>(model.facets.vertices.size()));
     if (inserted) model.facets.vertices.push_back(p);
     node_index[all_node_tags[n]] = it->second;
   }
@@ -262,8 +261,7 @@ void copy_facets(GeometryModel& model, const std::unordered_map<std::size_t, std
         std::int64_t c[4];
         for (int k = 0; k < std::min(primary, 4); ++k) {
           auto it = node_index.find(node_tags[t][e * nodes + k]);
-          if (it == node_index.end())
-            throw InputError(model.file + ": element refers to a missing node");
+          if (it == node_index.end()) throw InputError(model.file + ": element refers to a missing node");
           c[k] = it->second;
         }
         if (d == 2 && primary == 2) {
@@ -321,8 +319,7 @@ std::string GeometryModel::describe_groups() const {
   std::ostringstream s;
   for (std::size_t i = 0; i < groups.size(); ++i) {
     static const char* kinds[] = {"point", "curve", "surface", "volume"};
-    s << (i ? ", " : "") << "'" << groups[i].name << "' ("
-      << kinds[std::clamp(groups[i].dimension, 0, 3)] << ")";
+    s << (i ? ", " : "") << "'" << groups[i].name << "' (" << kinds[std::clamp(groups[i].dimension, 0, 3)] << ")";
   }
   return s.str();
 }

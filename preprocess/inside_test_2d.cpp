@@ -13,8 +13,7 @@ using Point2 = Kernel::Point_2;
 }  // namespace
 
 std::vector<std::uint8_t> classify_inside(const LatticeGrid& grid, const FacetMesh& boundary) {
-  return grid.dimension == 2 ? classify_inside_2d(grid, boundary)
-                             : classify_inside_3d(grid, boundary);
+  return grid.dimension == 2 ? classify_inside_2d(grid, boundary) : classify_inside_3d(grid, boundary);
 }
 
 std::vector<std::uint8_t> classify_inside_2d(const LatticeGrid& grid, const FacetMesh& boundary) {
@@ -55,8 +54,7 @@ std::vector<std::uint8_t> classify_inside_2d(const LatticeGrid& grid, const Face
       const Vec3 &a = boundary.vertex(s, 0), &b = boundary.vertex(s, 1);
       const Point2 pa(a[0], a[1]), pb(b[0], b[1]);
       if ((a[1] > y) != (b[1] > y)) {  // crosses the row moved up by eps
-        crossings.push_back({a[1] < b[1] ? pa : pb, a[1] < b[1] ? pb : pa, std::min(a[0], b[0]),
-                             std::max(a[0], b[0])});
+        crossings.push_back({a[1] < b[1] ? pa : pb, a[1] < b[1] ? pb : pa, std::min(a[0], b[0]), std::max(a[0], b[0])});
       } else if (std::min(a[1], b[1]) <= y && y <= std::max(a[1], b[1])) {
         touching.push_back({pa, pb});
       }

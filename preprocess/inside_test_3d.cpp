@@ -78,12 +78,10 @@ std::vector<std::uint8_t> classify_inside_3d(const LatticeGrid& grid, const Face
       for (std::int64_t j = j0; j <= j1; ++j) {
         const Point2 q(grid.coordinate(1, j), grid.coordinate(2, k));
         const LineHit hit = line_hits_triangle(pa, pb, pc, q);
-        if (hit != LineHit::none)
-          hits.push_back({k * ny + j, static_cast<std::int32_t>(t), hit == LineHit::crosses});
+        if (hit != LineHit::none) hits.push_back({k * ny + j, static_cast<std::int32_t>(t), hit == LineHit::crosses});
       }
   }
-  std::stable_sort(hits.begin(), hits.end(),
-                   [](const Hit& l, const Hit& r) { return l.line < r.line; });
+  std::stable_sort(hits.begin(), hits.end(), [](const Hit& l, const Hit& r) { return l.line < r.line; });
   std::vector<std::int64_t> line_start(static_cast<std::size_t>(lines) + 1, 0);
   for (const Hit& h : hits) ++line_start[static_cast<std::size_t>(h.line) + 1];
   for (std::int64_t l = 0; l < lines; ++l) line_start[l + 1] += line_start[l];
@@ -119,8 +117,7 @@ std::vector<std::uint8_t> classify_inside_3d(const LatticeGrid& grid, const Face
               ++after;  // sign(n . (p - a)) = sign(n_x (x - x_cross)): p before the crossing
           }
         } else if (x >= xmin && x <= xmax) {
-          const Kernel::Triangle_3 facet(Point3(a[0], a[1], a[2]), Point3(b[0], b[1], b[2]),
-                                         Point3(c[0], c[1], c[2]));
+          const Kernel::Triangle_3 facet(Point3(a[0], a[1], a[2]), Point3(b[0], b[1], b[2]), Point3(c[0], c[1], c[2]));
           if (!facet.is_degenerate() && facet.has_on(p)) on_boundary = true;
         }
       }

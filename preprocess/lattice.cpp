@@ -5,8 +5,7 @@
 
 namespace mppm::pre {
 
-LatticeGrid lattice_for_box(const Vec3& low, const Vec3& high, double spacing, int dimension,
-                            int padding) {
+LatticeGrid lattice_for_box(const Vec3& low, const Vec3& high, double spacing, int dimension, int padding) {
   LatticeGrid grid;
   grid.dimension = dimension;
   grid.spacing = spacing;
@@ -17,10 +16,8 @@ LatticeGrid lattice_for_box(const Vec3& low, const Vec3& high, double spacing, i
       continue;
     }
     const double extent = high[a] - low[a];
-    const auto cells =
-        std::max<std::int64_t>(1, std::llround(extent / spacing));
-    grid.origin[a] = low[a] + 0.5 * (extent - static_cast<double>(cells) * spacing) +
-                     0.5 * spacing - padding * spacing;
+    const auto cells = std::max<std::int64_t>(1, std::llround(extent / spacing));
+    grid.origin[a] = low[a] + 0.5 * (extent - static_cast<double>(cells) * spacing) + 0.5 * spacing - padding * spacing;
     grid.count[a] = cells + 2 * padding;
   }
   return grid;

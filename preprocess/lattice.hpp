@@ -11,20 +11,15 @@ namespace mppm::pre {
 
 struct LatticeGrid {
   int dimension = 2;
-  double spacing = 0.0;                       // dx [m]
-  Vec3 origin{};                              // centre of cell (0, 0, 0)
+  double spacing = 0.0;                        // dx [m]
+  Vec3 origin{};                               // centre of cell (0, 0, 0)
   std::array<std::int64_t, 3> count{1, 1, 1};  // cells per axis (z: 1 in 2-D)
 
   std::int64_t size() const { return count[0] * count[1] * count[2]; }
-  std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return (k * count[1] + j) * count[0] + i;
-  }
-  double coordinate(int axis, std::int64_t i) const {
-    return origin[axis] + static_cast<double>(i) * spacing;
-  }
+  std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const { return (k * count[1] + j) * count[0] + i; }
+  double coordinate(int axis, std::int64_t i) const { return origin[axis] + static_cast<double>(i) * spacing; }
   Vec3 position(std::int64_t flat) const {
-    const std::int64_t i = flat % count[0], j = (flat / count[0]) % count[1],
-                       k = flat / (count[0] * count[1]);
+    const std::int64_t i = flat % count[0], j = (flat / count[0]) % count[1], k = flat / (count[0] * count[1]);
     return {coordinate(0, i), coordinate(1, j), dimension == 2 ? 0.0 : coordinate(2, k)};
   }
 };
@@ -35,7 +30,6 @@ struct LatticeGrid {
 // box, so a symmetric body gets a symmetric lattice, and the next lattice position beyond the
 // last one lies at least dx/4 outside the box: no point of the body is ever left off the grid.
 // `padding` extra cells are added on both sides of every axis in use.
-LatticeGrid lattice_for_box(const Vec3& low, const Vec3& high, double spacing, int dimension,
-                            int padding);
+LatticeGrid lattice_for_box(const Vec3& low, const Vec3& high, double spacing, int dimension, int padding);
 
 }  // namespace mppm::pre

@@ -27,8 +27,7 @@ const char* kUsage =
 int main(int argc, char** argv) {
   const mppm::CommandLineSpec spec{"mppm-preprocess", kUsage, {"-o"}, {"--verbose"}};
   return mppm::run_stage(argc, argv, spec, [&](const mppm::CommandLine& cl) {
-    if (cl.positional.size() != 1)
-      throw mppm::InputError("mppm-preprocess: expected one scene file (see --help)");
+    if (cl.positional.size() != 1) throw mppm::InputError("mppm-preprocess: expected one scene file (see --help)");
     const auto output = cl.option("-o");
     if (!output) throw mppm::InputError("mppm-preprocess: missing -o POINTS.vtp (see --help)");
     const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);

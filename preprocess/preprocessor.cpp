@@ -26,8 +26,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 std::string scene_context(const Scene& scene, const BoundaryCondition& bc, std::size_t index) {
-  return scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" +
-         std::to_string(index) + "]";
+  return scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(index) + "]";
 }
 
 std::string boundary_label(const BoundaryCondition& bc, std::size_t index) {
@@ -69,8 +68,7 @@ Box body_box(const FacetMesh& boundary, const GeometryModel& model, int d, doubl
     bool agrees = true;
     for (int a = 0; a < d; ++a)
       agrees = agrees && model.cad_low[a] <= low[a] && model.cad_high[a] >= high[a] &&
-               low[a] - model.cad_low[a] <= facet_size &&
-               model.cad_high[a] - high[a] <= facet_size;
+               low[a] - model.cad_low[a] <= facet_size && model.cad_high[a] - high[a] <= facet_size;
     if (agrees)
       for (int a = 0; a < d; ++a) {
         low[a] = model.cad_low[a];
@@ -86,9 +84,8 @@ void check_body_wider_than_spacing(const Scene& scene, const GeometryModel& mode
   for (int a = 0; a < scene.dimension; ++a)
     if (box.high[a] - box.low[a] < dx) {
       std::ostringstream s;
-      s << scene.path << ": geometry.spacing (dx = " << dx << " m) is larger than the body "
-        << model.file << " (extent " << box.high[a] - box.low[a] << " m along " << axes[a]
-        << "): choose dx smaller than the body";
+      s << scene.path << ": geometry.spacing (dx = " << dx << " m) is larger than the body " << model.file
+        << " (extent " << box.high[a] - box.low[a] << " m along " << axes[a] << "): choose dx smaller than the body";
       throw InputError(s.str());
     }
 }
@@ -126,8 +123,7 @@ std::vector<double> precrack_vertices(const Scene& scene, const GeometryModel& m
   std::vector<double> vertices;
   for (std::size_t p = 0; p < scene.geometry.precracks.size(); ++p) {
     const std::vector<double> v = select_precrack_vertices(
-        scene.geometry.precracks[p], model,
-        scene.path + ": geometry.precracks[" + std::to_string(p) + "]");
+        scene.geometry.precracks[p], model, scene.path + ": geometry.precracks[" + std::to_string(p) + "]");
     vertices.insert(vertices.end(), v.begin(), v.end());
   }
   return vertices;
@@ -141,8 +137,10 @@ std::int64_t count_points_per_region(const Scene& scene, const GeometryModel& mo
   const std::size_t nb = scene.boundary_conditions.size();
   report.points_per_region.assign(nb + 1, 0);
   for (std::size_t g = 0; g < inside.size(); ++g) {
-    if (inside[g]) ++report.points_per_region[0];
-    else if (layers.boundary[g] > 0) ++report.points_per_region[static_cast<std::size_t>(layers.boundary[g])];
+    if (inside[g])
+      ++report.points_per_region[0];
+    else if (layers.boundary[g] > 0)
+      ++report.points_per_region[static_cast<std::size_t>(layers.boundary[g])];
   }
   if (report.points_per_region[0] == 0)
     throw InputError(scene.path + ": no lattice point falls inside the body of " + model.file +
@@ -204,23 +202,24 @@ void describe_boundaries(const Scene& scene, const GeometryModel& model, const F
     for (std::size_t f : selected[b]) measure += facet_measure(boundary, f);
     info.area = scene.dimension == 2 ? measure * cloud.thickness : measure;
     if (info.point_count == 0)
-      throw InputError(scene_context(scene, bc, b) + ": " + bc.selector.describe() + " of " +
-                       model.file + " gets no lattice point (the selected boundary is too small "
-                       "for dx = " + std::to_string(dx) + " m)");
+      throw InputError(scene_context(scene, bc, b) + ": " + bc.selector.describe() + " of " + model.file +
+                       " gets no lattice point (the selected boundary is too small "
+                       "for dx = " +
+                       std::to_string(dx) + " m)");
   }
 }
 
 // A lattice point exactly on a zero-width pre-crack loses every bond that touches the crack
 // (precrack_crossing.hpp): almost certainly not what the user meant, so say so.
-void warn_points_on_precracks(const PointCloud& cloud, const LatticeGrid& grid,
-                              const std::vector<std::uint8_t>& inside, PreprocessReport& report) {
+void warn_points_on_precracks(const PointCloud& cloud, const LatticeGrid& grid, const std::vector<std::uint8_t>& inside,
+                              PreprocessReport& report) {
   if (cloud.precrack_vertices.empty()) return;
   const int d = cloud.dimension;
   FacetMesh cracks;
   cracks.dimension = d;
   for (std::size_t v = 0; v + 2 < cloud.precrack_vertices.size(); v += 3)
-    cracks.vertices.push_back({cloud.precrack_vertices[v], cloud.precrack_vertices[v + 1],
-                               cloud.precrack_vertices[v + 2]});
+    cracks.vertices.push_back(
+        {cloud.precrack_vertices[v], cloud.precrack_vertices[v + 1], cloud.precrack_vertices[v + 2]});
   for (std::size_t e = 0; e < cracks.vertices.size() / static_cast<std::size_t>(d); ++e) {
     std::int64_t corners[3] = {static_cast<std::int64_t>(e) * d, static_cast<std::int64_t>(e) * d + 1,
                                static_cast<std::int64_t>(e) * d + 2};
@@ -251,7 +250,8 @@ void estimate_solver_needs(const Scene& scene, const PointCloud& cloud, std::int
   memory.effects = scene.effects.names();
   memory.snapshot_fields = scene.output.fields;
   memory.damping = scene.numerics.damping != 0.0;
-  for (std::size_t i = 0; i < cloud.size(); ++i) memory.boundary_points += cloud.region[i] > 0 || cloud.boundary_id[i] > 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    memory.boundary_points += cloud.region[i] > 0 || cloud.boundary_id[i] > 0;
   report.estimated_memory_bytes = static_cast<double>(estimate_run_memory(memory).total_bytes);
   report.available_memory_bytes = available_memory_bytes();
 }
@@ -263,8 +263,9 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
   const double dx = scene.geometry.spacing;
   const double horizon = scene.geometry.horizon();
   if (!(dx > 0) || !(horizon >= dx))
-    throw InputError(scene.path + ": geometry.spacing and geometry.horizon_factor must give "
-                                  "dx > 0 and a horizon of at least dx");
+    throw InputError(scene.path +
+                     ": geometry.spacing and geometry.horizon_factor must give "
+                     "dx > 0 and a horizon of at least dx");
   PreprocessResult result;
   PreprocessReport& report = result.report;
   auto clock = std::chrono::steady_clock::now();
@@ -323,8 +324,7 @@ std::int64_t lattice_neighbour_count(int dimension, double horizon_factor) {
   return count;
 }
 
-std::string format_report(const Scene& scene, const PreprocessResult& result,
-                          const std::string& output_path) {
+std::string format_report(const Scene& scene, const PreprocessResult& result, const std::string& output_path) {
   const PointCloud& cloud = result.cloud;
   const PreprocessReport& r = result.report;
   const int d = cloud.dimension;
@@ -337,8 +337,8 @@ std::string format_report(const Scene& scene, const PreprocessResult& result,
     << scene.geometry.horizon_factor << "), grid " << r.lattice[0] << " x " << r.lattice[1];
   if (d == 3) s << " x " << r.lattice[2];
   s << " cells incl. layer padding\n";
-  s << "  bounding box [" << r.body_low[0] << ", " << r.body_high[0] << "] x [" << r.body_low[1]
-    << ", " << r.body_high[1] << "]";
+  s << "  bounding box [" << r.body_low[0] << ", " << r.body_high[0] << "] x [" << r.body_low[1] << ", "
+    << r.body_high[1] << "]";
   if (d == 3) s << " x [" << r.body_low[2] << ", " << r.body_high[2] << "]";
   s << " m\n";
   std::int64_t total = 0;
@@ -346,8 +346,8 @@ std::string format_report(const Scene& scene, const PreprocessResult& result,
   s << "  points       " << total << " in all; body (region 0): " << r.points_per_region[0] << "\n";
   for (std::size_t b = 0; b < cloud.boundaries.size(); ++b) {
     const BoundaryInfo& info = cloud.boundaries[b];
-    s << "    [" << b + 1 << "] " << std::left << std::setw(12) << info.name << std::right << " "
-      << std::setw(12) << info.type << ": ";
+    s << "    [" << b + 1 << "] " << std::left << std::setw(12) << info.name << std::right << " " << std::setw(12)
+      << info.type << ": ";
     if (info.type == "velocity" || info.type == "displacement")
       s << info.point_count << " layer points (region " << b + 1 << ")";
     else
@@ -355,12 +355,13 @@ std::string format_report(const Scene& scene, const PreprocessResult& result,
     s << ", " << (d == 2 ? "length x thickness" : "area") << " " << info.area << " m^2\n";
   }
   if (!cloud.precrack_vertices.empty())
-    s << "  pre-cracks   " << cloud.precrack_element_count() << (d == 2 ? " segments" : " triangles")
-      << " from " << scene.geometry.precracks.size() << " selector(s)\n";
+    s << "  pre-cracks   " << cloud.precrack_element_count() << (d == 2 ? " segments" : " triangles") << " from "
+      << scene.geometry.precracks.size() << " selector(s)\n";
   s << "  bonds        ~" << std::setprecision(4) << r.estimated_bonds << " (" << total << " points x "
     << r.lattice_neighbours << " lattice neighbours within the horizon)\n";
   s << "  memory       ~" << format_bytes(r.estimated_memory_bytes) << " for mppm-solve (estimate)";
-  if (r.available_memory_bytes) s << ", " << format_bytes(static_cast<double>(*r.available_memory_bytes)) << " available here";
+  if (r.available_memory_bytes)
+    s << ", " << format_bytes(static_cast<double>(*r.available_memory_bytes)) << " available here";
   s << "\n";
   if (r.available_memory_bytes && r.estimated_memory_bytes > static_cast<double>(*r.available_memory_bytes))
     s << "  warning      the run needs more memory than this machine has available: mppm-solve will refuse it "

@@ -13,7 +13,7 @@
 namespace mppm::pre {
 
 struct PreprocessOptions {
-  bool verbose = false;          // let gmsh print its log
+  bool verbose = false;  // let gmsh print its log
   // Boundary facet size / dx; 0 = default: 2-D 1/4, 3-D 3. Flat faces are exact at any facet
   // size; curved ones are refined by curvature (48 facets per turn) regardless, so 3-D facets
   // can be large, which keeps gmsh's surface meshing (the dominant cost) small.
@@ -31,7 +31,7 @@ struct PreprocessReport {
   double estimated_memory_bytes = 0.0;                  // of mppm-solve (common/memory_estimate.hpp)
   std::optional<std::uint64_t> available_memory_bytes;  // MemAvailable of this machine
   double seconds_geometry = 0.0, seconds_inside = 0.0, seconds_layers = 0.0;
-  std::vector<std::string> warnings;              // printed with the report
+  std::vector<std::string> warnings;  // printed with the report
 };
 
 struct PreprocessResult {
@@ -43,8 +43,7 @@ struct PreprocessResult {
 PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options = {});
 
 // The one-screen summary printed by mppm-preprocess.
-std::string format_report(const Scene& scene, const PreprocessResult& result,
-                          const std::string& output_path);
+std::string format_report(const Scene& scene, const PreprocessResult& result, const std::string& output_path);
 
 // Lattice points j != 0 with |j| dx <= horizon (1e-9 dx slack), for the bond estimate.
 std::int64_t lattice_neighbour_count(int dimension, double horizon_factor);

@@ -6,9 +6,9 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -120,7 +120,8 @@ namespace {
 // The family volume recorded for a point whose list a pre-crack cut (none for the others).
 std::optional<double> precut_family_volume(const PointData& p, std::size_t i) {
   const auto it = std::lower_bound(p.precut_points.begin(), p.precut_points.end(), i);
-  if (it != p.precut_points.end() && *it == i) return p.precut_family_volume[static_cast<std::size_t>(it - p.precut_points.begin())];
+  if (it != p.precut_points.end() && *it == i)
+    return p.precut_family_volume[static_cast<std::size_t>(it - p.precut_points.begin())];
   return std::nullopt;
 }
 

@@ -1,12 +1,13 @@
 // Family search: uniform cell grid of the horizon size; two passes (count, fill) over points in
 // parallel, each point writing only its own bond range.
-#include "solver/parallel_policy.hpp"
 #include "solver/bond_families.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+
+#include "solver/parallel_policy.hpp"
 
 namespace mppm::solver {
 
@@ -17,19 +18,16 @@ struct CellGrid {
   std::array<double, 3> low{0, 0, 0};
   double size = 1.0;
   std::array<std::int64_t, 3> cells{1, 1, 1};
-  std::vector<std::int64_t> start;       // cell -> first entry in `points`
-  std::vector<std::int32_t> points;      // point indices sorted by cell
+  std::vector<std::int64_t> start;   // cell -> first entry in `points`
+  std::vector<std::int32_t> points;  // point indices sorted by cell
 
   std::array<std::int64_t, 3> cell_of(const double* x) const {
     std::array<std::int64_t, 3> c{0, 0, 0};
     for (int a = 0; a < dimension; ++a)
-      c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[a] - low[a]) / size)), 0,
-                                      cells[a] - 1);
+      c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[a] - low[a]) / size)), 0, cells[a] - 1);
     return c;
   }
-  std::int64_t linear(const std::array<std::int64_t, 3>& c) const {
-    return (c[2] * cells[1] + c[1]) * cells[0] + c[0];
-  }
+  std::int64_t linear(const std::array<std::int64_t, 3>& c) const { return (c[2] * cells[1] + c[1]) * cells[0] + c[0]; }
 };
 
 CellGrid make_grid(const PointData& p, double size) {
@@ -66,8 +64,8 @@ CellGrid make_grid(const PointData& p, double size) {
 
 // Visits the candidate neighbours of point i (any order); `visit(j, xi)` with xi = x_j - x_i.
 template <class Visit>
-void for_each_in_horizon(const PointData& p, const CellGrid* grid, const FamilyOptions& o,
-                         std::size_t i, double reach2, Visit&& visit) {
+void for_each_in_horizon(const PointData& p, const CellGrid* grid, const FamilyOptions& o, std::size_t i, double reach2,
+                         Visit&& visit) {
   const int D = p.dimension;
   const double* xi_pos = &p.position[i * D];
   double xi[3];
@@ -129,8 +127,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   }
   std::partial_sum(f.offset.begin(), f.offset.end(), f.offset.begin());
   const auto bonds = static_cast<std::size_t>(f.offset[n]);
-  if (bonds > static_cast<std::size_t>(INT32_MAX) * 64)
-    throw std::length_error("build_families: too many bonds");
+  if (bonds > static_cast<std::size_t>(INT32_MAX) * 64) throw std::length_error("build_families: too many bonds");
   f.neighbor.resize(bonds);
   if (periodic) f.xi.resize(bonds * D);
 #pragma omp parallel for schedule(static) if (thread_bond_loop(bonds))

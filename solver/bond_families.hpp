@@ -19,12 +19,12 @@ namespace mppm::solver {
 
 struct BondFamilies {
   int dimension = 2;
-  std::vector<std::int64_t> offset;    // owned + 1 entries
+  std::vector<std::int64_t> offset;  // owned + 1 entries
   // Local index of the neighbour (owned or ghost). A bond broken by damage keeps its entry with the
   // sign bit set (break_bond): the force pass reads the index anyway, so the test costs it no
   // load, and no per-bond flag array is needed (1 B per bond entry).
   std::vector<std::int32_t> neighbor;
-  std::vector<double> xi;              // D per bond, periodic lattices only (else empty)
+  std::vector<double> xi;  // D per bond, periodic lattices only (else empty)
   // Damage effect only (empty otherwise):
   // W_ij [J/m^6] of every bond pair, stored once, at its lower-index end: the pairs of point i are
   // its bonds to higher indices (the tail of its sorted list), the k-th of them at
@@ -82,8 +82,10 @@ inline void bond_vector(const BondFamilies& f, const double* position, std::size
   }
 }
 inline void bond_vector(const BondFamilies& f, const PointData& p, std::size_t i, std::int64_t b, double* xi) {
-  if (p.dimension == 2) bond_vector<2>(f, p.position.data(), i, b, xi);
-  else bond_vector<3>(f, p.position.data(), i, b, xi);
+  if (p.dimension == 2)
+    bond_vector<2>(f, p.position.data(), i, b, xi);
+  else
+    bond_vector<3>(f, p.position.data(), i, b, xi);
 }
 
 struct FamilyOptions {

@@ -76,7 +76,8 @@ void BoundaryConditions::match(const Scene& scene, const PointCloud& cloud, int 
     if (r < 0 || static_cast<std::size_t>(r) > condition_count_)
       throw InputError(points_file + ": point " + std::to_string(i) + " has region " + std::to_string(r) +
                        " but the scene has " + std::to_string(condition_count_) + " boundary conditions");
-    if (r > 0) layer_points[r].push_back(static_cast<std::int32_t>(i));
+    if (r > 0)
+      layer_points[r].push_back(static_cast<std::int32_t>(i));
     else if (b > 0 && static_cast<std::size_t>(b) <= condition_count_)
       loaded_points[b].push_back(static_cast<std::int32_t>(i));
   }
@@ -86,11 +87,12 @@ void BoundaryConditions::match(const Scene& scene, const PointCloud& cloud, int 
     names_.push_back(bc.name);
     if (info.type != to_string(bc.type))
       throw InputError(points_file + ": boundary " + std::to_string(k + 1) + " ('" + info.name + "') is of type '" +
-                       info.type + "' but scene boundary condition '" + bc.name + "' is '" +
-                       to_string(bc.type) + "' (rerun mppm-preprocess with this scene)");
+                       info.type + "' but scene boundary condition '" + bc.name + "' is '" + to_string(bc.type) +
+                       "' (rerun mppm-preprocess with this scene)");
     // The layers are fixed in the points file: a scene that selects or sizes them differently
     // would run silently with the old ones (e.g. --set boundary_conditions[0].depth=3mm).
-    const std::string key = scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) + "]";
+    const std::string key =
+        scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) + "]";
     if (!info.selector.empty() && info.selector != bc.selector.fingerprint())
       throw InputError(key + ": selects " + bc.selector.describe() + " but " + points_file + " was made with " +
                        info.selector + " for this boundary (rerun mppm-preprocess with this scene)");
@@ -98,13 +100,14 @@ void BoundaryConditions::match(const Scene& scene, const PointCloud& cloud, int 
         std::abs(info.depth - bc.traction_depth) > 1e-9 * std::max(info.depth, bc.traction_depth)) {
       std::ostringstream s;
       s << key << ".depth: the loaded layer is " << bc.traction_depth << " m deep in the scene but " << points_file
-        << " was made with " << info.depth << " m (the loaded points are fixed there: rerun mppm-preprocess with this scene)";
+        << " was made with " << info.depth
+        << " m (the loaded points are fixed there: rerun mppm-preprocess with this scene)";
       throw InputError(s.str());
     }
     if (is_kinematic(bc.type)) {
       if (layer_points[k + 1].empty())
-        throw InputError(points_file + ": kinematic boundary condition '" + bc.name +
-                         "' has no layer points (region " + std::to_string(k + 1) + ")");
+        throw InputError(points_file + ": kinematic boundary condition '" + bc.name + "' has no layer points (region " +
+                         std::to_string(k + 1) + ")");
       KinematicLayer layer;
       layer.condition = k;
       layer.name = bc.name;

@@ -27,7 +27,7 @@ struct KinematicLayer {
   std::vector<std::uint8_t> constrained;  // D flags
   bool displacement_type = false;         // else velocity
   History value;
-  std::optional<History> rotation;        // rotation (displacement) or rotation rate (velocity)
+  std::optional<History> rotation;  // rotation (displacement) or rotation rate (velocity)
 };
 
 struct LoadedSurface {
@@ -40,15 +40,16 @@ struct LoadedSurface {
   // loaded points have one.
   std::vector<double> normal;
   History value;
-  double area = 0.0;          // BoundaryInfo::area
-  double volume_sum = 0.0;    // sum of V over the loaded points
+  double area = 0.0;        // BoundaryInfo::area
+  double volume_sum = 0.0;  // sum of V over the loaded points
 };
 
 class BoundaryConditions {
  public:
   // No conditions at all (a free body).
   explicit BoundaryConditions(const PointData& points)
-      : dimension_(points.dimension), rotation_components_(points.rotation_components),
+      : dimension_(points.dimension),
+        rotation_components_(points.rotation_components),
         prescribed_(points.total(), 0) {}
   // Matches the scene's conditions with the cloud's regions and boundary ids; throws
   // InputError naming the points file when they do not agree.

@@ -60,9 +60,14 @@ void visit_carried_arrays(ModelRef& model, Visit&& visit) {
 }
 
 std::vector<double> energy_values(const EnergyState& e) {
-  return {e.kinetic,        e.rotational_kinetic,  e.elastic,
-          e.stabilization,  e.external_work,       e.plastic_dissipation,
-          e.fracture_dissipation, e.kinetic_terms};
+  return {e.kinetic,
+          e.rotational_kinetic,
+          e.elastic,
+          e.stabilization,
+          e.external_work,
+          e.plastic_dissipation,
+          e.fracture_dissipation,
+          e.kinetic_terms};
 }
 
 EnergyState energy_from(const std::vector<double>& v) {
@@ -92,7 +97,8 @@ void restore_broken_bonds(const CheckpointFile& file, BondFamilies& f) {
   auto saved = file.array<std::int32_t>("bond_neighbor");
   bool same = saved.size() == f.neighbor.size();
   for (std::size_t b = 0; same && b < saved.size(); ++b) same = BondFamilies::index_of(saved[b]) == f.neighbor_of(b);
-  if (!same) throw InputError(file.path + ": the checkpoint's bonds are not those of these points (corrupted checkpoint?)");
+  if (!same)
+    throw InputError(file.path + ": the checkpoint's bonds are not those of these points (corrupted checkpoint?)");
   f.neighbor.swap(saved);
 }
 
@@ -135,7 +141,8 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   header.time = carried.time;
 
   std::vector<CheckpointArrayView> arrays;
-  visit_carried_arrays(model, [&](const char* name, const auto& values) { arrays.push_back(checkpoint_array(name, values)); });
+  visit_carried_arrays(model,
+                       [&](const char* name, const auto& values) { arrays.push_back(checkpoint_array(name, values)); });
   arrays.push_back(checkpoint_array("body_force", dynamics.body_force()));
   // Small arrays: built here, alive until the file is written.
   const std::vector<double> energy = energy_values(carried.energy);
@@ -146,8 +153,8 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   const std::vector<double> schedule{loop.next_row, loop.next_snapshot, loop.next_checkpoint, loop.worst_balance};
   const std::vector<double> guard{loop.guard.scale, loop.guard.last_plastic, loop.guard.last_fracture,
                                   loop.guard.created_plastic, loop.guard.created_fracture};
-  const std::vector<std::uint64_t> tables{loop.load_table_bytes, loop.load_table_fingerprint,
-                                          loop.energy_table_bytes, loop.energy_table_fingerprint};
+  const std::vector<std::uint64_t> tables{loop.load_table_bytes, loop.load_table_fingerprint, loop.energy_table_bytes,
+                                          loop.energy_table_fingerprint};
   std::string snapshot_files;
   std::vector<std::int64_t> snapshot_steps;
   std::vector<double> snapshot_times;
@@ -186,8 +193,10 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
                      std::to_string(h.point_count) + " points and other effects than this one");
 
   visit_carried_arrays(model, [&](const char* name, auto& values) {
-    if (std::string(name) == "bond_neighbor") restore_broken_bonds(file, model.bonds);
-    else file.restore(name, values);
+    if (std::string(name) == "bond_neighbor")
+      restore_broken_bonds(file, model.bonds);
+    else
+      file.restore(name, values);
   });
   std::vector<double> body_force(dynamics.body_force().size());
   file.restore("body_force", body_force);

@@ -1,13 +1,12 @@
 // Largest eigenvalue of M^-1 K with the internal-force kernel as the operator (K v = -f(v) V).
 #include "solver/critical_time_step.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "common/input_error.hpp"
 #include "solver/point_stability.hpp"
@@ -21,7 +20,8 @@ enum class Block { coupled, translational, rotational };
 
 // A deterministic start vector from the point's index in the points file (no dependence on threads).
 double start_value(std::int64_t id, int component) {
-  std::uint64_t x = static_cast<std::uint64_t>(id) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(component + 1) * 0xBF58476D1CE4E5B9ull;
+  std::uint64_t x = static_cast<std::uint64_t>(id) * 0x9E3779B97F4A7C15ull +
+                    static_cast<std::uint64_t>(component + 1) * 0xBF58476D1CE4E5B9ull;
   x ^= x >> 31;
   x *= 0x94D049BB133111EBull;
   x ^= x >> 29;
@@ -151,9 +151,9 @@ CriticalTimeStep critical_time_step(Model& model) {
   out.iterations = coupled.iterations;
   CosseratConstants& c = model.constants;
   const std::string density = " over the density rho = solid_fraction * density = " + number(c.density) + " kg/m^3";
-  const std::string trans_driver = "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " +
-                                   number(c.lambda + 2.0 * c.mu) + " Pa, with numerics.stabilization G_s = " +
-                                   number(c.stabilization) + ")" + density;
+  const std::string trans_driver =
+      "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
+      " Pa, with numerics.stabilization G_s = " + number(c.stabilization) + ")" + density;
   out.limiting_mode = "translational";
   out.driver = trans_driver;
   // Which stiffness drives a block is told by the same estimate with a modulus switched off: the
@@ -198,18 +198,19 @@ CriticalTimeStep critical_time_step(Model& model) {
     } else if (c.mu_c > 0.0 && estimate_without(Block::rotational, [&] { c.mu_c = 0.0; }) < 0.5 * rot_lambda) {
       out.driver = "material.mu_c = " + number(c.mu_c) + " Pa" + inertia;
     } else {
-      out.driver = "material.lambda and material.mu (lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
-                   " Pa) acting on the micro-rotation through the composite state U = (u_j - u_i) - 1/2 (w_i + w_j) x xi "
-                   "(the bending modulus B_w = " + number(c.bending_modulus) + " N alone gives " +
-                   number(bending / rot_lambda) + " of omega_max^2)" + inertia;
+      out.driver =
+          "material.lambda and material.mu (lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
+          " Pa) acting on the micro-rotation through the composite state U = (u_j - u_i) - 1/2 (w_i + w_j) x xi "
+          "(the bending modulus B_w = " +
+          number(c.bending_modulus) + " N alone gives " + number(bending / rot_lambda) + " of omega_max^2)" + inertia;
     }
   } else if (c.mu_c > 0.0 && p.rotation_components > 0 &&
              estimate_without(Block::translational, [&] { c.mu_c = 0.0; }) < 0.5 * trans.lambda) {
     // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
     // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
-    out.driver = "material.mu_c = " + number(c.mu_c) + " Pa (the couple modulus stiffens the shear waves: mu + mu_c = " +
-                 number(c.mu + c.mu_c) + " Pa against the P-wave modulus lambda + 2 mu = " +
-                 number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
+    out.driver = "material.mu_c = " + number(c.mu_c) +
+                 " Pa (the couple modulus stiffens the shear waves: mu + mu_c = " + number(c.mu + c.mu_c) +
+                 " Pa against the P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
   }
   if (rest) {
     for (auto* v : {&p.displacement, &p.rotation, &p.velocity, &p.spin}) std::fill(v->begin(), v->end(), 0.0);
@@ -231,15 +232,16 @@ double choose_time_step(const Scene& scene, const CriticalTimeStep& critical, do
                      " s, the largest step a run with the damage effect may use (" +
                      number(damage_step / critical.step) + " of the critical step " + number(critical.step) +
                      " s: the lopsided families that broken bonds leave raise the highest frequency by up to " +
-                     number(scene.numerics.damaged_frequency_ratio) + "x the largest point stiffness; solver/point_stability.hpp) "
-                     "(expected time.step <= " + number(damage_step) + " s, or time.step: auto)");
+                     number(scene.numerics.damaged_frequency_ratio) +
+                     "x the largest point stiffness; solver/point_stability.hpp) "
+                     "(expected time.step <= " +
+                     number(damage_step) + " s, or time.step: auto)");
   if (dt > critical.step) {
     const double mode_step = critical.limiting_mode == "rotational" ? critical.rotational : critical.translational;
     throw InputError(scene.path + ": time.step: " + number(dt) + " s is above the critical step " +
                      number(critical.step) + " s of the explicit scheme; the limiting mode is " +
-                     critical.limiting_mode + " (its own critical step " + number(mode_step) +
-                     " s), driven by " + critical.driver +
-                     " (expected time.step <= " + number(critical.step) + " s, or time.step: auto)");
+                     critical.limiting_mode + " (its own critical step " + number(mode_step) + " s), driven by " +
+                     critical.driver + " (expected time.step <= " + number(critical.step) + " s, or time.step: auto)");
   }
   return dt;
 }

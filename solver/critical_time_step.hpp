@@ -8,16 +8,15 @@
 #include "common/scene.hpp"
 #include "solver/model.hpp"
 
-
 namespace mppm::solver {
 
 struct CriticalTimeStep {
-  double step = 0.0;              // 2 / omega_max of the coupled operator [s]
-  double translational = 0.0;     // of the translational block
-  double rotational = 0.0;        // of the rotational block (0 = no rotation dofs)
-  std::string limiting_mode;      // "translational" or "rotational"
-  std::string driver;             // the parameter that drives the limiting mode, with its value
-  int iterations = 0;             // operator applications of the coupled estimate
+  double step = 0.0;           // 2 / omega_max of the coupled operator [s]
+  double translational = 0.0;  // of the translational block
+  double rotational = 0.0;     // of the rotational block (0 = no rotation dofs)
+  std::string limiting_mode;   // "translational" or "rotational"
+  std::string driver;          // the parameter that drives the limiting mode, with its value
+  int iterations = 0;          // operator applications of the coupled estimate
 };
 
 // Leaves the model's displacement and rotation as they were.

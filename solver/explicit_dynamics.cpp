@@ -3,21 +3,20 @@
 // count (ordered_point_sums.hpp), so any thread count gives the same bits.
 #include "solver/explicit_dynamics.hpp"
 
-#include "solver/ordered_point_sums.hpp"
-#include "solver/parallel_policy.hpp"
-
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "solver/ordered_point_sums.hpp"
+#include "solver/parallel_policy.hpp"
+
 namespace mppm::solver {
 
 ExplicitDynamics::ExplicitDynamics(Model& model, const BoundaryConditions& conditions, double time_step,
                                    std::array<double, 3> gravity)
-    : model_(model), conditions_(conditions), dt_(time_step), gravity_(gravity),
-      use_gravity_(model.effects.gravity) {
+    : model_(model), conditions_(conditions), dt_(time_step), gravity_(gravity), use_gravity_(model.effects.gravity) {
   lay_out_tracked_points();
 }
 
@@ -36,12 +35,14 @@ void ExplicitDynamics::lay_out_tracked_points() {
   if (!track_all_) {
     for (std::size_t i = 0; i < p.owned; ++i)
       if (conditions_.prescribed(i) != 0) tracked_.push_back(static_cast<std::int32_t>(i));
-    for (const LoadedSurface& s : conditions_.surfaces()) tracked_.insert(tracked_.end(), s.points.begin(), s.points.end());
+    for (const LoadedSurface& s : conditions_.surfaces())
+      tracked_.insert(tracked_.end(), s.points.begin(), s.points.end());
     std::sort(tracked_.begin(), tracked_.end());
     tracked_.erase(std::unique(tracked_.begin(), tracked_.end()), tracked_.end());
     tracked_.shrink_to_fit();
     for (const LoadedSurface& s : conditions_.surfaces())
-      for (const std::int32_t i : s.points) load_rows_.push_back(static_cast<std::int32_t>(tracked_row(static_cast<std::size_t>(i))));
+      for (const std::int32_t i : s.points)
+        load_rows_.push_back(static_cast<std::int32_t>(tracked_row(static_cast<std::size_t>(i))));
   }
   const std::size_t n = tracked_count();
   body_force_.assign(n * D, 0.0);
@@ -64,15 +65,18 @@ std::ptrdiff_t ExplicitDynamics::tracked_row(std::size_t i) const {
 template <class Visit>
 int ExplicitDynamics::for_each_point_in(std::size_t lo, std::size_t hi, Visit&& visit) const {
   // The tracked points are sorted: one search for the range's first, then a walk along it.
-  std::size_t k = track_all_ ? lo
-                             : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(),
-                                                                         static_cast<std::int32_t>(lo)) -
-                                                        tracked_.begin());
+  std::size_t k =
+      track_all_
+          ? lo
+          : static_cast<std::size_t>(std::lower_bound(tracked_.begin(), tracked_.end(), static_cast<std::int32_t>(lo)) -
+                                     tracked_.begin());
   int result = 0;
   for (std::size_t i = lo; i < hi; ++i) {
     std::ptrdiff_t row = -1;
-    if (track_all_) row = static_cast<std::ptrdiff_t>(i);
-    else if (k < tracked_.size() && static_cast<std::size_t>(tracked_[k]) == i) row = static_cast<std::ptrdiff_t>(k++);
+    if (track_all_)
+      row = static_cast<std::ptrdiff_t>(i);
+    else if (k < tracked_.size() && static_cast<std::size_t>(tracked_[k]) == i)
+      row = static_cast<std::ptrdiff_t>(k++);
     result |= visit(i, row);
   }
   return result;
@@ -121,38 +125,38 @@ void ExplicitDynamics::evaluate_energy() {
   const double h2 = 0.25 * dt_ * dt_;
   // Summed in chunks fixed by the point count (ordered_point_sums.hpp): the same bits for any
   // thread count.
-  const auto sums = ordered_point_sums<3>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi,
-                                                                                 std::array<double, 3>& acc) {
-    for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
-      // A point that is not tracked has no body force.
-      const bool tracked = tracked_at >= 0;
-      const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
-      const unsigned fixed = conditions_.prescribed(i);
-      double v2 = 0.0, t2 = 0.0;
-      for (int c = 0; c < D; ++c) {
-        const std::size_t k = i * D + c;
-        if ((fixed >> c) & 1u) continue;
-        const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
-        v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
-        t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
-      }
-      acc[0] += 0.5 * rho * p.volume[i] * v2;
-      acc[2] += 0.5 * rho * p.volume[i] * t2;
-      if (R > 0) {
-        double s2 = 0.0, r2 = 0.0;
-        for (int c = 0; c < R; ++c) {
-          const std::size_t k = i * R + c;
-          if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
-          const double a = p.moment[k] / inertia;
-          s2 += p.spin[k] * p.spin[k] - h2 * a * a;
-          r2 += p.spin[k] * p.spin[k] + h2 * a * a;
-        }
-        acc[1] += 0.5 * inertia * p.volume[i] * s2;
-        acc[2] += 0.5 * inertia * p.volume[i] * r2;
-      }
-      return 0;
-    });
-  });
+  const auto sums = ordered_point_sums<3>(
+      p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, std::array<double, 3>& acc) {
+        for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
+          // A point that is not tracked has no body force.
+          const bool tracked = tracked_at >= 0;
+          const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
+          const unsigned fixed = conditions_.prescribed(i);
+          double v2 = 0.0, t2 = 0.0;
+          for (int c = 0; c < D; ++c) {
+            const std::size_t k = i * D + c;
+            if ((fixed >> c) & 1u) continue;
+            const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
+            v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
+            t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
+          }
+          acc[0] += 0.5 * rho * p.volume[i] * v2;
+          acc[2] += 0.5 * rho * p.volume[i] * t2;
+          if (R > 0) {
+            double s2 = 0.0, r2 = 0.0;
+            for (int c = 0; c < R; ++c) {
+              const std::size_t k = i * R + c;
+              if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
+              const double a = p.moment[k] / inertia;
+              s2 += p.spin[k] * p.spin[k] - h2 * a * a;
+              r2 += p.spin[k] * p.spin[k] + h2 * a * a;
+            }
+            acc[1] += 0.5 * inertia * p.volume[i] * s2;
+            acc[2] += 0.5 * inertia * p.volume[i] * r2;
+          }
+          return 0;
+        });
+      });
   const double kinetic = sums[0], rotational = sums[1], terms = sums[2];
   energy_.kinetic_terms = terms;
   const StoredEnergy e = internal_energy(model_);
@@ -293,14 +297,18 @@ ExplicitDynamics::BreakageEnergy ExplicitDynamics::breakage_energy(const StepCon
     for (int c = 0; c < D; ++c) {
       const std::size_t k = i * D + c;
       const double change = p.force_before_refresh[r * D + c] - p.force[k];  // f_old - f_new
-      if (conditions_.prescribed_displacement(i, c)) breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
-      else breakage_kick += half * p.velocity[k] * change * p.volume[i];
+      if (conditions_.prescribed_displacement(i, c))
+        breakage_work -= 0.5 * change * (p.displacement[k] - displacement_prev_[t * D + c]) * p.volume[i];
+      else
+        breakage_kick += half * p.velocity[k] * change * p.volume[i];
     }
     for (int c = 0; c < R; ++c) {
       const std::size_t k = i * R + c;
       const double change = p.moment_before_refresh[r * R + c] - p.moment[k];
-      if (conditions_.prescribed_rotation(i, c)) breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
-      else breakage_kick += half * p.spin[k] * change * p.volume[i];
+      if (conditions_.prescribed_rotation(i, c))
+        breakage_work -= 0.5 * change * (p.rotation[k] - rotation_prev_[t * R + c]) * p.volume[i];
+      else
+        breakage_kick += half * p.spin[k] * change * p.volume[i];
     }
   }
   return {breakage_kick, breakage_work};
@@ -313,9 +321,9 @@ ExplicitDynamics::BreakageEnergy ExplicitDynamics::breakage_energy(const StepCon
 bool ExplicitDynamics::second_half_kick(const StepConstants& sc) {
   const double damp_factor = 1.0 / (1.0 + sc.half * sc.c_damp);
   return for_each_point(sc.threaded, [&](std::size_t i, std::ptrdiff_t row) {
-    return row < 0 ? second_half_kick_untracked(sc, damp_factor, i)
-                   : second_half_kick_tracked(sc, damp_factor, i, static_cast<std::size_t>(row));
-  }) != 0;
+           return row < 0 ? second_half_kick_untracked(sc, damp_factor, i)
+                          : second_half_kick_tracked(sc, damp_factor, i, static_cast<std::size_t>(row));
+         }) != 0;
 }
 
 int ExplicitDynamics::second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i) {
@@ -405,8 +413,8 @@ std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite() const {
   };
   std::optional<NonFinitePoint> out;
   for (std::size_t i = 0; i < p.owned; ++i) {
-    const char* field = bad(p.displacement, i, D) ? "displacement"
-                        : bad(p.velocity, i, D)   ? "velocity"
+    const char* field = bad(p.displacement, i, D)        ? "displacement"
+                        : bad(p.velocity, i, D)          ? "velocity"
                         : R > 0 && bad(p.rotation, i, R) ? "rotation"
                         : R > 0 && bad(p.spin, i, R)     ? "rotation_rate"
                                                          : nullptr;

@@ -22,9 +22,9 @@ struct EnergyState {
   double rotational_kinetic = 0.0;  // I V
   double elastic = 0.0;             // 1/2 eps:sigma + 1/2 kap:m
   double stabilization = 0.0;
-  double external_work = 0.0;       // loads, prescribed layers, and damping (negative)
-  double plastic_dissipation = 0.0; // accumulated every step (trapezoid rule, like the work)
-  double fracture_dissipation = 0.0; // stored energy released by the bonds broken so far
+  double external_work = 0.0;         // loads, prescribed layers, and damping (negative)
+  double plastic_dissipation = 0.0;   // accumulated every step (trapezoid rule, like the work)
+  double fracture_dissipation = 0.0;  // stored energy released by the bonds broken so far
   // The size of the terms whose difference is the scheme's kinetic energy, 1/2 M (v^n . v^n +
   // (dt/2)^2 a^n . a^n): the scale of its round-off. Where every energy is still round-off (the
   // step in which a load starts: v^n = dt/2 a^n, so the kinetic energy is a difference of two equal
@@ -38,9 +38,9 @@ struct EnergyState {
 
 // Where the per-step guard found non-finite values (ExplicitDynamics::first_non_finite).
 struct NonFinitePoint {
-  std::size_t point = 0;     // the lowest index holding a non-finite value
-  std::string field;         // "displacement", "velocity", "rotation" or "rotation_rate"
-  std::size_t points = 0;    // how many points hold one
+  std::size_t point = 0;   // the lowest index holding a non-finite value
+  std::string field;       // "displacement", "velocity", "rotation" or "rotation_rate"
+  std::size_t points = 0;  // how many points hold one
 };
 
 class ExplicitDynamics {
@@ -172,11 +172,11 @@ class ExplicitDynamics {
   std::vector<std::int32_t> tracked_;    // sorted point indices (empty when track_all_)
   std::vector<std::int32_t> load_rows_;  // the tracked row of each loaded point (surfaces in order)
   // Per tracked point:
-  std::vector<double> body_force_;       // external force density b (D)
+  std::vector<double> body_force_;  // external force density b (D)
   std::vector<double> body_force_prev_;
   std::vector<double> force_prev_, moment_prev_;           // D, R
   std::vector<double> displacement_prev_, rotation_prev_;  // D, R
-  std::vector<double> work_increment_;   // summed serially, in point order (book_step_energy)
+  std::vector<double> work_increment_;                     // summed serially, in point order (book_step_energy)
   EnergyState energy_;
   double initial_total_ = 0.0;
 };

@@ -55,8 +55,8 @@ using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
 // docs/theory.md section 2 (with `+` a rigid rotation u = theta x x, w = theta would not be strain free).
 // Without micropolar, U = u_j - u_i.
 template <int D, int R, bool Polar>
-MPPM_INLINE void composite_state(const double* ui, const double* uj, const double* wi,
-                                 const double* wj, const double* xi, double* U) {
+MPPM_INLINE void composite_state(const double* ui, const double* uj, const double* wi, const double* wj,
+                                 const double* xi, double* U) {
   for (int a = 0; a < D; ++a) U[a] = uj[a] - ui[a];
   if constexpr (Polar) {
     if constexpr (D == 2) {
@@ -203,9 +203,8 @@ MPPM_INLINE void bond_sums(const PointData& p, const BondFamilies& f, std::size_
 
 // eps_i = [sum_j V_j U_ij (x) xi] K_i^-1 and kap_i = [sum_j V_j (w_j - w_i) (x) xi] K_i^-1.
 template <int D, class Effects, bool StoredXi>
-MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::size_t i,
-                               const Mat<D>& kinv, Mat<D>& eps,
-                               RMat<rotation_components<D>, D>& kap) {
+MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::size_t i, const Mat<D>& kinv,
+                               Mat<D>& eps, RMat<rotation_components<D>, D>& kap) {
   constexpr int R = rotation_components<D>;
   BondSums<D, R> sums;
   bond_sums<D, Effects, StoredXi>(p, f, i, sums);
@@ -217,24 +216,22 @@ MPPM_INLINE void point_strains(const PointData& p, const BondFamilies& f, std::s
 // included, and 1/2 V kap_e : m) for its strain and wryness, with its plastic state as it is.
 template <int D, class Effects>
 StoredEnergy elastic_energies(const PointData& p, const CosseratConstants& c, std::size_t i, const Mat<D>& eps,
-                             [[maybe_unused]] const RMat<rotation_components<D>, D>& kap) {
+                              [[maybe_unused]] const RMat<rotation_components<D>, D>& kap) {
   constexpr int R = rotation_components<D>;
   constexpr int RD = R * D;
   const double vi = p.volume[i];
   StoredEnergy e;
   if constexpr (Effects::viscoplasticity) {
     const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, &p.plastic_strain[i * 9]);
-    e.force_stress = vi * viscoplastic::elastic_energy_density<D>(
-                              eps_elastic, viscoplastic::elastic_stress<D>(eps_elastic, c));
+    e.force_stress =
+        vi * viscoplastic::elastic_energy_density<D>(eps_elastic, viscoplastic::elastic_stress<D>(eps_elastic, c));
   } else {
     e.force_stress = 0.5 * vi * (eps.cwiseProduct(cosserat_stress<D>(eps, c))).sum();
   }
   if constexpr (Effects::micropolar) {
     RMat<R, D> kap_elastic = kap;
-    if constexpr (Effects::viscoplasticity)
-      kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
-    e.couple_stress =
-        0.5 * vi * (kap_elastic.cwiseProduct(couple_stress<D, R>(kap_elastic, c))).sum();
+    if constexpr (Effects::viscoplasticity) kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
+    e.couple_stress = 0.5 * vi * (kap_elastic.cwiseProduct(couple_stress<D, R>(kap_elastic, c))).sum();
   }
   return e;
 }
@@ -280,8 +277,8 @@ StoredEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) 
 // gives (elastic_energy_of_point and stabilization_energy). Breakage uses it on the few points
 // whose bonds changed, before and after the change (bond_breakage.cpp).
 template <int D, class Effects>
-StoredEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
-                                   const CosseratConstants& c, std::size_t i) {
+StoredEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                                    std::size_t i) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   StoredEnergy e;
@@ -290,8 +287,10 @@ StoredEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
   const Mat<D> kinv = unpack_symmetric<D>(&p.shape_inverse[i * symmetric_components<D>]);
   Mat<D> eps;
   [[maybe_unused]] RMat<R, D> kap;
-  if (f.xi.empty()) point_strains<D, Effects, false>(p, f, i, kinv, eps, kap);
-  else point_strains<D, Effects, true>(p, f, i, kinv, eps, kap);
+  if (f.xi.empty())
+    point_strains<D, Effects, false>(p, f, i, kinv, eps, kap);
+  else
+    point_strains<D, Effects, true>(p, f, i, kinv, eps, kap);
   e = elastic_energies<D, Effects>(p, c, i, eps, kap);
   const double zero_rotation[3] = {0.0, 0.0, 0.0};
   const double* ui = &p.displacement[i * D];
@@ -310,8 +309,9 @@ StoredEnergy stored_energy_of_point(const PointData& p, const BondFamilies& f,
     composite_state<D, R, polar>(ui, &p.displacement[j * D], wi, wj, xi, U);
     stab.add(U, wi, wj, p.volume[j]);
   }
-  e.stabilization = 0.5 * vi * stab.contract(eps.data(), polar ? kap.data() : nullptr,
-                                              &p.shape_inverse[i * symmetric_components<D>], cki, gi);
+  e.stabilization =
+      0.5 * vi *
+      stab.contract(eps.data(), polar ? kap.data() : nullptr, &p.shape_inverse[i * symmetric_components<D>], cki, gi);
   return e;
 }
 
@@ -352,8 +352,8 @@ MPPM_INLINE void own_share(const Mat<D>& a, const Mat<D>& ck, const Mat<D>& kinv
 // pass 2 adds the rest). The elastic energies come from the stored strain and wryness when they
 // are asked for (elastic_energy_of_point).
 template <int D, class Effects, bool StoredXi>
-MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const CosseratConstants& c,
-                             std::size_t i, [[maybe_unused]] const StepAdvance* advance) {
+MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i,
+                             [[maybe_unused]] const StepAdvance* advance) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
@@ -398,11 +398,10 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     if (advance && p.plastic_active[i]) {
       // eps_out and the stored wryness still hold the previous evaluation: the step's start.
       p.plastic_dissipation[i] =
-          vol[i] * viscoplastic::advance_point<D, R, polar>(
-                       eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
-                       polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
-                       polar ? &p.plastic_wryness[i * RD] : nullptr, p.equivalent_plastic_strain[i], c,
-                       *advance);
+          vol[i] * viscoplastic::advance_point<D, R, polar>(eps, polar ? kap.data() : nullptr, Mat<D>(eps_out),
+                                                            polar ? &p.wryness[i * RD] : nullptr, plastic_strain,
+                                                            polar ? &p.plastic_wryness[i * RD] : nullptr,
+                                                            p.equivalent_plastic_strain[i], c, *advance);
     }
     const auto eps_elastic = viscoplastic::elastic_strain<D>(eps, plastic_strain);
     const auto stress = viscoplastic::elastic_stress<D>(eps_elastic, c);
@@ -421,8 +420,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   [[maybe_unused]] double g = 0.0;
   if constexpr (polar) {
     RMat<R, D> kap_elastic = kap;
-    if constexpr (Effects::viscoplasticity)
-      kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
+    if constexpr (Effects::viscoplasticity) kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
     const RMat<R, D> m = couple_stress<D, R>(kap_elastic, c);
     g = p.stabilization_rot[i];
     q = m * kinv - g * kap;
@@ -441,8 +439,8 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
 // accumulate_work (damage) also the bond work and the count of bonds that reach the critical
 // work (points.bonds_broken); with WithEnergy the point's stabilization energy.
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
-MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConstants& c,
-                             std::size_t i, [[maybe_unused]] bool accumulate_work) {
+MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConstants& c, std::size_t i,
+                             [[maybe_unused]] bool accumulate_work) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
@@ -564,8 +562,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
           for (int r = 0; r < R; ++r) {
             const double om = wj[r] - wi[r], om0 = wj0[r] - wi0[r];
             double both = g * (om0 + om);
-            for (int col = 0; col < D; ++col)
-              both += (qi_both[r * D + col] + qj_both[r * D + col]) * xi[col];
+            for (int col = 0; col < D; ++col) both += (qi_both[r * D + col] + qj_both[r * D + col]) * xi[col];
             dw += both * (om - om0);
           }
         }
@@ -590,9 +587,9 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   if constexpr (polar)
     for (int r = 0; r < R; ++r) p.moment[i * R + r] += moment[r];
   if constexpr (WithEnergy)
-    p.stabilization_energy[i] =
-        0.5 * vol[i] * stab_energy.contract(&p.strain[i * DD], polar ? &p.wryness[i * RD] : nullptr,
-                                            &p.shape_inverse[i * S], &ck_all[i * S], polar ? g_all[i] : 0.0);
+    p.stabilization_energy[i] = 0.5 * vol[i] *
+                                stab_energy.contract(&p.strain[i * DD], polar ? &p.wryness[i * RD] : nullptr,
+                                                     &p.shape_inverse[i * S], &ck_all[i * S], polar ? g_all[i] : 0.0);
   if constexpr (Effects::damage) {
     if (accumulate_work) p.bonds_broken[i] = broken;
   }
@@ -615,8 +612,7 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
     // bodies, chosen once, so the bond loops carry no branch for it.
     if (stored_xi) {
 #pragma omp for schedule(static)
-      for (std::int64_t s = 0; s < n; ++s)
-        pass1_point<D, Effects, true>(p, f, c, static_cast<std::size_t>(s), advance);
+      for (std::int64_t s = 0; s < n; ++s) pass1_point<D, Effects, true>(p, f, c, static_cast<std::size_t>(s), advance);
 #pragma omp for schedule(static)
       for (std::int64_t s = 0; s < n; ++s)
         pass2_point<D, Effects, WithEnergy, true>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
@@ -676,12 +672,16 @@ void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstan
         for (int r = 0; r < R; ++r) p.moment_before_refresh[k * R + r] = p.moment[i * R + r];
     }
     for (const std::size_t i : around) {
-      if (stored_xi) pass1_point<D, Effects, true>(p, f, c, i, nullptr);
-      else pass1_point<D, Effects, false>(p, f, c, i, nullptr);
+      if (stored_xi)
+        pass1_point<D, Effects, true>(p, f, c, i, nullptr);
+      else
+        pass1_point<D, Effects, false>(p, f, c, i, nullptr);
     }
     for (const std::size_t i : around) {
-      if (stored_xi) pass2_point<D, Effects, true, true>(p, f, c, i, false);
-      else pass2_point<D, Effects, true, false>(p, f, c, i, false);
+      if (stored_xi)
+        pass2_point<D, Effects, true, true>(p, f, c, i, false);
+      else
+        pass2_point<D, Effects, true, false>(p, f, c, i, false);
     }
   } else {
     (void)p, (void)f, (void)c, (void)changed;

@@ -7,8 +7,8 @@
 #include "common/scene.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
-#include "solver/step_advance.hpp"
 #include "solver/point_data.hpp"
+#include "solver/step_advance.hpp"
 #include "solver/stored_energy.hpp"
 
 namespace mppm::solver {
@@ -35,10 +35,10 @@ using BreakageRefreshFunction = void (*)(PointData&, BondFamilies&, const Cosser
                                          const std::vector<std::size_t>& changed_points);
 
 struct InternalForceFunctions {
-  InternalForceFunction forces = nullptr;              // force and moment only
-  InternalForceFunction forces_and_energy = nullptr;   // also the stabilization energies
-  PointEnergyFunction point_energy = nullptr;          // one point's stored energy (breakage)
-  ElasticEnergyFunction elastic_energy = nullptr;      // one point's elastic energies (breakage)
+  InternalForceFunction forces = nullptr;                // force and moment only
+  InternalForceFunction forces_and_energy = nullptr;     // also the stabilization energies
+  PointEnergyFunction point_energy = nullptr;            // one point's stored energy (breakage)
+  ElasticEnergyFunction elastic_energy = nullptr;        // one point's elastic energies (breakage)
   StoredEnergySumFunction stored_energy_sums = nullptr;  // the stored energy's totals (energy rows)
   BreakageRefreshFunction refresh_after_breakage = nullptr;
 };

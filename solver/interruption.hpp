@@ -18,7 +18,7 @@ class InterruptionHandlers {
   void (*previous_term_)(int);
 };
 
-void request_interruption();    // what the handlers do (async-signal-safe); tests call it too
+void request_interruption();  // what the handlers do (async-signal-safe); tests call it too
 bool interruption_requested();
 void clear_interruption();
 

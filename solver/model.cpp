@@ -1,5 +1,4 @@
 // Assembly of the discrete model: family search, pre-crack cuts, shape tensors.
-#include "solver/parallel_policy.hpp"
 #include "solver/model.hpp"
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 
 #include "common/precrack_crossing.hpp"
 #include "solver/bond_breakage.hpp"
+#include "solver/parallel_policy.hpp"
 #include "solver/plasticity/material_registry.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
@@ -67,7 +67,8 @@ ModelOptions model_options(const Scene& scene) {
   }
   if (scene.effects.viscoplasticity && scene.material.viscoplasticity && scene.material.viscoplasticity->region)
     mo.plastic_region = scene.material.viscoplasticity->region->box;
-  if (scene.effects.viscoplasticity) mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
+  if (scene.effects.viscoplasticity)
+    mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
   return mo;
 }
 
@@ -101,7 +102,8 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
         if (!inside(m.points, i, *o.damage_region)) m.points.no_fail[i] = 1;
   }
   if (o.effects.viscoplasticity && o.plastic_region)
-    for (std::size_t i = 0; i < m.points.owned; ++i) m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
+    for (std::size_t i = 0; i < m.points.owned; ++i)
+      m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)
@@ -127,7 +129,8 @@ void Model::advance_internal_forces(double dt, bool with_energy) {
   const StepAdvance step{viscoplastic_model.get(), dt};
   (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, &step);
   if (effects.damage) {
-    const BreakageUpdate u = update_after_breakage(points, bonds, constants, kernel, block_eigenvalue_limit, breakage_workspace);
+    const BreakageUpdate u =
+        update_after_breakage(points, bonds, constants, kernel, block_eigenvalue_limit, breakage_workspace);
     broken_bonds += u.broken_pairs;
     detached_points += u.newly_detached;
     unstable_detached_points += u.unstable_detached;
@@ -139,7 +142,8 @@ void Model::advance_internal_forces(double dt, bool with_energy) {
 double Model::damage_critical_step(double critical_step) const {
   if (!effects.damage) return critical_step;
   const double start = max_point_block_eigenvalue(points, bonds, constants);
-  return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(constants.damaged_frequency_ratio * start)) : critical_step;
+  return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(constants.damaged_frequency_ratio * start))
+                     : critical_step;
 }
 
 void Model::set_breakage_time_step(double dt) {

@@ -11,9 +11,9 @@
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/internal_forces.hpp"
-#include "solver/step_advance.hpp"
 #include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
+#include "solver/step_advance.hpp"
 
 namespace mppm::solver {
 
@@ -38,10 +38,10 @@ struct Model {
   BondFamilies bonds;
   InternalForceFunctions kernel;
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;  // with the effect
-  std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
+  std::size_t precrack_cut_bonds = 0;                                       // pairs (counted once)
   std::size_t detached_points = 0;
-  std::size_t broken_bonds = 0;  // pairs broken by damage so far (pre-crack cuts not included)
-  double last_fracture_dissipation = 0.0;  // [J] released by the breaks of the last advance
+  std::size_t broken_bonds = 0;              // pairs broken by damage so far (pre-crack cuts not included)
+  double last_fracture_dissipation = 0.0;    // [J] released by the breaks of the last advance
   std::size_t unstable_detached_points = 0;  // of detached_points: detached for the time step's sake
   std::size_t energy_detached_points = 0;    // of detached_points: losing bonds raised their energy
   BreakageWorkspace breakage_workspace;

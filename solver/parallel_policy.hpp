@@ -7,10 +7,10 @@
 namespace mppm::solver {
 
 struct ParallelThresholds {
-  std::size_t bonds = 100000;   // loops over bonds (force kernel, families, shape tensors, cuts)
-  std::size_t points = 4096;    // loops doing a few operations per point (integrator)
-  std::size_t blocks = 64;      // loops of per-point stiffness blocks (an eigenvalue problem over
-                                // the point's bonds each: the breakage update's stability check)
+  std::size_t bonds = 100000;  // loops over bonds (force kernel, families, shape tensors, cuts)
+  std::size_t points = 4096;   // loops doing a few operations per point (integrator)
+  std::size_t blocks = 64;     // loops of per-point stiffness blocks (an eigenvalue problem over
+                               // the point's bonds each: the breakage update's stability check)
 };
 
 // Process-wide thresholds; tests lower them to exercise the threaded paths on small lattices.

@@ -41,7 +41,7 @@ struct PointData {
   // upper triangle row by row (solver/symmetric_tensor.hpp).
   std::vector<double> shape_inverse;
   std::vector<double> stabilization_ck;
-  std::vector<double> stabilization_rot;   // G_s B_w tr(K^-1) / d (micropolar)
+  std::vector<double> stabilization_rot;  // G_s B_w tr(K^-1) / d (micropolar)
   std::vector<std::uint8_t> detached;
 
   // Products of the strain pass, read by the force pass for i and its neighbours.
@@ -66,7 +66,7 @@ struct PointData {
   // all of them, store none.
   std::vector<std::size_t> precut_points;
   std::vector<double> precut_family_volume;
-  std::vector<std::uint8_t> no_fail;         // 1: the bonds of this point never break
+  std::vector<std::uint8_t> no_fail;  // 1: the bonds of this point never break
   // The bonds that reached the critical work in the last advancing force evaluation, counted at
   // their lower-index end (pass 2 of the force kernel); update_after_breakage breaks them.
   std::vector<std::int32_t> bonds_broken;

@@ -109,7 +109,8 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   add_elastic<D, N>(c, vi, eps, Polar ? &kap : nullptr, H);
   const double residual_i = std::max(0.0, family - s.dot(ci));  // F_i - s . K^-1 s >= 0
   H.template topLeftCorner<D, D>() += vi * residual_i * ck_i;
-  if constexpr (Polar) H.template bottomRightCorner<R, R>().diagonal().array() += vi * residual_i * p.stabilization_rot[i];
+  if constexpr (Polar)
+    H.template bottomRightCorner<R, R>().diagonal().array() += vi * residual_i * p.stabilization_rot[i];
 
   // Every neighbour whose family holds i (the reverse bond acts exactly when this one does).
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
@@ -151,8 +152,7 @@ double eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConst
   auto H = block<D, Polar>(p, f, c, i);
   // M^-1/2 H M^-1/2 with M = rho V (translation), I V (rotation).
   Eigen::Matrix<double, N, 1> scale;
-  for (int q = 0; q < N; ++q)
-    scale(q) = 1.0 / std::sqrt(p.volume[i] * (q < D ? c.density : c.micro_inertia));
+  for (int q = 0; q < N; ++q) scale(q) = 1.0 / std::sqrt(p.volume[i] * (q < D ? c.density : c.micro_inertia));
   H = scale.asDiagonal() * H * scale.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(H, Eigen::EigenvaluesOnly);
   return std::max(0.0, eig.eigenvalues()(N - 1));
@@ -174,11 +174,15 @@ void point_stiffness_block(const PointData& p, const BondFamilies& f, const Coss
   };
   const bool polar = !p.rotation.empty();
   if (p.dimension == 2) {
-    if (polar) copy(block<2, true>(p, f, c, i));
-    else copy(block<2, false>(p, f, c, i));
+    if (polar)
+      copy(block<2, true>(p, f, c, i));
+    else
+      copy(block<2, false>(p, f, c, i));
   } else {
-    if (polar) copy(block<3, true>(p, f, c, i));
-    else copy(block<3, false>(p, f, c, i));
+    if (polar)
+      copy(block<3, true>(p, f, c, i));
+    else
+      copy(block<3, false>(p, f, c, i));
   }
 }
 

@@ -27,10 +27,18 @@ std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
@@ -56,7 +64,8 @@ std::string csv_row(const std::vector<double>& values) {
 }  // namespace
 
 RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(directory)) {
-  const OutputDirectoryKind kind{"run directory", "-o RUN_DIR",
+  const OutputDirectoryKind kind{"run directory",
+                                 "-o RUN_DIR",
                                  {run_layout::run_info, run_layout::resolved_scene, run_layout::reference,
                                   run_layout::log, run_layout::snapshot_dir}};
   prepare_output_directory(directory_, force, kind);
@@ -67,13 +76,13 @@ RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(d
 
 RunWriter::RunWriter(std::string directory, ContinueExisting) : directory_(std::move(directory)) {
   std::error_code ec;
-  if (!fs::is_directory(directory_, ec))
-    throw InputError(directory_ + ": not a run directory (it does not exist)");
+  if (!fs::is_directory(directory_, ec)) throw InputError(directory_ + ": not a run directory (it does not exist)");
   fs::create_directories(fs::path(directory_) / run_layout::snapshot_dir, ec);
   if (ec) throw InputError(directory_ + ": cannot open the run directory for writing (" + ec.message() + ")");
 }
 
-std::string RunWriter::write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived) {
+std::string RunWriter::write_resolved_scene(const Scene& scene,
+                                            const std::vector<std::pair<std::string, double>>& derived) {
   std::string text = resolved_scene_yaml(scene, derived);
   write_file_atomically(path(run_layout::resolved_scene), [&](std::ostream& out) { out << text; });
   return text;
@@ -96,8 +105,7 @@ void RunWriter::write_reference(const PointData& p) {
        [&p](std::uint64_t first, std::uint64_t count, double* out) {
          for (std::uint64_t k = 0; k < count; ++k) out[k] = p.region[first + k];
        }},
-      {"boundary_id", 1,
-       [&p](std::uint64_t first, std::uint64_t count, double* out) {
+      {"boundary_id", 1, [&p](std::uint64_t first, std::uint64_t count, double* out) {
          for (std::uint64_t k = 0; k < count; ++k) out[k] = p.boundary_id[first + k];
        }}};
   mppm::write_snapshot(p.dimension, 0, 0.0, p.owned, fields, path(run_layout::reference));
@@ -160,7 +168,8 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"snapshots\": [";
   for (std::size_t k = 0; k < snapshots_.size(); ++k)
     j += std::string(k ? "," : "") + "\n    {\"file\": " + json_string(snapshots_[k].file) +
-         ", \"step\": " + std::to_string(snapshots_[k].step) + ", \"time_s\": " + format_number(snapshots_[k].time) + "}";
+         ", \"step\": " + std::to_string(snapshots_[k].step) + ", \"time_s\": " + format_number(snapshots_[k].time) +
+         "}";
   j += snapshots_.empty() ? "],\n" : "\n  ],\n";
   j += "  \"detached_points\": " + std::to_string(info.detached_points) + "\n}\n";
   write_file_atomically(path(run_layout::run_info), [&](std::ostream& out) { out << j; });

@@ -1,9 +1,9 @@
 // Shape tensors and stabilization tensors per point.
-#include "solver/parallel_policy.hpp"
 #include "solver/shape_tensor.hpp"
 
 #include <Eigen/Eigenvalues>
 
+#include "solver/parallel_policy.hpp"
 #include "solver/symmetric_tensor.hpp"
 
 namespace mppm::solver {
@@ -65,7 +65,8 @@ std::size_t update_all(PointData& p, const BondFamilies& f, const CosseratConsta
 }
 
 template <int D>
-void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c, const std::vector<std::size_t>& points) {
+void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                 const std::vector<std::size_t>& points) {
   const auto n = static_cast<std::int64_t>(points.size());
   // Each listed point writes only its own tensors; a few hundred points are not worth threads. A
   // detached point stays detached (it may keep bonds to no-fail points, which would otherwise
@@ -81,8 +82,10 @@ void update_some(PointData& p, const BondFamilies& f, const CosseratConstants& c
 
 void update_stabilization_tensors(PointData& p, const CosseratConstants& c) {
   for (std::size_t i = 0; i < p.owned; ++i) {
-    if (p.dimension == 2) set_stabilization_tensor<2>(p, c, i);
-    else set_stabilization_tensor<3>(p, c, i);
+    if (p.dimension == 2)
+      set_stabilization_tensor<2>(p, c, i);
+    else
+      set_stabilization_tensor<3>(p, c, i);
   }
 }
 

@@ -1,14 +1,13 @@
 // Snapshot fields: kinematic state, strain/stress measures, porosity, damage.
 #include "solver/snapshot_fields.hpp"
 
-#include <algorithm>
-
 #include <Eigen/Dense>
+#include <algorithm>
 
 #include "solver/bond_breakage.hpp"
 #include "solver/parallel_policy.hpp"
-#include "solver/symmetric_tensor.hpp"
 #include "solver/plasticity/plastic_strain_measures.hpp"
+#include "solver/symmetric_tensor.hpp"
 #include "solver/viscoplastic_point.hpp"
 
 namespace mppm::solver {
@@ -50,7 +49,8 @@ plasticity::EquivalentStrainWeights equivalent_strain_weights(const Model& m) {
 double point_plastic_shear_strain(const Model& m, const plasticity::EquivalentStrainWeights& weights, std::size_t i) {
   const PointData& p = m.points;
   const int RD = p.rotation_components * p.dimension;
-  const Eigen::Matrix3d eps_vp = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
+  const Eigen::Matrix3d eps_vp =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
   Eigen::VectorXd kap_vp = Eigen::VectorXd::Zero(std::max(RD, 1));
   for (int k = 0; k < RD; ++k) kap_vp[k] = p.plastic_wryness[i * RD + k];
   return plasticity::equivalent_plastic_shear_strain(eps_vp, kap_vp, weights, m.constants.length_scale);
@@ -168,7 +168,8 @@ std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vec
       sources.push_back(per_point(name, 1, [&p](std::size_t i, double* out) { *out = p.detached[i]; }));
     } else if (name == "damage") {
       // D_i = 1 - sum_j b V_j / sum_j V_j over the family before the pre-crack cuts.
-      sources.push_back(per_point(name, 1, [&m](std::size_t i, double* out) { *out = point_damage(m.points, m.bonds, i); }));
+      sources.push_back(
+          per_point(name, 1, [&m](std::size_t i, double* out) { *out = point_damage(m.points, m.bonds, i); }));
     }
   }
   return sources;

@@ -4,11 +4,11 @@
 #include <iostream>
 #include <utility>
 
+#include "common/checkpoint_file.hpp"
 #include "common/command_line.hpp"
 #include "common/input_error.hpp"
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
-#include "common/checkpoint_file.hpp"
 #include "solver/solve_run.hpp"
 #include "solver/test_hooks.hpp"
 
@@ -109,7 +109,8 @@ int start_run(const mppm::CommandLine& cl, TestHooks hooks) {
 int solve_command(int argc, char** argv) {
   return mppm::run_stage(argc, argv, solve_command_spec(), [](const mppm::CommandLine& cl) {
     TestHooks hooks;
-    if (const auto k = cl.option("--fail-checkpoint-write")) hooks.fail_checkpoint_write = parse_checkpoint_write_failure(*k);
+    if (const auto k = cl.option("--fail-checkpoint-write"))
+      hooks.fail_checkpoint_write = parse_checkpoint_write_failure(*k);
     if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
     return start_run(cl, hooks);
   });

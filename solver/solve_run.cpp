@@ -6,22 +6,22 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <optional>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/checksummed_binary.hpp"
 #include "common/input_error.hpp"
+#include "common/memory_estimate.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/checkpoint.hpp"
-#include "common/memory_estimate.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/energy_guard.hpp"
 #include "solver/explicit_dynamics.hpp"
@@ -98,9 +98,9 @@ std::string non_finite_reason(const ExplicitDynamics& dynamics) {
   const auto bad = dynamics.first_non_finite();
   if (!bad) return "non-finite displacement, rotation or velocity";
   const PointData& p = dynamics.model().points;
-  return "non-finite " + bad->field + " at point " + std::to_string(bad->point) + " of the points file (0-based; region " +
-         std::to_string(p.region[bad->point]) + ", position " + position_of(p, bad->point) + "); " +
-         std::to_string(bad->points) + " point(s) non-finite";
+  return "non-finite " + bad->field + " at point " + std::to_string(bad->point) +
+         " of the points file (0-based; region " + std::to_string(p.region[bad->point]) + ", position " +
+         position_of(p, bad->point) + "); " + std::to_string(bad->points) + " point(s) non-finite";
 }
 
 }  // namespace
@@ -117,7 +117,8 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
   in.snapshot_fields = scene.output.fields;
   in.damping = scene.numerics.damping != 0.0;
   for (std::size_t i = 0; i < cloud.size(); ++i)
-    in.boundary_points += (!cloud.region.empty() && cloud.region[i] > 0) || (!cloud.boundary_id.empty() && cloud.boundary_id[i] > 0);
+    in.boundary_points +=
+        (!cloud.region.empty() && cloud.region[i] > 0) || (!cloud.boundary_id.empty() && cloud.boundary_id[i] > 0);
   std::optional<std::uint64_t> available = available_memory_bytes();
   if (const char* budget = std::getenv("MPPM_MEMORY_AVAILABLE")) {
     char* end = nullptr;
@@ -178,9 +179,7 @@ SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptio
 
 }  // namespace
 
-std::string checkpoint_path(const std::string& run_directory) {
-  return run_directory + "/" + run_layout::checkpoint;
-}
+std::string checkpoint_path(const std::string& run_directory) { return run_directory + "/" + run_layout::checkpoint; }
 
 SolveResult solve(const Scene& scene, const PointCloud& cloud, const SolveOptions& options) {
   return run(scene, cloud, options, nullptr, nullptr);
@@ -260,8 +259,12 @@ void fit_step_to_end(const Scene& scene, bool step_given, TimeStepPlan& plan) {
 class RunDriver {
  public:
   RunDriver(const Scene& scene_in, const SolveOptions& options, const CheckpointFile* resume)
-      : scene_in_(scene_in), options_(options), resume_(resume), wall_start_(std::chrono::steady_clock::now()),
-        scene_(scene_in), checkpointing_(scene_in.output.checkpoint_interval > 0.0),
+      : scene_in_(scene_in),
+        options_(options),
+        resume_(resume),
+        wall_start_(std::chrono::steady_clock::now()),
+        scene_(scene_in),
+        checkpointing_(scene_in.output.checkpoint_interval > 0.0),
         guard_(scene_in.numerics.energy_check_tolerance, scene_in.numerics.energy_check_start_step) {}
 
   // `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
@@ -275,8 +278,10 @@ class RunDriver {
     open_run_directory();
     log_start();
     start_dynamics();
-    if (resume_) restore_from_checkpoint();
-    else write_initial_state();
+    if (resume_)
+      restore_from_checkpoint();
+    else
+      write_initial_state();
     Progress progress("mppm-solve", plan_.steps, options_.quiet);
     const InterruptionHandlers handlers;
     if (advance(progress)) finish_completed();
@@ -394,11 +399,14 @@ void RunDriver::fit_time_step() {
 // the one a restart continues.
 void RunDriver::open_run_directory() {
   model().set_breakage_time_step(plan_.dt);
-  if (resume_) writer_.emplace(options_.run_directory, RunWriter::ContinueExisting{});
-  else writer_.emplace(options_.run_directory, options_.force);
+  if (resume_)
+    writer_.emplace(options_.run_directory, RunWriter::ContinueExisting{});
+  else
+    writer_.emplace(options_.run_directory, options_.force);
   if (!resume_) {
     std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", plan_.critical.step}};
-    if (scene_.effects.damage) derived.emplace_back("critical_bond_work_J_per_m6", model().constants.critical_bond_work);
+    if (scene_.effects.damage)
+      derived.emplace_back("critical_bond_work_J_per_m6", model().constants.critical_bond_work);
     const std::string resolved = writer().write_resolved_scene(scene_, derived);
     if (checkpointing_) identity_.scene_fingerprint = fnv1a(resolved);
     writer().write_reference(model().points);
@@ -422,8 +430,10 @@ void RunDriver::fill_run_info() {
 // The first lines of log.txt: what runs, and the start-up report (a restart has it already in
 // its log and says where it continues from).
 void RunDriver::log_start() {
-  if (resume_) writer().restore_log(file_text(writer().path(run_layout::log)));
-  else writer().log("mppm-solve " MPPM_VERSION ": scene " + scene_.path + ", points " + options_.points_file);
+  if (resume_)
+    writer().restore_log(file_text(writer().path(run_layout::log)));
+  else
+    writer().log("mppm-solve " MPPM_VERSION ": scene " + scene_.path + ", points " + options_.points_file);
   if (resume_)
     writer().log("mppm-solve " MPPM_VERSION " --restart: continues from " + resume_->path + " (step " +
                  std::to_string(resume_->header.step) + ", t = " + text(resume_->header.time) + " s), points " +
@@ -453,8 +463,9 @@ void RunDriver::log_start_up_report() {
                " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
                "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " +
                critical.limiting_mode + ", driven by " + critical.driver);
-  writer().log("time step " + text(dt) + " s (" + (scene_in_.time.step ? "given" : "auto, safety " + text(scene_.time.safety)) +
-               "), " + std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads));
+  writer().log("time step " + text(dt) + " s (" +
+               (scene_in_.time.step ? "given" : "auto, safety " + text(scene_.time.safety)) + "), " +
+               std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads));
   if (scene_.effects.damage)
     writer().log("damage: critical bond work w_cr " + text(m.constants.critical_bond_work) + " J/m^6 (G_cr " +
                  text(scene_.material.damage->critical_energy_release_rate) + " J/m^2, " +
@@ -504,17 +515,18 @@ void RunDriver::restore_from_checkpoint() {
   RunLoopState loop = restore_checkpoint(*resume_, identity_, model(), dynamics());
   if (loop.time_step != plan_.dt)
     throw InputError(resume_->path + ": the checkpoint's time step " + text(loop.time_step) +
-                     " s is not the one this run arrives at (" + text(plan_.dt) + " s); cannot continue it bit for bit");
+                     " s is not the one this run arrives at (" + text(plan_.dt) +
+                     " s); cannot continue it bit for bit");
   rows_.restore(loop.next_row);
   snapshots_.restore(loop.next_snapshot);
   checkpoints_.restore(loop.next_checkpoint);
   guard_.restore(loop.guard);
   worst_balance_ = loop.worst_balance;
   const std::int64_t step = resume_->header.step;
-  writer().restore_tables(table_up_to_checkpoint(writer().path(run_layout::load), loop.load_table_bytes,
-                                                 loop.load_table_fingerprint, step),
-                          table_up_to_checkpoint(writer().path(run_layout::energy), loop.energy_table_bytes,
-                                                 loop.energy_table_fingerprint, step));
+  writer().restore_tables(
+      table_up_to_checkpoint(writer().path(run_layout::load), loop.load_table_bytes, loop.load_table_fingerprint, step),
+      table_up_to_checkpoint(writer().path(run_layout::energy), loop.energy_table_bytes, loop.energy_table_fingerprint,
+                             step));
   remove_output_after_checkpoint(writer().directory(), loop.snapshots);
   writer().restore_snapshots(std::move(loop.snapshots));
   first_step_ = dynamics().steps() + 1;
@@ -537,7 +549,8 @@ bool RunDriver::advance(Progress& progress) {
     const bool snap = snapshots_.due(s) || s == steps;
     // A finished run needs no checkpoint to continue from.
     const bool checkpoint_due = checkpoints_.due(s) && s < steps;
-    dynamics().step(row, [this](PointData& points, std::int64_t step) { options_.test_hooks.after_forces(points, step); });
+    dynamics().step(row,
+                    [this](PointData& points, std::int64_t step) { options_.test_hooks.after_forces(points, step); });
     check_and_record(s, row);
     if (snap) snapshot();
     const bool interrupted = interruption_requested() || options_.test_hooks.interrupts_after(s);
@@ -657,8 +670,8 @@ void RunDriver::snapshot() {
 
 // A numerical failure (exit 3): the run directory keeps everything up to the last good snapshot.
 void RunDriver::fail(const std::string& reason) {
-  const std::string message = "numerical failure at step " + std::to_string(dynamics().steps()) + ", t = " +
-                              text(dynamics().time()) + " s: " + reason +
+  const std::string message = "numerical failure at step " + std::to_string(dynamics().steps()) +
+                              ", t = " + text(dynamics().time()) + " s: " + reason +
                               "; the last good snapshot is kept (try a smaller time.step or check the material)";
   if (scene_.effects.damage) writer().log("at the failure: " + damage_summary());
   writer().log(message);
@@ -707,10 +720,10 @@ void RunDriver::checkpoint() {
 void RunDriver::stop_on_checkpoint_write_error(const InputError& e) {
   const std::string message =
       std::string(e.what()) + "; the run stopped at step " + std::to_string(dynamics().steps()) +
-      (last_checkpoint_step_ >= 0 ? "; the previous checkpoint (step " + std::to_string(last_checkpoint_step_) +
-                                        ") is intact: free space, then mppm-solve --restart " + writer().directory() +
-                                        " continues from it"
-                                  : std::string("; no checkpoint was written before"));
+      (last_checkpoint_step_ >= 0
+           ? "; the previous checkpoint (step " + std::to_string(last_checkpoint_step_) +
+                 ") is intact: free space, then mppm-solve --restart " + writer().directory() + " continues from it"
+           : std::string("; no checkpoint was written before"));
   writer().log(message);
   update_info("write_error", message);
   try {

@@ -13,7 +13,7 @@ namespace mppm::solver {
 
 struct StepAdvance {
   const plasticity::ViscoplasticModel* plastic_model = nullptr;  // viscoplasticity effect only
-  double dt = 0.0;  // [s], > 0
+  double dt = 0.0;                                               // [s], > 0
 };
 
 }  // namespace mppm::solver

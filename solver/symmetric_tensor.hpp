@@ -8,7 +8,7 @@
 namespace mppm::solver {
 
 template <int D>
-inline constexpr int symmetric_components = D * (D + 1) / 2;
+inline constexpr int symmetric_components = D*(D + 1) / 2;
 
 // Position of entry (r, c) of a symmetric D x D tensor in its packed upper triangle.
 template <int D>

@@ -43,8 +43,8 @@ std::int64_t hook_integer(const std::string& hook, const std::string& value, con
     used = 0;
   }
   if (used != part.size() || part.empty() || v < 0)
-    throw InputError("mppm-solve: " + hook + " " + value + ": " + what + " '" + part + "' is not a non-negative integer" +
-                     form);
+    throw InputError("mppm-solve: " + hook + " " + value + ": " + what + " '" + part +
+                     "' is not a non-negative integer" + form);
   return v;
 }
 
@@ -61,11 +61,21 @@ void write_nan(PointData& p, const NanInjection& k) {
   const auto c = static_cast<std::size_t>(k.component);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   switch (k.field) {
-    case NanInjection::Field::displacement: p.displacement[k.point * D + c] = nan; break;
-    case NanInjection::Field::velocity: p.velocity[k.point * D + c] = nan; break;
-    case NanInjection::Field::force: p.force[k.point * D + c] = nan; break;
-    case NanInjection::Field::rotation: p.rotation[k.point * R + c] = nan; break;
-    case NanInjection::Field::rotation_rate: p.spin[k.point * R + c] = nan; break;
+    case NanInjection::Field::displacement:
+      p.displacement[k.point * D + c] = nan;
+      break;
+    case NanInjection::Field::velocity:
+      p.velocity[k.point * D + c] = nan;
+      break;
+    case NanInjection::Field::force:
+      p.force[k.point * D + c] = nan;
+      break;
+    case NanInjection::Field::rotation:
+      p.rotation[k.point * R + c] = nan;
+      break;
+    case NanInjection::Field::rotation_rate:
+      p.spin[k.point * R + c] = nan;
+      break;
   }
 }
 
@@ -73,11 +83,16 @@ void write_nan(PointData& p, const NanInjection& k) {
 
 const char* NanInjection::name(Field f) {
   switch (f) {
-    case Field::displacement: return "displacement";
-    case Field::velocity: return "velocity";
-    case Field::rotation: return "rotation";
-    case Field::rotation_rate: return "rotation_rate";
-    case Field::force: return "force";
+    case Field::displacement:
+      return "displacement";
+    case Field::velocity:
+      return "velocity";
+    case Field::rotation:
+      return "rotation";
+    case Field::rotation_rate:
+      return "rotation_rate";
+    case Field::force:
+      return "force";
   }
   return "?";
 }
@@ -120,7 +135,8 @@ VelocityKick parse_velocity_kick(const std::string& value) {
   } catch (const std::invalid_argument& e) {
     throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY: " + e.what() + form);
   }
-  if (!std::isfinite(k.velocity)) throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY must be finite" + form);
+  if (!std::isfinite(k.velocity))
+    throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY must be finite" + form);
   return k;
 }
 
@@ -178,9 +194,9 @@ void TestHooks::refuse_with_restart() const {
 std::vector<std::string> TestHooks::armed() const {
   std::vector<std::string> lines;
   if (const auto& k = inject_nan)
-    lines.push_back("test hook (--inject-nan): a NaN will be written into " + std::string(NanInjection::name(k->field)) +
-                    " component " + std::to_string(k->component) + " of point " + std::to_string(k->point) +
-                    " in step " + std::to_string(k->step));
+    lines.push_back("test hook (--inject-nan): a NaN will be written into " +
+                    std::string(NanInjection::name(k->field)) + " component " + std::to_string(k->component) +
+                    " of point " + std::to_string(k->point) + " in step " + std::to_string(k->step));
   if (const auto& k = inject_kick)
     lines.push_back("test hook (--inject-kick): " + text(k->velocity) + " m/s will be added to velocity component " +
                     std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +

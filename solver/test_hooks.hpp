@@ -18,8 +18,8 @@ namespace mppm::solver {
 // evaluation spreads it to the neighbours.
 struct NanInjection {
   enum class Field { displacement, velocity, rotation, rotation_rate, force };
-  std::int64_t step = 1;    // the step (1-based) in which the value turns NaN
-  std::size_t point = 0;    // index in the points file (owned points come first, in file order)
+  std::int64_t step = 1;  // the step (1-based) in which the value turns NaN
+  std::size_t point = 0;  // index in the points file (owned points come first, in file order)
   Field field = Field::velocity;
   int component = 0;
   static const char* name(Field f);
@@ -29,10 +29,10 @@ struct NanInjection {
 // middle of a step, at the same place as a NaN injection. Nothing accounts for the kinetic energy
 // it adds, so the periodic energy check sees unexplained growth for a known reason.
 struct VelocityKick {
-  std::int64_t step = 1;    // the step (1-based) in which the velocity jumps
-  std::size_t point = 0;    // index in the points file
+  std::int64_t step = 1;  // the step (1-based) in which the velocity jumps
+  std::size_t point = 0;  // index in the points file
   int component = 0;
-  double velocity = 0.0;    // [m/s]
+  double velocity = 0.0;  // [m/s]
 };
 
 struct TestHooks {

@@ -6,8 +6,8 @@
 #include <Eigen/Dense>
 
 #include "solver/cosserat_material.hpp"
-#include "solver/step_advance.hpp"
 #include "solver/plasticity/cosserat_elasticity.hpp"
+#include "solver/step_advance.hpp"
 
 namespace mppm::solver::viscoplastic {
 
@@ -77,9 +77,9 @@ inline double elastic_energy_density(const ElasticStrain<D>& e, const ElasticStr
 // the stresses, so with it kinetic + stored + dissipated - work is conserved to round-off.
 // eps_start / kap_start: the strain of the previous evaluation (the start of the step).
 template <int D, int R, bool Polar>
-inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& eps_start,
-                            const double* kap_start, double* plastic_strain9, double* plastic_wryness,
-                            double& ebar, const CosseratConstants& c, const StepAdvance& step) {
+inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& eps_start, const double* kap_start,
+                            double* plastic_strain9, double* plastic_wryness, double& ebar, const CosseratConstants& c,
+                            const StepAdvance& step) {
   using Curvature = plasticity::Curvature<D>;
   constexpr int RD = R * D;
   Eigen::Matrix3d eps3 = Eigen::Matrix3d::Zero(), eps3_start = Eigen::Matrix3d::Zero();

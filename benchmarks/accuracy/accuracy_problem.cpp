@@ -1,13 +1,13 @@
 #include "benchmarks/accuracy/accuracy_problem.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <sstream>
-
-#include <omp.h>
 
 #include "tests/verification/problems/crack_energy.hpp"
 #include "tests/verification/problems/layer_shear.hpp"
@@ -22,11 +22,11 @@ namespace {
 // l = 5 mm puts the cut-off frequency (1.6e5 rad/s) near the acoustic frequencies the lattices
 // resolve, so both the translational and the rotational physics matter. The layer is 30 mm high
 // with lam h = 3 (a 23 % Cosserat size effect over mu).
-constexpr double kWavelength = 0.1;   // [m]
-constexpr double kLengthScale = 5e-3; // [m]
-constexpr double kLayerHeight = 0.03; // [m]
+constexpr double kWavelength = 0.1;    // [m]
+constexpr double kLengthScale = 5e-3;  // [m]
+constexpr double kLayerHeight = 0.03;  // [m]
 constexpr double kLayerLamH = 3.0;
-constexpr double kThickness = 1e-3;   // [m], 2-D
+constexpr double kThickness = 1e-3;  // [m], 2-D
 // Waves run 4x the tests' duration (about 9 acoustic periods, 18 zero crossings): the crossing
 // times' interpolation error, O((W dt)^3) per crossing, then stays well below the finest
 // lattices' discretization error.
@@ -99,9 +99,12 @@ StudyResult run_wave(const StudyParameters& p) {
     r.setup_seconds += seconds_since(start);
     r.points = m.points.owned;
     r.bonds = m.bonds.bond_count();
-    if (p.problem == "p_wave") record(r, verification::measure_p_wave(m, k, step, kDurationFactor), r.bonds);
-    else if (p.problem == "cutoff_frequency") record(r, verification::measure_cutoff(m, step, kDurationFactor), r.bonds);
-    else record(r, verification::measure_coupled_wave(m, k, branch, step, kDurationFactor), r.bonds);
+    if (p.problem == "p_wave")
+      record(r, verification::measure_p_wave(m, k, step, kDurationFactor), r.bonds);
+    else if (p.problem == "cutoff_frequency")
+      record(r, verification::measure_cutoff(m, step, kDurationFactor), r.bonds);
+    else
+      record(r, verification::measure_coupled_wave(m, k, branch, step, kDurationFactor), r.bonds);
   }
   return r;
 }
@@ -199,8 +202,7 @@ std::string validate_parameters(const StudyParameters& p) {
       << " in " << p.dimension << "-D, got " << p.resolution;
   } else if (!(p.horizon_factor >= 1.0 && p.horizon_factor <= 8.0)) {
     e << "--horizon-factor: expected a number from 1 to 8 (delta = factor x dx), got " << p.horizon_factor;
-  } else if (p.problem != "layer_shear" && p.problem != "crack_energy" &&
-             2 * p.horizon_factor >= p.resolution) {
+  } else if (p.problem != "layer_shear" && p.problem != "crack_energy" && 2 * p.horizon_factor >= p.resolution) {
     e << "--horizon-factor: a wavelength of " << p.resolution << " points must exceed two horizons ("
       << 2 * p.horizon_factor << " points)";
   } else if (!(p.safety > 0.0 && p.safety < 1.0)) {

@@ -10,19 +10,19 @@
 namespace mppm::accuracy {
 
 struct StudyParameters {
-  std::string problem;          // one of problem_names()
+  std::string problem;  // one of problem_names()
   int dimension = 2;
-  int resolution = 40;          // points per wavelength (waves) or body rows (layer)
+  int resolution = 40;  // points per wavelength (waves) or body rows (layer)
   double horizon_factor = 3.05;
-  double safety = 0.8;          // time step = safety x critical step (explicit problems)
-  double stabilization = 0.1;   // G_s
+  double safety = 0.8;         // time step = safety x critical step (explicit problems)
+  double stabilization = 0.1;  // G_s
 };
 
 struct StudyResult {
-  double spacing = 0.0;         // dx [m]
+  double spacing = 0.0;  // dx [m]
   // |measured / analytic - 1| (for the two-branch wave: the larger of its two branches)
   double error = 0.0;
-  double signed_error = 0.0;    // measured / analytic - 1 of that quantity
+  double signed_error = 0.0;              // measured / analytic - 1 of that quantity
   double measured = 0.0, analytic = 0.0;  // rad/s (waves) or Pa (layer stiffness)
   std::size_t points = 0, bonds = 0;
   std::int64_t steps = 0;       // time steps, or conjugate-gradient force evaluations (layer)

@@ -100,8 +100,10 @@ int run(const CommandLine& cl) {
   if (!cl.positional.empty()) throw InputError("unexpected argument '" + cl.positional.front() + "' (see --help)");
   accuracy::StudyParameters p;
   const auto problem = cl.option("--problem");
-  if (!problem) throw InputError("--problem: missing (expected one of p_wave, shear_rotation_wave, cutoff_frequency, "
-                                 "layer_shear, crack_energy)");
+  if (!problem)
+    throw InputError(
+        "--problem: missing (expected one of p_wave, shear_rotation_wave, cutoff_frequency, "
+        "layer_shear, crack_energy)");
   p.problem = *problem;
   p.dimension = integer_option(cl, "--dimension", p.dimension);
   p.resolution = integer_option(cl, "--resolution", p.resolution);
@@ -119,13 +121,12 @@ int run(const CommandLine& cl) {
   const accuracy::StudyResult r = accuracy::run_problem(p);
   const double nan = std::nan("");
   const bool ok = std::isfinite(r.error);
-  std::cout << p.problem << "," << sweep << "," << p.dimension << "," << p.resolution << "," << cell(r.spacing)
-            << "," << cell(p.horizon_factor) << "," << cell(p.safety) << "," << cell(p.stabilization) << "," << threads
-            << "," << (ok ? "ok" : "not_converged") << ","
-            << cell(ok ? r.error : nan) << "," << cell(ok ? r.signed_error : nan) << ","
-            << cell(r.measured) << "," << cell(r.analytic) << ",";
-  std::cout << r.points << "," << r.bonds << "," << r.steps << "," << cell(r.time_step) << ","
-            << cell(r.setup_seconds) << "," << cell(r.wall_seconds) << "," << cell(r.bond_updates) << ","
+  std::cout << p.problem << "," << sweep << "," << p.dimension << "," << p.resolution << "," << cell(r.spacing) << ","
+            << cell(p.horizon_factor) << "," << cell(p.safety) << "," << cell(p.stabilization) << "," << threads << ","
+            << (ok ? "ok" : "not_converged") << "," << cell(ok ? r.error : nan) << ","
+            << cell(ok ? r.signed_error : nan) << "," << cell(r.measured) << "," << cell(r.analytic) << ",";
+  std::cout << r.points << "," << r.bonds << "," << r.steps << "," << cell(r.time_step) << "," << cell(r.setup_seconds)
+            << "," << cell(r.wall_seconds) << "," << cell(r.bond_updates) << ","
             << cell(r.kernel_seconds > 0 ? r.bond_updates / r.kernel_seconds : nan) << ",";
   std::cout << accuracy::peak_memory_bytes() << "," << load_average() << "\n";
   return kExitSuccess;
@@ -134,9 +135,10 @@ int run(const CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{"mppm-accuracy", kUsage,
-                             {"--problem", "--dimension", "--resolution", "--horizon-factor", "--safety",
-                              "--stabilization", "--sweep"},
-                             {"--header"}};
+  const CommandLineSpec spec{
+      "mppm-accuracy",
+      kUsage,
+      {"--problem", "--dimension", "--resolution", "--horizon-factor", "--safety", "--stabilization", "--sweep"},
+      {"--header"}};
   return run_stage(argc, argv, spec, run);
 }

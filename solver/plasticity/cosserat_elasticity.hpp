@@ -53,20 +53,17 @@ inline double bulk_modulus(const CosseratElasticity<Dim>& e) {
 }
 
 template <int Dim>
-inline Eigen::Matrix3d cosserat_stress(const Eigen::Matrix3d& elastic_strain,
-                                       const CosseratElasticity<Dim>& e) {
-  return e.lambda * elastic_strain.trace() * Eigen::Matrix3d::Identity() +
-         (e.mu + e.mu_c) * elastic_strain + (e.mu - e.mu_c) * elastic_strain.transpose();
+inline Eigen::Matrix3d cosserat_stress(const Eigen::Matrix3d& elastic_strain, const CosseratElasticity<Dim>& e) {
+  return e.lambda * elastic_strain.trace() * Eigen::Matrix3d::Identity() + (e.mu + e.mu_c) * elastic_strain +
+         (e.mu - e.mu_c) * elastic_strain.transpose();
 }
 
-inline Eigen::Matrix3d couple_stress(const Eigen::Matrix3d& elastic_wryness,
-                                     const CosseratElasticity<3>& e) {
+inline Eigen::Matrix3d couple_stress(const Eigen::Matrix3d& elastic_wryness, const CosseratElasticity<3>& e) {
   return e.a1 * elastic_wryness.trace() * Eigen::Matrix3d::Identity() + e.a2 * elastic_wryness +
          e.a3 * elastic_wryness.transpose();
 }
 
-inline Eigen::Vector2d couple_stress(const Eigen::Vector2d& elastic_wryness,
-                                     const CosseratElasticity<2>& e) {
+inline Eigen::Vector2d couple_stress(const Eigen::Vector2d& elastic_wryness, const CosseratElasticity<2>& e) {
   return e.bending_modulus * elastic_wryness;
 }
 

@@ -24,9 +24,7 @@ double DruckerPragerPerzyna::cohesion_at(double ebar) const {
 }
 
 double DruckerPragerPerzyna::cohesion_slope_at(double ebar) const {
-  return parameters.cohesion + parameters.hardening * ebar > parameters.residual_cohesion
-             ? parameters.hardening
-             : 0.0;
+  return parameters.cohesion + parameters.hardening * ebar > parameters.residual_cohesion ? parameters.hardening : 0.0;
 }
 
 DruckerPragerPerzyna make_drucker_prager_perzyna(const DruckerPragerParameters& p) {
@@ -45,17 +43,14 @@ DruckerPragerPerzyna make_drucker_prager_perzyna(const DruckerPragerParameters& 
     fail("viscoplasticity.residual_cohesion", "must be in [0, cohesion]");
   if (!(p.viscosity >= 0.0 && std::isfinite(p.viscosity)))
     fail("viscoplasticity.viscosity", "must be a finite value >= 0 (0 = rate-independent)");
-  if (!(p.length_scale >= 0.0 && std::isfinite(p.length_scale)))
-    fail("length_scale", "must be a finite value >= 0");
+  if (!(p.length_scale >= 0.0 && std::isfinite(p.length_scale))) fail("length_scale", "must be a finite value >= 0");
   // The blocks' weights must keep J2 and ebar non-negative: symmetric and skew weights
   // a1 + a2 and a1 - a2 (b1 + b2, b1 - b2) must not be negative.
   if (!(p.j2.a1 + p.j2.a2 > 0.0 && p.j2.a1 >= p.j2.a2 && p.j2.a3 >= 0.0))
-    fail("viscoplasticity.j2_weights",
-         "need a1 + a2 > 0, a1 >= a2, a3 >= 0 (default 1/4, 1/4, 1/2)");
-  if (!(p.equivalent_strain.b1 + p.equivalent_strain.b2 > 0.0 &&
-        p.equivalent_strain.b1 >= p.equivalent_strain.b2 && p.equivalent_strain.b3 >= 0.0))
-    fail("viscoplasticity.equivalent_strain_weights",
-         "need b1 + b2 > 0, b1 >= b2, b3 >= 0 (default 1/3, 1/3, 2/3)");
+    fail("viscoplasticity.j2_weights", "need a1 + a2 > 0, a1 >= a2, a3 >= 0 (default 1/4, 1/4, 1/2)");
+  if (!(p.equivalent_strain.b1 + p.equivalent_strain.b2 > 0.0 && p.equivalent_strain.b1 >= p.equivalent_strain.b2 &&
+        p.equivalent_strain.b3 >= 0.0))
+    fail("viscoplasticity.equivalent_strain_weights", "need b1 + b2 > 0, b1 >= b2, b3 >= 0 (default 1/3, 1/3, 2/3)");
   DruckerPragerPerzyna model;
   model.parameters = p;
   model.cone = cone_coefficients(p.friction_angle, p.dilatancy_angle, p.cone_match);
@@ -144,8 +139,7 @@ double cone_q(const ScalarProblem& sp, double dgamma, double tangent_start) {
 }
 
 // `from` is the previous evaluation (at dgamma `from_dgamma`), whose tangent starts the q solve.
-ConeEvaluation evaluate_cone(const ScalarProblem& sp, double dgamma, const ConeEvaluation& from,
-                             double from_dgamma) {
+ConeEvaluation evaluate_cone(const ScalarProblem& sp, double dgamma, const ConeEvaluation& from, double from_dgamma) {
   ConeEvaluation e;
   e.q = cone_q(sp, dgamma, from.q + from.dq * (dgamma - from_dgamma));
   double s3w = 0.0, s3wg = 0.0, rho2 = 0.0;
@@ -167,8 +161,7 @@ ConeEvaluation evaluate_cone(const ScalarProblem& sp, double dgamma, const ConeE
   e.ddebar = rho + dgamma * drho;
   const double ebar = sp.ebar_start + e.debar;
   const double p = sp.p_trial - sp.bulk * sp.dilatancy_slope * dgamma;
-  e.residual = e.q + sp.friction_slope * p - sp.cohesion_factor * sp.model->cohesion_at(ebar) -
-               sp.eta_over_dt * dgamma;
+  e.residual = e.q + sp.friction_slope * p - sp.cohesion_factor * sp.model->cohesion_at(ebar) - sp.eta_over_dt * dgamma;
   e.dresidual = e.dq - sp.friction_slope * sp.bulk * sp.dilatancy_slope -
                 sp.cohesion_factor * sp.model->cohesion_slope_at(ebar) * e.ddebar - sp.eta_over_dt;
   return e;
@@ -198,9 +191,8 @@ ScalarSolution solve_return(ScalarProblem& sp) {
   const double multiplier_max = std::sqrt(multiplier_max_sq);
   const double debar_apex = std::sqrt(debar_apex_sq);
   const double cohesion_apex = sp.model->cohesion_at(sp.ebar_start + debar_apex);
-  const double apex_residual =
-      sp.friction_slope * (sp.p_trial - sp.bulk * sp.dilatancy_slope * multiplier_max) -
-      sp.cohesion_factor * cohesion_apex - sp.eta_over_dt * multiplier_max;
+  const double apex_residual = sp.friction_slope * (sp.p_trial - sp.bulk * sp.dilatancy_slope * multiplier_max) -
+                               sp.cohesion_factor * cohesion_apex - sp.eta_over_dt * multiplier_max;
   const auto mark_active_scale = [&](auto scale_of) {
     for (int b = 0, k = 0; b < sp.count; ++b) {
       if (sp.blocks[b].active()) sol.scale[b] = scale_of(k++);
@@ -225,9 +217,8 @@ ScalarSolution solve_return(ScalarProblem& sp) {
       // lower p, so the excess mean stress is cut off by volumetric plastic strain
       // (a tension cut-off at the apex) instead of leaving the stress outside the cone.
       sol.multiplier = multiplier_max;
-      const double p_apex = sp.friction_slope > 0.0
-                                ? sp.cohesion_factor * cohesion_apex / sp.friction_slope
-                                : sp.p_trial;
+      const double p_apex =
+          sp.friction_slope > 0.0 ? sp.cohesion_factor * cohesion_apex / sp.friction_slope : sp.p_trial;
       sol.volumetric = std::max(0.0, (sp.p_trial - p_apex) / sp.bulk);
     }
     return sol;
@@ -236,8 +227,8 @@ ScalarSolution solve_return(ScalarProblem& sp) {
   // Cone: bracketed Newton on dgamma in (0, dgamma_max). r(0) = f_trial > 0 and
   // r(dgamma_max) = apex_residual < 0; a Newton step that leaves the bracket (possible with
   // strong softening, where r is not monotone) is replaced by bisection.
-  const double stress_scale = sp.q_trial + std::abs(sp.friction_slope * sp.p_trial) +
-                              sp.cohesion_factor * sp.model->cohesion_at(sp.ebar_start);
+  const double stress_scale =
+      sp.q_trial + std::abs(sp.friction_slope * sp.p_trial) + sp.cohesion_factor * sp.model->cohesion_at(sp.ebar_start);
   const double tolerance = 1e-13 * stress_scale;
   double lo = 0.0, hi = multiplier_max;
   double x = 0.0;
@@ -252,9 +243,7 @@ ScalarSolution solve_return(ScalarProblem& sp) {
       lo = x;
     else
       hi = x;
-    if (std::abs(e.residual) <= tolerance ||
-        hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi)
-      break;
+    if (std::abs(e.residual) <= tolerance || hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
   }
   sol.multiplier = x;
   sol.q = e.q;
@@ -287,20 +276,16 @@ CoupleParts<2> split_couple(const Eigen::Vector2d& m, const CosseratElasticity<2
 CoupleParts<3> split_couple(const Eigen::Matrix3d& m, const CosseratElasticity<3>& e) {
   const Eigen::Matrix3d vol = (m.trace() / 3.0) * Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d sym = 0.5 * (m + m.transpose());
-  return {{vol, sym - vol, 0.5 * (m - m.transpose())},
-          {3.0 * e.a1 + e.a2 + e.a3, e.a2 + e.a3, e.a2 - e.a3}};
+  return {{vol, sym - vol, 0.5 * (m - m.transpose())}, {3.0 * e.a1 + e.a2 + e.a3, e.a2 + e.a3, e.a2 - e.a3}};
 }
 
 template <int Dim>
-PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wryness,
-                        const PlasticState<Dim>& state, const CosseratElasticity<Dim>& elasticity,
-                        const DruckerPragerPerzyna& model, double dt) {
+PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wryness, const PlasticState<Dim>& state,
+                        const CosseratElasticity<Dim>& elasticity, const DruckerPragerPerzyna& model, double dt) {
   const DruckerPragerParameters& prm = model.parameters;
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d stress_trial =
-      cosserat_stress<Dim>(strain - state.plastic_strain, elasticity);
-  const Curvature<Dim> couple_trial =
-      couple_stress(Curvature<Dim>(wryness - state.plastic_wryness), elasticity);
+  const Eigen::Matrix3d stress_trial = cosserat_stress<Dim>(strain - state.plastic_strain, elasticity);
+  const Curvature<Dim> couple_trial = couple_stress(Curvature<Dim>(wryness - state.plastic_wryness), elasticity);
   const double p_trial = stress_trial.trace() / 3.0;
   const Eigen::Matrix3d dev = stress_trial - p_trial * identity;
   const Eigen::Matrix3d sym_dev = 0.5 * (dev + dev.transpose());
@@ -316,8 +301,7 @@ PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wry
   const double l2 = prm.length_scale * prm.length_scale;
   for (int k = 0; k < CoupleParts<Dim>::count; ++k) {
     // Without a length scale the couple stress does not enter J2 and stays elastic.
-    sp.blocks[2 + k] = {couple.part[k].squaredNorm(), l2 > 0.0 ? a.a3 / l2 : 0.0, couple.modulus[k],
-                        b.b3 * l2};
+    sp.blocks[2 + k] = {couple.part[k].squaredNorm(), l2 > 0.0 ? a.a3 / l2 : 0.0, couple.modulus[k], b.b3 * l2};
   }
   sp.count = 2 + CoupleParts<Dim>::count;
   double j2_trial = 0.0;
@@ -336,8 +320,7 @@ PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wry
   PointUpdate<Dim> out;
   out.state = state;
   out.state.cohesion = model.cohesion_at(state.equivalent_plastic_strain);
-  const double f_trial =
-      sp.q_trial + sp.friction_slope * p_trial - model.cone_strength(out.state.cohesion);
+  const double f_trial = sp.q_trial + sp.friction_slope * p_trial - model.cone_strength(out.state.cohesion);
   // A viscous material has no time to flow in a step of zero length: the trial stands.
   const bool no_time_to_flow = !(dt > 0.0) && prm.viscosity > 0.0;
   if (!(f_trial > 0.0) || no_time_to_flow) {
@@ -351,8 +334,7 @@ PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wry
   const double p = p_trial - sp.bulk * sol.volumetric;
   out.stress = sol.scale[0] * sym_dev + sol.scale[1] * skew + p * identity;
   out.couple_stress.setZero();
-  for (int k = 0; k < CoupleParts<Dim>::count; ++k)
-    out.couple_stress += sol.scale[2 + k] * couple.part[k];
+  for (int k = 0; k < CoupleParts<Dim>::count; ++k) out.couple_stress += sol.scale[2 + k] * couple.part[k];
 
   // Plastic increments: what each block lost, through its elastic compliance.
   Eigen::Matrix3d d_strain = (sol.volumetric / 3.0) * identity;
@@ -360,8 +342,7 @@ PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wry
   if (sol.scale[1] != 1.0) d_strain += ((1.0 - sol.scale[1]) / sp.blocks[1].modulus) * skew;
   Curvature<Dim> d_wryness = Curvature<Dim>::Zero();
   for (int k = 0; k < CoupleParts<Dim>::count; ++k) {
-    if (sol.scale[2 + k] != 1.0)
-      d_wryness += ((1.0 - sol.scale[2 + k]) / couple.modulus[k]) * couple.part[k];
+    if (sol.scale[2 + k] != 1.0) d_wryness += ((1.0 - sol.scale[2 + k]) / couple.modulus[k]) * couple.part[k];
   }
 
   out.plastic = true;
@@ -379,18 +360,14 @@ PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wry
 
 }  // namespace
 
-PointUpdate<2> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain,
-                                             const Eigen::Vector2d& wryness,
-                                             const PlasticState<2>& state,
-                                             const CosseratElasticity<2>& elasticity,
+PointUpdate<2> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness,
+                                             const PlasticState<2>& state, const CosseratElasticity<2>& elasticity,
                                              const DruckerPragerPerzyna& model, double dt) {
   return update<2>(strain, wryness, state, elasticity, model, dt);
 }
 
-PointUpdate<3> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain,
-                                             const Eigen::Matrix3d& wryness,
-                                             const PlasticState<3>& state,
-                                             const CosseratElasticity<3>& elasticity,
+PointUpdate<3> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain, const Eigen::Matrix3d& wryness,
+                                             const PlasticState<3>& state, const CosseratElasticity<3>& elasticity,
                                              const DruckerPragerPerzyna& model, double dt) {
   return update<3>(strain, wryness, state, elasticity, model, dt);
 }

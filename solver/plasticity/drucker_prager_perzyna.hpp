@@ -74,27 +74,23 @@ struct PointUpdate {
   Eigen::Matrix3d stress = Eigen::Matrix3d::Zero();       // sigma_{n+1} [Pa]
   Curvature<Dim> couple_stress = Curvature<Dim>::Zero();  // m_{n+1} [N/m]
   PlasticState<Dim> state;                                // state_{n+1}
-  double dissipation = 0.0;  // sigma:d(eps_vp) + m:d(kap_vp) over the step [J/m^3]
-  double multiplier = 0.0;   // d(gamma): the step's increment of the Perzyna multiplier
-  double overstress = 0.0;   // f(sigma_{n+1}, c_{n+1}) = eta * d(gamma)/dt [Pa]; 0 if elastic
-  bool plastic = false;      // the trial state was outside the cone
-  bool apex = false;         // returned to the apex (all deviatoric blocks zeroed)
-  int iterations = 0;        // Newton iterations of the cone return
+  double dissipation = 0.0;                               // sigma:d(eps_vp) + m:d(kap_vp) over the step [J/m^3]
+  double multiplier = 0.0;                                // d(gamma): the step's increment of the Perzyna multiplier
+  double overstress = 0.0;  // f(sigma_{n+1}, c_{n+1}) = eta * d(gamma)/dt [Pa]; 0 if elastic
+  bool plastic = false;     // the trial state was outside the cone
+  bool apex = false;        // returned to the apex (all deviatoric blocks zeroed)
+  int iterations = 0;       // Newton iterations of the cone return
 };
 
 // One backward-Euler step of a material point: total strain eps and wryness kap at the end
 // of the step, the point's state at its start, elastic constants, model, time step dt.
 // 2-D: plane strain, eps with zero z components, kap = grad w_z. dt > 0 (with eta > 0 and
 // dt <= 0 the step stays elastic; with eta = 0 dt does not matter).
-PointUpdate<2> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain,
-                                             const Eigen::Vector2d& wryness,
-                                             const PlasticState<2>& state,
-                                             const CosseratElasticity<2>& elasticity,
+PointUpdate<2> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness,
+                                             const PlasticState<2>& state, const CosseratElasticity<2>& elasticity,
                                              const DruckerPragerPerzyna& model, double dt);
-PointUpdate<3> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain,
-                                             const Eigen::Matrix3d& wryness,
-                                             const PlasticState<3>& state,
-                                             const CosseratElasticity<3>& elasticity,
+PointUpdate<3> drucker_prager_perzyna_update(const Eigen::Matrix3d& strain, const Eigen::Matrix3d& wryness,
+                                             const PlasticState<3>& state, const CosseratElasticity<3>& elasticity,
                                              const DruckerPragerPerzyna& model, double dt);
 
 }  // namespace mppm::plasticity

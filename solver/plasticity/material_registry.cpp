@@ -8,8 +8,7 @@
 namespace mppm::plasticity {
 
 DruckerPragerParameters drucker_prager_parameters(const Material& material) {
-  if (!material.viscoplasticity)
-    throw std::invalid_argument("viscoplasticity: missing (the effect needs this block)");
+  if (!material.viscoplasticity) throw std::invalid_argument("viscoplasticity: missing (the effect needs this block)");
   const ViscoplasticParameters& vp = *material.viscoplasticity;
   DruckerPragerParameters p;
   p.friction_angle = vp.friction_angle;
@@ -28,11 +27,10 @@ MaterialRegistry& MaterialRegistry::viscoplastic() {
   // library would silently drop when no symbol of the model's object file is referenced.
   static MaterialRegistry registry = [] {
     MaterialRegistry r;
-    r.add(DruckerPragerPerzynaModel::kName,
-          [](const Material& material) -> std::unique_ptr<ViscoplasticModel> {
-            return std::make_unique<DruckerPragerPerzynaModel>(
-                make_drucker_prager_perzyna(drucker_prager_parameters(material)));
-          });
+    r.add(DruckerPragerPerzynaModel::kName, [](const Material& material) -> std::unique_ptr<ViscoplasticModel> {
+      return std::make_unique<DruckerPragerPerzynaModel>(
+          make_drucker_prager_perzyna(drucker_prager_parameters(material)));
+    });
     return r;
   }();
   return registry;
@@ -50,20 +48,17 @@ std::vector<std::string> MaterialRegistry::names() const {
   return out;
 }
 
-std::unique_ptr<ViscoplasticModel> MaterialRegistry::create(const Material& material,
-                                                            const std::string& source) const {
+std::unique_ptr<ViscoplasticModel> MaterialRegistry::create(const Material& material, const std::string& source) const {
   if (!material.viscoplasticity) {
-    throw InputError(
-        source +
-        ": material.viscoplasticity: missing (the effect 'viscoplasticity' needs this block)");
+    throw InputError(source + ": material.viscoplasticity: missing (the effect 'viscoplasticity' needs this block)");
   }
   const std::string& name = material.viscoplasticity->model;
   const auto it = factories_.find(name);
   if (it == factories_.end()) {
     std::string valid;
     for (const std::string& n : names()) valid += (valid.empty() ? "" : ", ") + n;
-    throw InputError(source + ": material.viscoplasticity.model: unknown model '" + name +
-                     "' (valid models: " + valid + ")");
+    throw InputError(source + ": material.viscoplasticity.model: unknown model '" + name + "' (valid models: " + valid +
+                     ")");
   }
   try {
     return it->second(material);
@@ -72,8 +67,7 @@ std::unique_ptr<ViscoplasticModel> MaterialRegistry::create(const Material& mate
   }
 }
 
-std::unique_ptr<ViscoplasticModel> make_viscoplastic_model(const Material& material,
-                                                           const std::string& source) {
+std::unique_ptr<ViscoplasticModel> make_viscoplastic_model(const Material& material, const std::string& source) {
   return MaterialRegistry::viscoplastic().create(material, source);
 }
 

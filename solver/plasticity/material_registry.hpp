@@ -30,16 +30,14 @@ class MaterialRegistry {
   // Resolves material.viscoplasticity.model. `source` names the scene file in messages.
   // Throws InputError("SOURCE: material.viscoplasticity.model: unknown model 'x'
   // (valid: a, b)") or InputError("SOURCE: material.KEY: problem") for bad parameters.
-  std::unique_ptr<ViscoplasticModel> create(const Material& material,
-                                            const std::string& source) const;
+  std::unique_ptr<ViscoplasticModel> create(const Material& material, const std::string& source) const;
 
  private:
   std::map<std::string, Factory> factories_;
 };
 
 // MaterialRegistry::viscoplastic().create(material, source).
-std::unique_ptr<ViscoplasticModel> make_viscoplastic_model(const Material& material,
-                                                           const std::string& source);
+std::unique_ptr<ViscoplasticModel> make_viscoplastic_model(const Material& material, const std::string& source);
 
 // The model parameters of a scene's material block (angles in radians, SI).
 DruckerPragerParameters drucker_prager_parameters(const Material& material);

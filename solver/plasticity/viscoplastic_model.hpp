@@ -20,11 +20,11 @@ class ViscoplasticModel {
   // per point.
   virtual double cohesion_at(double equivalent_plastic_strain) const = 0;
   virtual PointUpdate<2> update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness,
-                                const PlasticState<2>& state,
-                                const CosseratElasticity<2>& elasticity, double dt) const = 0;
+                                const PlasticState<2>& state, const CosseratElasticity<2>& elasticity,
+                                double dt) const = 0;
   virtual PointUpdate<3> update(const Eigen::Matrix3d& strain, const Eigen::Matrix3d& wryness,
-                                const PlasticState<3>& state,
-                                const CosseratElasticity<3>& elasticity, double dt) const = 0;
+                                const PlasticState<3>& state, const CosseratElasticity<3>& elasticity,
+                                double dt) const = 0;
 };
 
 // "drucker-prager-perzyna": docs/theory.md section 6.
@@ -40,14 +40,12 @@ class DruckerPragerPerzynaModel final : public ViscoplasticModel {
   double cohesion_at(double equivalent_plastic_strain) const override {
     return model_.cohesion_at(equivalent_plastic_strain);
   }
-  PointUpdate<2> update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness,
-                        const PlasticState<2>& state, const CosseratElasticity<2>& elasticity,
-                        double dt) const override {
+  PointUpdate<2> update(const Eigen::Matrix3d& strain, const Eigen::Vector2d& wryness, const PlasticState<2>& state,
+                        const CosseratElasticity<2>& elasticity, double dt) const override {
     return drucker_prager_perzyna_update(strain, wryness, state, elasticity, model_, dt);
   }
-  PointUpdate<3> update(const Eigen::Matrix3d& strain, const Eigen::Matrix3d& wryness,
-                        const PlasticState<3>& state, const CosseratElasticity<3>& elasticity,
-                        double dt) const override {
+  PointUpdate<3> update(const Eigen::Matrix3d& strain, const Eigen::Matrix3d& wryness, const PlasticState<3>& state,
+                        const CosseratElasticity<3>& elasticity, double dt) const override {
     return drucker_prager_perzyna_update(strain, wryness, state, elasticity, model_, dt);
   }
 

@@ -6,8 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -68,7 +68,8 @@ Outcome scene_attempt(std::string_view text, const std::string& path, const std:
 
 void require_finite(double value, std::string_view text, const char* what) {
   if (!std::isfinite(value)) {
-    violated(std::string(what) + " accepted \"" + std::string(text) + "\" as the non-finite value " + std::to_string(value));
+    violated(std::string(what) + " accepted \"" + std::string(text) + "\" as the non-finite value " +
+             std::to_string(value));
   }
 }
 
@@ -107,15 +108,26 @@ Outcome feed_quantity(std::string_view text) {
     if (outcome.message.empty()) violated("parse_quantity rejected \"" + std::string(text) + "\" without a message");
   }
   // Every dimension a scene asks for (scene.cpp), so each unit-check branch is reached.
-  static const Dimension kExpected[] = {
-      dim::none,      dim::length,   dim::mass,     dim::time,         dim::angle,
-      dim::density,   dim::pressure, dim::force,    dim::velocity,     dim::acceleration,
-      dim::energy_per_area, dim::viscosity, dim::rate, Dimension{{0, 0, -1}, true}};
+  static const Dimension kExpected[] = {dim::none,
+                                        dim::length,
+                                        dim::mass,
+                                        dim::time,
+                                        dim::angle,
+                                        dim::density,
+                                        dim::pressure,
+                                        dim::force,
+                                        dim::velocity,
+                                        dim::acceleration,
+                                        dim::energy_per_area,
+                                        dim::viscosity,
+                                        dim::rate,
+                                        Dimension{{0, 0, -1}, true}};
   for (const Dimension& d : kExpected) {
     try {
       const double v = parse_quantity_as(text, d);
       require_finite(v, text, "parse_quantity_as");
-      if (!outcome.accepted) violated("parse_quantity_as accepted \"" + std::string(text) + "\" that parse_quantity rejects");
+      if (!outcome.accepted)
+        violated("parse_quantity_as accepted \"" + std::string(text) + "\" that parse_quantity rejects");
     } catch (const std::invalid_argument& e) {
       if (std::string(e.what()).empty()) violated("parse_quantity_as rejected without a message");
     }
@@ -177,10 +189,12 @@ Outcome feed_point_cloud_file(const std::string& path) {
   for (const auto* v : {&cloud.y, &cloud.z, &cloud.volume, &cloud.normal_x, &cloud.normal_y, &cloud.normal_z}) {
     if (v->size() != n) violated("accepted point cloud has arrays of different lengths");
   }
-  if (cloud.region.size() != n || cloud.boundary_id.size() != n) violated("accepted point cloud has arrays of different lengths");
+  if (cloud.region.size() != n || cloud.boundary_id.size() != n)
+    violated("accepted point cloud has arrays of different lengths");
   for (std::size_t i = 0; i < n; ++i) {
     if (!(cloud.volume[i] > 0.0 && std::isfinite(cloud.volume[i]))) violated("accepted point cloud has a bad volume");
-    if (cloud.region[i] < 0 || static_cast<std::size_t>(cloud.region[i]) > cloud.boundaries.size()) violated("accepted point cloud has a bad region");
+    if (cloud.region[i] < 0 || static_cast<std::size_t>(cloud.region[i]) > cloud.boundaries.size())
+      violated("accepted point cloud has a bad region");
   }
   // What was accepted must survive the writer and the reader unchanged (the solver and
   // restart rely on the points being exactly those the preprocessor wrote).

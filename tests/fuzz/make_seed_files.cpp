@@ -140,13 +140,19 @@ void point_cloud_seeds(const std::string& dir) {
   write_bytes(dir + "/bad_region_out_of_range.vtp", replaced(ascii, "0 0 1 0\n", "0 0 7 0\n"));
   write_bytes(dir + "/bad_layer_boundary_id.vtp", replaced(ascii, "0 2 1 0\n", "0 2 2 0\n"));
   write_bytes(dir + "/bad_fractional_region.vtp", replaced(ascii, "0 0 1 0\n", "0 0 0.5 0\n"));
-  write_bytes(dir + "/bad_dimension_4.vtp", replaced(ascii, "RangeMax=\"2\">\n        2\n", "RangeMax=\"2\">\n        4\n"));
-  write_bytes(dir + "/bad_spacing_negative.vtp", replaced(ascii, "RangeMax=\"0.001\">\n        0.001", "RangeMax=\"0.001\">\n        -0.001"));
-  write_bytes(dir + "/bad_boundary_type.vtp", replaced(ascii, "118 101 108 111 99 105 116 121 0", "118 101 108 111 99 105 116 120 0"));
-  write_bytes(dir + "/bad_boundary_count.vtp", replaced(ascii, "RangeMax=\"2\">\n        2\n      </DataArray>\n      <Array", "RangeMax=\"2\">\n        3\n      </DataArray>\n      <Array"));
-  write_bytes(dir + "/bad_precrack_odd.vtp", replaced(replaced(ascii, "NumberOfTuples=\"2\" format=\"ascii\" RangeMin=\"0.0005\"",
-                                                                 "NumberOfTuples=\"3\" format=\"ascii\" RangeMin=\"0.0005\""),
-                                                        "0 0.0005 0 0.0005 0.0005 0\n", "0 0.0005 0 0.0005 0.0005 0 1 1 0\n"));
+  write_bytes(dir + "/bad_dimension_4.vtp",
+              replaced(ascii, "RangeMax=\"2\">\n        2\n", "RangeMax=\"2\">\n        4\n"));
+  write_bytes(dir + "/bad_spacing_negative.vtp",
+              replaced(ascii, "RangeMax=\"0.001\">\n        0.001", "RangeMax=\"0.001\">\n        -0.001"));
+  write_bytes(dir + "/bad_boundary_type.vtp",
+              replaced(ascii, "118 101 108 111 99 105 116 121 0", "118 101 108 111 99 105 116 120 0"));
+  write_bytes(dir + "/bad_boundary_count.vtp",
+              replaced(ascii, "RangeMax=\"2\">\n        2\n      </DataArray>\n      <Array",
+                       "RangeMax=\"2\">\n        3\n      </DataArray>\n      <Array"));
+  write_bytes(dir + "/bad_precrack_odd.vtp",
+              replaced(replaced(ascii, "NumberOfTuples=\"2\" format=\"ascii\" RangeMin=\"0.0005\"",
+                                "NumberOfTuples=\"3\" format=\"ascii\" RangeMin=\"0.0005\""),
+                       "0 0.0005 0 0.0005 0.0005 0\n", "0 0.0005 0 0.0005 0.0005 0 1 1 0\n"));
   std::cout << "wrote the seeds; the ASCII valid_2d_ascii.vtp is the base of the hand-edited bad_* variants\n";
 }
 

@@ -191,10 +191,12 @@ RunReport read_run(const std::string& run_directory) {
     r.final_total_energy = total;
     // Dissipation is a sum of non-negative increments; 1e-12 relative allows the round-off of
     // the solver's summation, nothing more.
-    if (v[plastic] < previous_plastic - 1e-12 * std::abs(previous_plastic)) r.plastic_dissipation_never_decreases = false;
+    if (v[plastic] < previous_plastic - 1e-12 * std::abs(previous_plastic))
+      r.plastic_dissipation_never_decreases = false;
     previous_plastic = v[plastic];
     r.final_plastic_dissipation = v[plastic];
-    if (v[fracture] < previous_fracture - 1e-12 * std::abs(previous_fracture)) r.fracture_dissipation_never_decreases = false;
+    if (v[fracture] < previous_fracture - 1e-12 * std::abs(previous_fracture))
+      r.fracture_dissipation_never_decreases = false;
     if (r.energy_rows > 1) r.fracture_dissipation_decrease += std::max(0.0, previous_fracture - v[fracture]);
     previous_fracture = v[fracture];
     r.final_fracture_dissipation = v[fracture];
@@ -204,8 +206,8 @@ RunReport read_run(const std::string& run_directory) {
   // The solver's balance (explicit_dynamics.cpp), from the columns; the solver's scale also holds
   // the size of the kinetic terms, which energy.csv does not, hence the round-off rows skipped.
   auto scale_of = [&](const Row& w, double accounted) {
-    return std::max({std::abs(w.work), std::abs(accounted), w.total, initial_total, std::abs(w.plastic),
-                     std::abs(w.fracture)});
+    return std::max(
+        {std::abs(w.work), std::abs(accounted), w.total, initial_total, std::abs(w.plastic), std::abs(w.fracture)});
   };
   double largest = 0.0;
   for (const Row& w : rows) largest = std::max(largest, scale_of(w, w.total + w.plastic + w.fracture));
@@ -244,8 +246,7 @@ double auto_time_step(const std::string& scene_file, const std::vector<std::stri
 CommandResult run_program(const std::string& executable, const std::vector<std::string>& arguments) {
   // Output to a file: std::system gives the exit status, the file gives the messages.
   static int counter = 0;
-  const std::string capture_name =
-      "command-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".txt";
+  const std::string capture_name = "command-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".txt";
   const fs::path capture = fs::path(MPPM_BINARY_DIR) / "stability-work" / capture_name;
   fs::create_directories(capture.parent_path());
   auto quote = [](const std::string& s) {

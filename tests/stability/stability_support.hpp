@@ -34,10 +34,10 @@ const PointCloud& points_of(const Scene& scene);
 
 // A run directory read back through its files, as a user or the postprocessor sees it.
 struct RunReport {
-  std::string status;         // run_info.json
+  std::string status;  // run_info.json
   std::string message;
   std::string limiting_mode;
-  std::string driver;         // "driven by ..." from the critical-step line of log.txt
+  std::string driver;  // "driven by ..." from the critical-step line of log.txt
   std::int64_t steps = 0;
   double time_step = 0.0;
   double critical_time_step = 0.0;
@@ -93,7 +93,7 @@ CommandResult run_program(const std::string& executable, const std::vector<std::
 // ${CMAKE_BINARY_DIR}/stability/<form>/<id>.json before the test's assertions, so a failing
 // long run still leaves its numbers for inspection.
 struct MarginRecord {
-  std::string id;        // file name and sort key, e.g. "01-length-scale-20mm"
+  std::string id;  // file name and sort key, e.g. "01-length-scale-20mm"
   std::string hazard;
   std::string expected;
   std::string measured;  // numbers with units, human readable

@@ -83,7 +83,8 @@ DamageRun run_case(const std::string& scene, const std::string& name, const std:
     if (const SnapshotField* damage = s.find("damage"))
       for (double v : damage->data) d.max_damage = std::max(d.max_damage, v);
     if (const SnapshotField* detached = s.find("detached"))
-      d.detached_in_last = std::count_if(detached->data.begin(), detached->data.end(), [](double v) { return v != 0.0; });
+      d.detached_in_last =
+          std::count_if(detached->data.begin(), detached->data.end(), [](double v) { return v != 0.0; });
     d.points = s.point_count;
     ++d.snapshots;
   }
@@ -104,8 +105,8 @@ std::string summary(const DamageRun& d) {
          std::to_string(r.broken_bonds) + " bond pairs broken, max damage " + sci(d.max_damage) + ", " +
          std::to_string(r.detached_points) + " detached (last snapshot " + std::to_string(d.detached_in_last) +
          "), fracture dissipation " + sci(r.final_fracture_dissipation) + " J of " + sci(r.final_external_work) +
-         " J work (breakage put " + sci(r.fracture_dissipation_decrease) + " J = " +
-         sci(r.fracture_dissipation_decrease / std::max(r.final_external_work, 1e-300)) +
+         " J work (breakage put " + sci(r.fracture_dissipation_decrease) +
+         " J = " + sci(r.fracture_dissipation_decrease / std::max(r.final_external_work, 1e-300)) +
          " of the work in), worst balance error " + sci(r.worst_balance_error) + ", " + sci(d.seconds, 3) + " s wall";
 }
 
@@ -145,12 +146,14 @@ TEST(StabilityCrackBranchingRate, ThirtyMegapascalsOverHalfAMicrosecondStaysFini
   std::printf("crack-branching plate, 30 MPa over 0.5 us: %s\n%s", summary(d).c_str(), d.solve.output.c_str());
   const bool pass = d.solve.exit_code == 0 && r.status == "completed" && r.all_finite && d.snapshots_finite &&
                     r.worst_balance_error < 5e-3 && r.detached_points == d.detached_in_last && r.broken_bonds > 0;
-  record_margin({"13-crack-branching-30MPa", "crack-branching plate, tractions ramped to 30 MPa over 0.5 us (3.75 x the load, 46 x the rate)",
-                 "finite, energy balance within 0.5 %, completes or stops with exit 3 and a reason (measured: completes)",
-                 summary(d),
-                 "balance " + sci(r.worst_balance_error) + " vs 5e-3 (" + sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) +
-                     " x)",
-                 pass});
+  record_margin(
+      {"13-crack-branching-30MPa",
+       "crack-branching plate, tractions ramped to 30 MPa over 0.5 us (3.75 x the load, 46 x the rate)",
+       "finite, energy balance within 0.5 %, completes or stops with exit 3 and a reason (measured: completes)",
+       summary(d),
+       "balance " + sci(r.worst_balance_error) + " vs 5e-3 (" + sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) +
+           " x)",
+       pass});
   EXPECT_EQ(d.solve.exit_code, 0) << d.solve.output;
   EXPECT_EQ(r.status, "completed") << r.message;
   expect_consistent(d);
@@ -166,17 +169,19 @@ std::vector<std::string> notched_time() {
 }
 
 TEST(StabilityNotchedImpact3d, ImpactCompletesWithTheDefaultEnergyCheck) {
-  const DamageRun d = run_case(scene_path("notched_impact_3d.yaml"), "notched-impact-3d", notched_geometry(), notched_time());
+  const DamageRun d =
+      run_case(scene_path("notched_impact_3d.yaml"), "notched-impact-3d", notched_geometry(), notched_time());
   const RunReport& r = d.report;
   std::printf("3-D notched specimen, impact, default energy check: %s\n%s", summary(d).c_str(), d.solve.output.c_str());
   const double created = r.fracture_dissipation_decrease / std::max(r.final_external_work, 1e-300);
   const bool pass = d.solve.exit_code == 0 && r.status == "completed" && r.all_finite && d.snapshots_finite &&
                     r.worst_balance_error < 5e-3 && created <= 1e-2 && r.detached_points > 0;
-  record_margin({"14-notched-impact-3d", "3-D notched CAD specimen (STEP), Charpy-like impact at 20 m/s, damage, default energy check",
-                 "finite, energy balance within 0.5 %, detached points reported, energy from breakage below 1 % of the work",
-                 summary(d),
-                 "balance " + sci(r.worst_balance_error) + " vs 5e-3; energy from breakage " + sci(created) + " vs 1e-2",
-                 pass});
+  record_margin(
+      {"14-notched-impact-3d",
+       "3-D notched CAD specimen (STEP), Charpy-like impact at 20 m/s, damage, default energy check",
+       "finite, energy balance within 0.5 %, detached points reported, energy from breakage below 1 % of the work",
+       summary(d),
+       "balance " + sci(r.worst_balance_error) + " vs 5e-3; energy from breakage " + sci(created) + " vs 1e-2", pass});
   EXPECT_EQ(d.solve.exit_code, 0) << d.solve.output;
   EXPECT_EQ(r.status, "completed") << r.message;
   EXPECT_TRUE(r.all_finite);
@@ -195,16 +200,18 @@ TEST(StabilityNotchedImpact3d, ImpactCompletesWithTheDefaultEnergyCheck) {
 TEST(StabilityNotchedImpact3d, WithTheCheckRelaxedTheRunCompletesFiniteAndReportsDetachedPoints) {
   std::vector<std::string> sets = notched_time();
   sets.push_back("numerics.energy_check_tolerance=1e300");
-  const DamageRun d = run_case(scene_path("notched_impact_3d.yaml"), "notched-impact-3d-relaxed", notched_geometry(), sets);
+  const DamageRun d =
+      run_case(scene_path("notched_impact_3d.yaml"), "notched-impact-3d-relaxed", notched_geometry(), sets);
   const RunReport& r = d.report;
   std::printf("3-D notched specimen, impact, energy check relaxed: %s\n%s", summary(d).c_str(), d.solve.output.c_str());
   const bool pass = d.solve.exit_code == 0 && r.status == "completed" && r.all_finite && d.snapshots_finite &&
                     r.worst_balance_error < 5e-3 && r.detached_points == d.detached_in_last && r.broken_bonds > 0 &&
                     r.detached_points > 0;
   record_margin({"14b-notched-impact-3d-relaxed", "the same with numerics.energy_check_tolerance = 1e300",
-                 "exit 0, finite, booked energy balance within 0.5 %, detached points reported consistently", summary(d),
-                 "balance " + sci(r.worst_balance_error) + " vs 5e-3 (" + sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) +
-                     " x)",
+                 "exit 0, finite, booked energy balance within 0.5 %, detached points reported consistently",
+                 summary(d),
+                 "balance " + sci(r.worst_balance_error) + " vs 5e-3 (" +
+                     sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) + " x)",
                  pass});
   EXPECT_EQ(d.solve.exit_code, 0) << d.solve.output;
   EXPECT_EQ(r.status, "completed") << r.message;
@@ -221,17 +228,18 @@ TEST(StabilityNotchedImpact3d, WithTheCheckRelaxedTheRunCompletesFiniteAndReport
 TEST(StabilityNotchedImpact3d, SlowerImpactPutsBelowOnePercentOfTheWorkIn) {
   std::vector<std::string> sets = notched_time();
   sets.push_back("boundary_conditions[0].value=[0, -15 m/s, 0]");
-  const DamageRun d = run_case(scene_path("notched_impact_3d.yaml"), "notched-impact-3d-15ms", notched_geometry(), sets);
+  const DamageRun d =
+      run_case(scene_path("notched_impact_3d.yaml"), "notched-impact-3d-15ms", notched_geometry(), sets);
   const RunReport& r = d.report;
   std::printf("3-D notched specimen, impact at 15 m/s: %s\n%s", summary(d).c_str(), d.solve.output.c_str());
   const double created = r.fracture_dissipation_decrease / std::max(r.final_external_work, 1e-300);
   const bool pass = d.solve.exit_code == 0 && r.status == "completed" && r.all_finite && d.snapshots_finite &&
                     r.worst_balance_error < 5e-3 && created <= 1e-2 && r.detached_points > 0;
-  record_margin({"14c-notched-impact-3d-15ms", "the same impact at 15 m/s (the striker's edges crush longer)",
-                 "finite, energy balance within 0.5 %, detached points reported, energy from breakage below 1 % of the work",
-                 summary(d),
-                 "balance " + sci(r.worst_balance_error) + " vs 5e-3; energy from breakage " + sci(created) + " vs 1e-2",
-                 pass});
+  record_margin(
+      {"14c-notched-impact-3d-15ms", "the same impact at 15 m/s (the striker's edges crush longer)",
+       "finite, energy balance within 0.5 %, detached points reported, energy from breakage below 1 % of the work",
+       summary(d),
+       "balance " + sci(r.worst_balance_error) + " vs 5e-3; energy from breakage " + sci(created) + " vs 1e-2", pass});
   EXPECT_EQ(d.solve.exit_code, 0) << d.solve.output;
   EXPECT_EQ(r.status, "completed") << r.message;
   EXPECT_LE(created, 1e-2);
@@ -246,12 +254,11 @@ TEST(StabilityNotchedImpact3d, SlowerImpactPutsBelowOnePercentOfTheWorkIn) {
 TEST(StabilityCrackBranchingRate, BreakingTheBondsOfAPrescribedLayerKeepsTheBalance) {
   for (const char* speed : {"5 m/s", "50 m/s"}) {
     const std::string scene = scene_path("elastic_block.yaml");
-    const DamageRun d = run_case(scene, "layer-bonds", {},
-                                 {"effects=[micropolar, damage]",
-                                  "material.damage={critical_energy_release_rate: 20 N/m, no_fail_depth: 0}",
-                                  std::string("boundary_conditions[0].value=[") + speed + ", 0]",
-                                  "boundary_conditions[0].rotation_rate=0", "time.end=40us",
-                                  "numerics.energy_check_tolerance=1e300"});
+    const DamageRun d = run_case(
+        scene, "layer-bonds", {},
+        {"effects=[micropolar, damage]", "material.damage={critical_energy_release_rate: 20 N/m, no_fail_depth: 0}",
+         std::string("boundary_conditions[0].value=[") + speed + ", 0]", "boundary_conditions[0].rotation_rate=0",
+         "time.end=40us", "numerics.energy_check_tolerance=1e300"});
     EXPECT_LT(d.report.worst_balance_error, 5e-3) << speed;
   }
 }

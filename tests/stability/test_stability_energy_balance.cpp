@@ -25,19 +25,18 @@ TEST(StabilityEnergyBalance, ElasticRunBalancesToHalfAPercent) {
   const std::vector<std::string> overrides{
       "time.end=" + exact(static_cast<double>(steps) * dt),
       "boundary_conditions[0].history=[[0, 0], [" + exact(20 * dt) + ", 1], [" + exact(40 * dt) + ", 0]]",
-      "boundary_conditions[1].ramp=" + exact(200 * dt),
-      "output.load_interval=" + exact(10 * dt)};
+      "boundary_conditions[1].ramp=" + exact(200 * dt), "output.load_interval=" + exact(10 * dt)};
   const RunReport r = solve_scene(scene, overrides, "energy-balance");
-  std::printf("energy balance: %s, %lld steps of %.4g s, %zu rows, worst balance error %.3g, external work %.4g J, "
-              "final energy %.4g J\n",
-              r.status.c_str(), static_cast<long long>(r.steps), r.time_step, r.energy_rows, r.worst_balance_error,
-              r.final_external_work, r.final_total_energy);
+  std::printf(
+      "energy balance: %s, %lld steps of %.4g s, %zu rows, worst balance error %.3g, external work %.4g J, "
+      "final energy %.4g J\n",
+      r.status.c_str(), static_cast<long long>(r.steps), r.time_step, r.energy_rows, r.worst_balance_error,
+      r.final_external_work, r.final_total_energy);
   const bool pass = r.status == "completed" && r.steps == steps && r.all_finite && r.worst_balance_error < 5e-3;
   record_margin({"05-energy-balance", "energy drift over a long elastic run (pulse + held traction)",
                  "balance error below 0.5 % at every energy row",
-                 std::to_string(r.steps) + " steps, " + std::to_string(r.energy_rows) +
-                     " rows, worst balance error " + sci(r.worst_balance_error) + ", external work " +
-                     sci(r.final_external_work) + " J",
+                 std::to_string(r.steps) + " steps, " + std::to_string(r.energy_rows) + " rows, worst balance error " +
+                     sci(r.worst_balance_error) + ", external work " + sci(r.final_external_work) + " J",
                  "worst balance error " + sci(r.worst_balance_error) + " vs limit 5e-3 (" +
                      sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) + " x)",
                  pass});

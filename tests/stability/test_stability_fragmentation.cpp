@@ -145,19 +145,20 @@ FragmentationRun run_fragmentation(int rise, std::int64_t steps, const std::stri
   }
   f.momentum_error = worst / std::max(scale, 1e-300);
   f.log_reports = f.r.log.find("detached points " + std::to_string(f.r.detached_points)) != std::string::npos;
-  std::printf("fragmentation, pulse over %d + %d steps: %s%s, %lld steps of %.4g s, %zu points, broken bond pairs %lld, "
-              "detached %lld (last snapshot %zu, log %s; loaded no-fail points detached %zu of %zu); momentum after the "
-              "pulse vs impulse %.6g N s: worst |error| / scale %.3g over %zu snapshots; ballistic: %zu of %zu detached "
-              "points changed velocity; fracture dissipation %.4g J (decreases summed %.4g J) of %.4g J work, final "
-              "energy %.4g J; worst balance error %.3g (recomputed from the columns %.3g, without the fracture column "
-              "%.3g)\n",
-              rise, rise, f.r.status.c_str(), f.stopped ? (" (" + f.r.message + ")").c_str() : "",
-              static_cast<long long>(f.r.steps), f.r.time_step, f.points, static_cast<long long>(f.r.broken_bonds),
-              static_cast<long long>(f.r.detached_points), f.detached_in_last, f.log_reports ? "yes" : "no",
-              f.loaded_detached, f.loaded_points, f.impulse, f.momentum_error, f.snapshots_after_pulse,
-              f.ballistic_changed, f.ballistic_checked, f.r.final_fracture_dissipation,
-              f.r.fracture_dissipation_decrease, f.r.final_external_work, f.r.final_total_energy, f.r.worst_balance_error,
-              f.r.worst_recomputed_balance_error, f.r.worst_balance_without_fracture);
+  std::printf(
+      "fragmentation, pulse over %d + %d steps: %s%s, %lld steps of %.4g s, %zu points, broken bond pairs %lld, "
+      "detached %lld (last snapshot %zu, log %s; loaded no-fail points detached %zu of %zu); momentum after the "
+      "pulse vs impulse %.6g N s: worst |error| / scale %.3g over %zu snapshots; ballistic: %zu of %zu detached "
+      "points changed velocity; fracture dissipation %.4g J (decreases summed %.4g J) of %.4g J work, final "
+      "energy %.4g J; worst balance error %.3g (recomputed from the columns %.3g, without the fracture column "
+      "%.3g)\n",
+      rise, rise, f.r.status.c_str(), f.stopped ? (" (" + f.r.message + ")").c_str() : "",
+      static_cast<long long>(f.r.steps), f.r.time_step, f.points, static_cast<long long>(f.r.broken_bonds),
+      static_cast<long long>(f.r.detached_points), f.detached_in_last, f.log_reports ? "yes" : "no", f.loaded_detached,
+      f.loaded_points, f.impulse, f.momentum_error, f.snapshots_after_pulse, f.ballistic_changed, f.ballistic_checked,
+      f.r.final_fracture_dissipation, f.r.fracture_dissipation_decrease, f.r.final_external_work,
+      f.r.final_total_energy, f.r.worst_balance_error, f.r.worst_recomputed_balance_error,
+      f.r.worst_balance_without_fracture);
   return f;
 }
 
@@ -176,19 +177,19 @@ TEST(StabilityFragmentation, HighRateImpactShattersTheBlockFiniteWithMomentumAnd
                     shattered && r.detached_points == static_cast<std::int64_t>(f.detached_in_last) && f.log_reports &&
                     f.ballistic_changed == 0 && f.momentum_error < 1e-10 && r.worst_balance_error < 5e-3 &&
                     r.worst_recomputed_balance_error < 1e-9 && created < kEnergyCheckTolerance;
-  record_margin({"12-fragmentation", "high-rate impact (1 GPa traction pulse over 2 x 2.6 us, G_cr 20 N/m): many points lose all bonds",
+  record_margin({"12-fragmentation",
+                 "high-rate impact (1 GPa traction pulse over 2 x 2.6 us, G_cr 20 N/m): many points lose all bonds",
                  "finite; detached points reported; momentum = impulse after the pulse; balance with fracture "
                  "dissipation within 0.5 %",
                  std::to_string(r.steps) + " steps, " + std::to_string(r.broken_bonds) + " bond pairs broken, " +
                      std::to_string(r.detached_points) + " of " + std::to_string(f.points) +
                      " points detached (run_info = log = snapshot), momentum error / scale " + sci(f.momentum_error) +
-                     ", worst balance error " + sci(r.worst_balance_error) +
-                     "; fracture dissipation " + sci(r.final_fracture_dissipation) +
-                     " J: breakage put " + sci(r.fracture_dissipation_decrease) + " J = " + sci(created) +
-                     " of the work into the model (finding)",
-                 "momentum " + sci(f.momentum_error) + " vs 1e-10; balance " + sci(r.worst_balance_error) + " vs 5e-3 (" +
-                     sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) + " x); energy from breakage " +
-                     sci(created) + " vs the energy check's 0.05",
+                     ", worst balance error " + sci(r.worst_balance_error) + "; fracture dissipation " +
+                     sci(r.final_fracture_dissipation) + " J: breakage put " + sci(r.fracture_dissipation_decrease) +
+                     " J = " + sci(created) + " of the work into the model (finding)",
+                 "momentum " + sci(f.momentum_error) + " vs 1e-10; balance " + sci(r.worst_balance_error) +
+                     " vs 5e-3 (" + sci(5e-3 / std::max(r.worst_balance_error, 1e-300), 2) +
+                     " x); energy from breakage " + sci(created) + " vs the energy check's 0.05",
                  pass});
 
   ASSERT_FALSE(f.stopped) << f.failure;
@@ -232,9 +233,9 @@ TEST(StabilityFragmentation, FasterImpactPutsNoEnergyIntoTheModel) {
   record_margin({"12b-fragmentation-fast", "the same impact with the pulse over 2 x 1.05 us",
                  "completes; breakage puts (almost) no energy into the model (the fracture dissipation falls by at "
                  "most 1e-4 of the work); finite",
-                 std::string(f.stopped ? "stopped: " + r.message : "completed") + "; " + std::to_string(r.detached_points) +
-                     " points detached; energy from breakage " + sci(created) + " of the work; worst balance error " +
-                     sci(r.worst_balance_error),
+                 std::string(f.stopped ? "stopped: " + r.message : "completed") + "; " +
+                     std::to_string(r.detached_points) + " points detached; energy from breakage " + sci(created) +
+                     " of the work; worst balance error " + sci(r.worst_balance_error),
                  "energy from breakage " + sci(created) + " vs 1e-4",
                  !f.stopped && r.status == "completed" && created <= 1e-4 && f.snapshots_finite && r.all_finite});
   EXPECT_FALSE(f.stopped) << f.failure;

@@ -15,11 +15,10 @@
 //    trip deliberately, for a known reason: the test hook --inject-kick adds 100 m/s to one
 //    point's velocity in step 100, kinetic energy that no work accounts for, far beyond the
 //    default tolerance (5 %). mppm-solve must then stop in that step with exit code 3, say why,
-//    report the growth the kick put in (1/2 rho V dv^2, rho = solid_fraction * density), and leave a run directory whose
-//    run_info.json says "numerical_failure" and whose kept snapshots are readable and finite.
-//    (This case used to set numerics.energy_check_tolerance = 1e-300 and rely on the sign of
-//    the balance's round-off somewhere in 1100 rows: a change in summation order made it <= 0
-//    in every row.)
+//    report the growth the kick put in (1/2 rho V dv^2, rho = solid_fraction * density), and leave a run directory
+//    whose run_info.json says "numerical_failure" and whose kept snapshots are readable and finite. (This case used to
+//    set numerics.energy_check_tolerance = 1e-300 and rely on the sign of the balance's round-off somewhere in 1100
+//    rows: a change in summation order made it <= 0 in every row.)
 // 3. No false alarm when a load starts late. In the step in which a load starts, the scheme's
 //    kinetic energy 1/2 M v^(n-1/2) . v^(n+1/2) is a difference of two equal numbers (round-off,
 //    ~1e-24 J here) while the work is still exactly 0: relative to an energy scale made of such
@@ -65,7 +64,8 @@ enum class Field { displacement, velocity, rotation };
 // how many steps the guard needed to see it (-1: never within 10 steps).
 int steps_to_detect(Field field, std::size_t point, int component) {
   Scene scene = solver::testing::make_scene(2, true, 1e-3, 3.05);
-  solver::Model m = solver::testing::make_model(solver::testing::make_lattice(2, {20, 20, 1}, 1e-3, scene.thickness), scene);
+  solver::Model m =
+      solver::testing::make_model(solver::testing::make_lattice(2, {20, 20, 1}, 1e-3, scene.thickness), scene);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> g(-1.0, 1.0);
   for (auto& v : m.points.velocity) v = 0.01 * g(rng);
@@ -78,9 +78,15 @@ int steps_to_detect(Field field, std::size_t point, int component) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const int D = m.dimension();
   switch (field) {
-    case Field::displacement: m.points.displacement[point * D + component] = nan; break;
-    case Field::velocity: m.points.velocity[point * D + component] = nan; break;
-    case Field::rotation: m.points.rotation[point * m.points.rotation_components + component] = nan; break;
+    case Field::displacement:
+      m.points.displacement[point * D + component] = nan;
+      break;
+    case Field::velocity:
+      m.points.velocity[point * D + component] = nan;
+      break;
+    case Field::rotation:
+      m.points.rotation[point * m.points.rotation_components + component] = nan;
+      break;
   }
   for (int s = 1; s <= 10; ++s) {
     dynamics.step(false);
@@ -141,15 +147,15 @@ TEST(StabilityGuards, LoadStartingLateIsNoFalseAlarm) {
       stops += std::string(stops.empty() ? "" : "; ") + "start " + std::to_string(start) + ": " + e.what();
     }
   }
-  std::printf("load starting at steps 56-65: %d of %d runs stopped, worst balance error %.3g\n%s\n", stopped, runs, worst,
-              stops.c_str());
+  std::printf("load starting at steps 56-65: %d of %d runs stopped, worst balance error %.3g\n%s\n", stopped, runs,
+              worst, stops.c_str());
   EXPECT_EQ(stopped, 0) << stops;
   // An elastic run: the balance is round-off (the suite's 0.5 % as the limit).
   EXPECT_LT(worst, 5e-3);
   record_margin({"07c-late-load-no-false-alarm", "a load starting after the energy check's first step (steps 56-65)",
                  "no false alarm: every run completes, balance error at round-off",
-                 std::to_string(runs - stopped) + " of " + std::to_string(runs) + " runs complete, worst balance error " +
-                     sci(worst),
+                 std::to_string(runs - stopped) + " of " + std::to_string(runs) +
+                     " runs complete, worst balance error " + sci(worst),
                  "balance " + sci(worst) + " vs 5e-3", stopped == 0 && worst < 5e-3});
 }
 
@@ -160,10 +166,10 @@ TEST(StabilityGuards, EnergyCheckStopsTheRunWithExitCode3AndKeepsAReadableRunDir
   const CommandResult pre = run_program(program("mppm-preprocess"), {scene, "-o", points, "--quiet"});
   ASSERT_EQ(pre.exit_code, 0) << pre.output;
   constexpr double kKick = 100.0;  // m/s, added to velocity component 0 of point 0 in step 100
-  const CommandResult r = run_program(program("mppm-solve"),
-                                      {scene, "--points", points, "-o", dir, "--quiet", "--inject-kick",
-                                       "100:0:0:" + std::to_string(kKick), "--set", "time.end=400us", "--set",
-                                       "output.interval=5us"});
+  const CommandResult r =
+      run_program(program("mppm-solve"),
+                  {scene, "--points", points, "-o", dir, "--quiet", "--inject-kick", "100:0:0:" + std::to_string(kKick),
+                   "--set", "time.end=400us", "--set", "output.interval=5us"});
   std::printf("mppm-solve with a velocity kick in step 100: exit %d\n%s", r.exit_code, r.output.c_str());
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("energy"), std::string::npos) << r.output;
@@ -278,9 +284,9 @@ TEST_F(StabilityGuardsEndToEnd, NanInjectedInOnePointStopsMppmSolveWithExitCode3
   for (const Seed& k : seeds) {
     const std::string dir = fresh_directory("nan-inject-" + k.field);
     const std::string hook = std::to_string(k.step) + ":" + std::to_string(k.point) + ":" + k.field;
-    const CommandResult r = run_program(program("mppm-solve"),
-                                        {scene_path("elastic_block.yaml"), "--points", block_points_, "-o", dir, "--quiet",
-                                         "--inject-nan", hook, "--set", "time.end=400us", "--set", "output.interval=20us"});
+    const CommandResult r = run_program(
+        program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points", block_points_, "-o", dir, "--quiet",
+                                "--inject-nan", hook, "--set", "time.end=400us", "--set", "output.interval=20us"});
     std::printf("--inject-nan %s: exit %d\n%s", hook.c_str(), r.exit_code, r.output.c_str());
     const StoppedRun s = read_stopped_run(dir);
     // The point named is the one seeded, in the step seeded, and it is the only one: the guard
@@ -320,19 +326,26 @@ TEST_F(StabilityGuardsEndToEnd, NanInjectedInOnePointStopsMppmSolveWithExitCode3
   struct BadHook {
     std::string option, value, word;
   };
-  const std::vector<BadHook> bad{
-      {"--inject-nan", "0:1", "STEP"},           {"--inject-nan", "x:1", "STEP"},
-      {"--inject-nan", "5:100000", "POINT"},     {"--inject-nan", "5:1:pressure", "FIELD"},
-      {"--inject-nan", "5", "STEP:POINT"},       {"--inject-nan", "5:1:velocity:2", "COMPONENT"},
-      {"--inject-nan", "100000:1", "beyond"},    {"--inject-kick", "0:1:0:5", "STEP"},
-      {"--inject-kick", "5:x:0:5", "POINT"},     {"--inject-kick", "5:100000:0:5", "POINT"},
-      {"--inject-kick", "5:1:7:5", "COMPONENT"}, {"--inject-kick", "5:1:0:5 MPa", "VELOCITY"},
-      {"--inject-kick", "5:1:0", "STEP:POINT:COMPONENT:VELOCITY"},
-      {"--inject-kick", "5:1:0:nan", "VELOCITY"}, {"--inject-kick", "100000:1:0:5", "beyond"}};
+  const std::vector<BadHook> bad{{"--inject-nan", "0:1", "STEP"},
+                                 {"--inject-nan", "x:1", "STEP"},
+                                 {"--inject-nan", "5:100000", "POINT"},
+                                 {"--inject-nan", "5:1:pressure", "FIELD"},
+                                 {"--inject-nan", "5", "STEP:POINT"},
+                                 {"--inject-nan", "5:1:velocity:2", "COMPONENT"},
+                                 {"--inject-nan", "100000:1", "beyond"},
+                                 {"--inject-kick", "0:1:0:5", "STEP"},
+                                 {"--inject-kick", "5:x:0:5", "POINT"},
+                                 {"--inject-kick", "5:100000:0:5", "POINT"},
+                                 {"--inject-kick", "5:1:7:5", "COMPONENT"},
+                                 {"--inject-kick", "5:1:0:5 MPa", "VELOCITY"},
+                                 {"--inject-kick", "5:1:0", "STEP:POINT:COMPONENT:VELOCITY"},
+                                 {"--inject-kick", "5:1:0:nan", "VELOCITY"},
+                                 {"--inject-kick", "100000:1:0:5", "beyond"}};
   for (const BadHook& h : bad) {
     const std::string dir = fresh_directory("inject-bad");
-    const CommandResult r = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points",
-                                                                block_points_, "-o", dir, "--quiet", h.option, h.value});
+    const CommandResult r = run_program(
+        program("mppm-solve"),
+        {scene_path("elastic_block.yaml"), "--points", block_points_, "-o", dir, "--quiet", h.option, h.value});
     std::printf("%s %s: exit %d\n%s", h.option.c_str(), h.value.c_str(), r.exit_code, r.output.c_str());
     EXPECT_EQ(r.exit_code, 2) << h.option << " " << h.value;
     EXPECT_TRUE(contains(r.output, h.option)) << r.output;
@@ -340,16 +353,23 @@ TEST_F(StabilityGuardsEndToEnd, NanInjectedInOnePointStopsMppmSolveWithExitCode3
     EXPECT_TRUE(!fs::exists(dir) || fs::is_empty(dir)) << dir;
     all = all && r.exit_code == 2;
   }
-  record_margin({"06b-nan-injected-end-to-end", "a NaN appearing in one point mid-step, end to end (mppm-solve --inject-nan)",
-                 "exit 3, run_info numerical_failure naming the point and the step, kept snapshots finite and older",
-                 measured, "contract check (no numeric margin): detected in the step of the fault, 1 point named", all});
+  record_margin(
+      {"06b-nan-injected-end-to-end", "a NaN appearing in one point mid-step, end to end (mppm-solve --inject-nan)",
+       "exit 3, run_info numerical_failure naming the point and the step, kept snapshots finite and older", measured,
+       "contract check (no numeric margin): detected in the step of the fault, 1 point named", all});
 }
 
 TEST_F(StabilityGuardsEndToEnd, BothGuardsCoverDamageRuns) {
   // The fragmentation scene as it is (1 GPa pulse over 2 x 2.5 us, G_cr 20 N/m): by 8 us a third
   // of the block has lost every bond (test_stability_fragmentation.cpp); 100 us are ~190 steps.
-  const std::vector<std::string> common{scene_path("fragmentation_block.yaml"), "--points", fragmentation_points_,
-                                        "--quiet", "--set", "time.end=100us", "--set", "output.interval=10us"};
+  const std::vector<std::string> common{scene_path("fragmentation_block.yaml"),
+                                        "--points",
+                                        fragmentation_points_,
+                                        "--quiet",
+                                        "--set",
+                                        "time.end=100us",
+                                        "--set",
+                                        "output.interval=10us"};
   auto solve = [&](const std::string& dir, const std::vector<std::string>& extra) {
     std::vector<std::string> args = common;
     args.push_back("-o");
@@ -391,16 +411,17 @@ TEST_F(StabilityGuardsEndToEnd, BothGuardsCoverDamageRuns) {
   EXPECT_TRUE(contains(sn.report.message, "step 150,")) << sn.report.message;
   EXPECT_TRUE(sn.snapshots_finite);
 
-  record_margin({"07b-guards-on-damage-runs", "the guards on a damage run (fragmentation scene: bonds breaking, points detaching)",
-                 "energy check trips on unexplained growth with the fracture dissipation in its sum (exit 3); no false alarm at "
-                 "the default tolerance (exit 0); a NaN caught in its step (exit 3)",
-                 "velocity kick: exit " + std::to_string(e.exit_code) + "; default: exit " +
-                     std::to_string(q.exit_code) + " with " + std::to_string(sq.report.detached_points) +
-                     " points detached, worst balance error " + sci(sq.report.worst_balance_error) + "; NaN: exit " +
-                     std::to_string(n.exit_code),
-                 "balance " + sci(sq.report.worst_balance_error) + " vs the check's 5e-2 (" +
-                     sci(5e-2 / std::max(sq.report.worst_balance_error, 1e-300), 2) + " x)",
-                 e.exit_code == 3 && q.exit_code == 0 && n.exit_code == 3 && sq.report.detached_points > 0});
+  record_margin(
+      {"07b-guards-on-damage-runs",
+       "the guards on a damage run (fragmentation scene: bonds breaking, points detaching)",
+       "energy check trips on unexplained growth with the fracture dissipation in its sum (exit 3); no false alarm at "
+       "the default tolerance (exit 0); a NaN caught in its step (exit 3)",
+       "velocity kick: exit " + std::to_string(e.exit_code) + "; default: exit " + std::to_string(q.exit_code) +
+           " with " + std::to_string(sq.report.detached_points) + " points detached, worst balance error " +
+           sci(sq.report.worst_balance_error) + "; NaN: exit " + std::to_string(n.exit_code),
+       "balance " + sci(sq.report.worst_balance_error) + " vs the check's 5e-2 (" +
+           sci(5e-2 / std::max(sq.report.worst_balance_error, 1e-300), 2) + " x)",
+       e.exit_code == 3 && q.exit_code == 0 && n.exit_code == 3 && sq.report.detached_points > 0});
 }
 
 }  // namespace

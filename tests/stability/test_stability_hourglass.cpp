@@ -117,22 +117,25 @@ TEST(StabilityHourglass, StabilizationKeepsZeroEnergyModesBounded) {
   const double max_off = *std::max_element(without.ratio.begin(), without.ratio.end());
   // Trend: mean of the last quarter of the samples over the mean of the first quarter.
   const std::size_t q = with.ratio.size() / 4;
-  const double trend_on = mean(with.ratio.end() - q, with.ratio.end()) / mean(with.ratio.begin(), with.ratio.begin() + q);
+  const double trend_on =
+      mean(with.ratio.end() - q, with.ratio.end()) / mean(with.ratio.begin(), with.ratio.begin() + q);
   const double trend_off =
       mean(without.ratio.end() - q, without.ratio.end()) / mean(without.ratio.begin(), without.ratio.begin() + q);
-  std::printf("hourglass energy / initial energy over %lld steps of %.4g s (critical: on %.4g s, off %.4g s):\n"
-              "  G_s = 0.1: max %.4g, last/first quarter %.4g, balance error %.3g\n"
-              "  G_s = 0  : max %.4g, last/first quarter %.4g, balance error %.3g\n",
-              static_cast<long long>(steps), dt, dt_on, dt_off, max_on, trend_on, with.final_balance_error, max_off,
-              trend_off, without.final_balance_error);
+  std::printf(
+      "hourglass energy / initial energy over %lld steps of %.4g s (critical: on %.4g s, off %.4g s):\n"
+      "  G_s = 0.1: max %.4g, last/first quarter %.4g, balance error %.3g\n"
+      "  G_s = 0  : max %.4g, last/first quarter %.4g, balance error %.3g\n",
+      static_cast<long long>(steps), dt, dt_on, dt_off, max_on, trend_on, with.final_balance_error, max_off, trend_off,
+      without.final_balance_error);
   const bool pass = with.finite && without.finite && max_on <= 1.0 && trend_on < 1.5 && max_off > 5.0 * max_on;
-  record_margin({"04-hourglass", "zero-energy (hourglass) modes, stabilization G_s = 0.1 vs 0, random start",
-                 "E_hg / E0 <= 1 and no upward trend with G_s = 0.1; > 5 x larger without (the indicator sees hourglassing)",
-                 std::to_string(steps) + " steps: E_hg / E0 max " + sci(max_on) + " (on) vs " + sci(max_off) +
-                     " (off); last/first-quarter trend " + sci(trend_on) + " (on) vs " + sci(trend_off) + " (off)",
-                 "on: max " + sci(max_on) + " vs limit 1 (" + sci(1.0 / max_on, 2) + " x); off / on " +
-                     sci(max_off / max_on, 3) + " vs required 5",
-                 pass});
+  record_margin(
+      {"04-hourglass", "zero-energy (hourglass) modes, stabilization G_s = 0.1 vs 0, random start",
+       "E_hg / E0 <= 1 and no upward trend with G_s = 0.1; > 5 x larger without (the indicator sees hourglassing)",
+       std::to_string(steps) + " steps: E_hg / E0 max " + sci(max_on) + " (on) vs " + sci(max_off) +
+           " (off); last/first-quarter trend " + sci(trend_on) + " (on) vs " + sci(trend_off) + " (off)",
+       "on: max " + sci(max_on) + " vs limit 1 (" + sci(1.0 / max_on, 2) + " x); off / on " + sci(max_off / max_on, 3) +
+           " vs required 5",
+       pass});
   ASSERT_TRUE(with.finite);
   ASSERT_TRUE(without.finite);
   // With the control, the hourglass energy is part of the conserved total: it can never exceed

@@ -60,11 +60,12 @@ TEST(StabilityLengthScale, AutoStepStaysStableAndTheLimitingModeTurnsRotational)
     overrides.push_back("output.load_interval=" + exact(20 * dt));
     LengthScaleRun run{l, solve_scene(scene, overrides, name)};
     const RunReport& r = run.report;
-    std::printf("l = %s: %s, dt = %.4g s (critical %.4g s, limiting mode %s), %lld steps, worst balance error %.3g, "
-                "max energy %.4g J, external work %.4g J\n  driven by %s\n",
-                millimetres(l).c_str(), r.status.c_str(), r.time_step, r.critical_time_step, r.limiting_mode.c_str(),
-                static_cast<long long>(r.steps), r.worst_balance_error, r.max_total_energy, r.final_external_work,
-                r.driver.c_str());
+    std::printf(
+        "l = %s: %s, dt = %.4g s (critical %.4g s, limiting mode %s), %lld steps, worst balance error %.3g, "
+        "max energy %.4g J, external work %.4g J\n  driven by %s\n",
+        millimetres(l).c_str(), r.status.c_str(), r.time_step, r.critical_time_step, r.limiting_mode.c_str(),
+        static_cast<long long>(r.steps), r.worst_balance_error, r.max_total_energy, r.final_external_work,
+        r.driver.c_str());
     // Energy bounded: the ringing block never holds more than the pulse's work (plus the
     // balance tolerance of the suite, 0.5 %).
     const double energy_ratio = r.max_total_energy / r.final_external_work;
@@ -147,8 +148,8 @@ TEST(StabilityLengthScale, TranslationalStepIsRefusedAtTheSmallestLengthScale) {
   const double critical = at == std::string::npos ? std::nan("") : std::strtod(message.c_str() + at + 14, nullptr);
   record_margin({"01-length-scale-5-fixed-step", "l = 0.05 mm with the fixed step that suits l = 20 mm",
                  "refused before the first step, naming the rotational mode and material.length_scale",
-                 "step " + sci(large_l_step) + " s vs critical " + sci(critical) + " s: " +
-                     (message.empty() ? std::string("accepted") : std::string("refused")) +
+                 "step " + sci(large_l_step) + " s vs critical " + sci(critical) +
+                     " s: " + (message.empty() ? std::string("accepted") : std::string("refused")) +
                      (written ? ", run directory written" : ", nothing written"),
                  "given / critical " + sci(large_l_step / critical) + " (must be refused above 1)",
                  !message.empty() && message.find("rotational") != std::string::npos && !written});
@@ -177,13 +178,16 @@ TEST(StabilityLengthScale, RotationalStepAtSmallLengthIsCreditedToWhatItDependsO
   };
   std::string driver;
   const double dt = step({}, "credit-base", &driver);
-  const double a3_times_10 = step({"material.couple_moduli=[0, 0, " + exact(10 * kMu * l * l) + "]"}, "credit-a3x10") / dt;
+  const double a3_times_10 =
+      step({"material.couple_moduli=[0, 0, " + exact(10 * kMu * l * l) + "]"}, "credit-a3x10") / dt;
   const double no_mu_c = step({"material.mu_c=0"}, "credit-no-mu-c") / dt;
   const double moduli_over_10 =
-      step({"material.lambda=1.4 GPa", "material.mu=1.4 GPa", "material.mu_c=0.4667 GPa"}, "credit-moduli-over-10") / dt;
-  std::printf("l = 0.05 mm: critical step x %.4f with a3 x 10, x %.4f with mu_c = 0, x %.4f with lambda, mu, mu_c / 10\n"
-              "  driven by %s\n",
-              a3_times_10, no_mu_c, moduli_over_10, driver.c_str());
+      step({"material.lambda=1.4 GPa", "material.mu=1.4 GPa", "material.mu_c=0.4667 GPa"}, "credit-moduli-over-10") /
+      dt;
+  std::printf(
+      "l = 0.05 mm: critical step x %.4f with a3 x 10, x %.4f with mu_c = 0, x %.4f with lambda, mu, mu_c / 10\n"
+      "  driven by %s\n",
+      a3_times_10, no_mu_c, moduli_over_10, driver.c_str());
   EXPECT_NE(driver.find("material.lambda and material.mu"), std::string::npos) << driver;
   EXPECT_NE(driver.find("composite state"), std::string::npos) << driver;
   EXPECT_EQ(driver.find("material.couple_moduli"), std::string::npos) << driver;
@@ -195,10 +199,11 @@ TEST(StabilityLengthScale, RotationalStepAtSmallLengthIsCreditedToWhatItDependsO
                     std::abs(a3_times_10 - 1.0) < 0.05 && no_mu_c < std::sqrt(2.0) && moduli_over_10 > 2.0;
   record_margin({"01-length-scale-6-credit", "l = 0.05 mm: which modulus the rotational step is credited to",
                  "the log names what the step depends on: lambda and mu through the composite state, not a3",
-                 "critical step x " + sci(a3_times_10, 4) + " with a3 x 10, x " + sci(no_mu_c, 4) + " with mu_c = 0, x " +
-                     sci(moduli_over_10, 4) + " with lambda, mu, mu_c / 10; log: driven by material.lambda and material.mu",
-                 "a3: |x - 1| " + sci(std::abs(a3_times_10 - 1.0), 2) + " vs 0.05; moduli / 10: " + sci(moduli_over_10, 3) +
-                     " vs > 2",
+                 "critical step x " + sci(a3_times_10, 4) + " with a3 x 10, x " + sci(no_mu_c, 4) +
+                     " with mu_c = 0, x " + sci(moduli_over_10, 4) +
+                     " with lambda, mu, mu_c / 10; log: driven by material.lambda and material.mu",
+                 "a3: |x - 1| " + sci(std::abs(a3_times_10 - 1.0), 2) +
+                     " vs 0.05; moduli / 10: " + sci(moduli_over_10, 3) + " vs > 2",
                  pass});
 }
 

@@ -35,10 +35,11 @@ TEST(StabilityNearIncompressible, PoissonRatio049AndSoftCoupleModulusStayStable)
   overrides.push_back("output.load_interval=" + exact(20 * dt));
   const RunReport r = solve_scene(scene, overrides, "near-incompressible");
   const double p_wave_ratio = std::sqrt((kLambdaBase + 2 * kMu) / (lambda + 2 * kMu));
-  std::printf("near-incompressible: %s, %lld steps of %.4g s (base material %.4g s; step ratio %.4f, P-wave speed "
-              "ratio %.4f), limiting mode %s, worst balance error %.3g\n",
-              r.status.c_str(), static_cast<long long>(r.steps), r.time_step, dt_base, dt / dt_base, p_wave_ratio,
-              r.limiting_mode.c_str(), r.worst_balance_error);
+  std::printf(
+      "near-incompressible: %s, %lld steps of %.4g s (base material %.4g s; step ratio %.4f, P-wave speed "
+      "ratio %.4f), limiting mode %s, worst balance error %.3g\n",
+      r.status.c_str(), static_cast<long long>(r.steps), r.time_step, dt_base, dt / dt_base, p_wave_ratio,
+      r.limiting_mode.c_str(), r.worst_balance_error);
   const bool pass = r.status == "completed" && r.steps == steps && r.all_finite && r.worst_balance_error < 5e-3;
   record_margin({"03-near-incompressible", "Poisson ratio 0.49 (lambda = 49 mu) and mu_c = 1e-4 mu, auto step",
                  "stable, energy balance within 0.5 %",

@@ -108,7 +108,8 @@ TEST_F(StabilityRefusals, CoupleModulusInKilonewtonIsRefusedNamingTheRotationalM
                      " s, with the intended a3 " + sci(corrected.critical_time_step) + " s (that run exits " +
                      std::to_string(ok.exit_code) + ")",
                  "given step / slipped critical step " + sci(given / slip_critical) +
-                     " (refused); intended critical / given " + sci(corrected.critical_time_step / given) + " (accepted)",
+                     " (refused); intended critical / given " + sci(corrected.critical_time_step / given) +
+                     " (accepted)",
                  r.exit_code == 2 && ok.exit_code == 0 && nothing_written(run)});
 }
 
@@ -122,7 +123,8 @@ TEST_F(StabilityRefusals, CoupleModulusMuCInGigapascalIsRefusedBeforeTheFirstSte
   EXPECT_TRUE(nothing_written(run)) << run;
   const double slip_critical = critical_step_in(r.output);
   const bool names_mu_c = contains(r.output, "material.mu_c");
-  record_margin({"02-couple-modulus-mu-c-1000x", "couple modulus mu_c entered in GPa for MPa-scale (1000 x), fixed step 0.1 us",
+  record_margin({"02-couple-modulus-mu-c-1000x",
+                 "couple modulus mu_c entered in GPa for MPa-scale (1000 x), fixed step 0.1 us",
                  "refused before the first step: exit 2 naming material.mu_c",
                  "exit " + std::to_string(r.exit_code) + "; critical step with the slip " + sci(slip_critical) +
                      " s; message " + (names_mu_c ? "names material.mu_c" : "credits lambda and mu, not mu_c"),
@@ -228,8 +230,8 @@ TEST_F(StabilityRefusals, BrokenPointsFileIsRefusedNamingTheFile) {
   bool all_refused = true;
   for (const Broken& b : cases) {
     const std::string run = fresh_directory("broken-points-run-" + std::to_string(k++));
-    const CommandResult r = run_program(
-        program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points", b.name, "-o", run, "--quiet"});
+    const CommandResult r = run_program(program("mppm-solve"),
+                                        {scene_path("elastic_block.yaml"), "--points", b.name, "-o", run, "--quiet"});
     std::printf("%s: exit %d\n%s", fs::path(b.name).filename().c_str(), r.exit_code, r.output.c_str());
     EXPECT_EQ(r.exit_code, 2) << b.name;
     EXPECT_TRUE(contains(r.output, b.name)) << r.output;
@@ -240,7 +242,8 @@ TEST_F(StabilityRefusals, BrokenPointsFileIsRefusedNamingTheFile) {
     codes += (codes.empty() ? "" : ", ") + fs::path(b.name).stem().string() + " -> " + std::to_string(r.exit_code);
     all_refused = all_refused && r.exit_code == 2 && contains(r.output, b.name) && nothing_written(run);
   }
-  record_margin({"09-broken-points-file", "broken points file: missing, not VTK, truncated, negative / zero volume, NaN coordinate",
+  record_margin({"09-broken-points-file",
+                 "broken points file: missing, not VTK, truncated, negative / zero volume, NaN coordinate",
                  "exit 2 naming the file and the problem, nothing written", "exit codes: " + codes,
                  "contract check (no numeric margin)", all_refused});
 }
@@ -268,26 +271,30 @@ TEST_F(StabilityRefusals, BoundaryChangedAfterPreprocessingIsRefused) {
     const auto [r, empty] = solve_with("boundary-origin-same", same);
     EXPECT_EQ(r.exit_code, 0) << r.output;
   }
-  const auto [deeper, deeper_empty] = solve_with("boundary-origin-depth", {"--set", "boundary_conditions[0].depth=3 mm"});
+  const auto [deeper, deeper_empty] =
+      solve_with("boundary-origin-depth", {"--set", "boundary_conditions[0].depth=3 mm"});
   EXPECT_EQ(deeper.exit_code, 2) << deeper.output;
-  for (const char* part : {"fragmentation_block.yaml", "boundary_conditions[0].depth", "0.003", "0.001", "rerun mppm-preprocess"})
+  for (const char* part :
+       {"fragmentation_block.yaml", "boundary_conditions[0].depth", "0.003", "0.001", "rerun mppm-preprocess"})
     EXPECT_TRUE(contains(deeper.output, part)) << part << " missing in: " << deeper.output;
   EXPECT_TRUE(deeper_empty);
   const auto [moved, moved_empty] =
-      solve_with("boundary-origin-selection", {"--set", "boundary_conditions[0]={box: [[0, 0], [1 mm, 20 mm]], "
-                                                        "type: traction, value: [1 GPa, 0]}"});
+      solve_with("boundary-origin-selection", {"--set",
+                                               "boundary_conditions[0]={box: [[0, 0], [1 mm, 20 mm]], "
+                                               "type: traction, value: [1 GPa, 0]}"});
   EXPECT_EQ(moved.exit_code, 2) << moved.output;
   for (const char* part : {"boundary_conditions[0]", "selects box", "'left'", "rerun mppm-preprocess"})
     EXPECT_TRUE(contains(moved.output, part)) << part << " missing in: " << moved.output;
   EXPECT_TRUE(moved_empty);
   const bool pass = deeper.exit_code == 2 && moved.exit_code == 2 && deeper_empty && moved_empty &&
                     contains(deeper.output, "boundary_conditions[0].depth") && contains(moved.output, "selects box");
-  record_margin({"09c-boundary-changed-after-preprocessing",
-                 "a boundary's depth or selection changed after preprocessing (the layers are fixed in the points file)",
-                 "exit 2 naming the key and both values, nothing written; unchanged layers run",
-                 "depth 1 mm -> 3 mm: exit " + std::to_string(deeper.exit_code) + "; selection 'left' -> a box: exit " +
-                     std::to_string(moved.exit_code),
-                 "contract check (no numeric margin)", pass});
+  record_margin(
+      {"09c-boundary-changed-after-preprocessing",
+       "a boundary's depth or selection changed after preprocessing (the layers are fixed in the points file)",
+       "exit 2 naming the key and both values, nothing written; unchanged layers run",
+       "depth 1 mm -> 3 mm: exit " + std::to_string(deeper.exit_code) + "; selection 'left' -> a box: exit " +
+           std::to_string(moved.exit_code),
+       "contract check (no numeric margin)", pass});
 }
 
 TEST_F(StabilityRefusals, GeometryWithoutPointsIsRefusedNamingTheGeometry) {
@@ -325,8 +332,9 @@ TEST_F(StabilityRefusals, NegativeVolumeFromABrokenGeometryIsImpossibleOrRefused
     const std::string intact = fresh_directory("negative-volume-intact") + ".vtp";
     const CommandResult a = run_program(program("mppm-preprocess"),
                                         {scene_path("negative_volume_clockwise.yaml"), "-o", turned, "--quiet"});
-    const CommandResult b = run_program(program("mppm-preprocess"), {scene_path("negative_volume_clockwise.yaml"), "-o",
-                                                                     intact, "--quiet", "--set", "geometry.file=block.geo"});
+    const CommandResult b = run_program(
+        program("mppm-preprocess"),
+        {scene_path("negative_volume_clockwise.yaml"), "-o", intact, "--quiet", "--set", "geometry.file=block.geo"});
     ASSERT_EQ(a.exit_code, 0) << a.output;
     ASSERT_EQ(b.exit_code, 0) << b.output;
     const PointCloud pa = read_point_cloud(turned), pb = read_point_cloud(intact);
@@ -371,9 +379,10 @@ TEST_F(StabilityRefusals, NegativeVolumeFromABrokenGeometryIsImpossibleOrRefused
                              "lambda: 14 GPa, mu: 14 GPa}\neffects: []\ntime: {end: 1 us, step: auto}\n";
       return path;
     };
-    const CommandResult a = run_program(program("mppm-preprocess"),
-                                        {scene_for(dir + "/inside_out_cube.stl"), "-o", dir + "/turned.vtp", "--quiet"});
-    const CommandResult b = run_program(program("mppm-preprocess"), {scene_for(cube), "-o", dir + "/intact.vtp", "--quiet"});
+    const CommandResult a = run_program(
+        program("mppm-preprocess"), {scene_for(dir + "/inside_out_cube.stl"), "-o", dir + "/turned.vtp", "--quiet"});
+    const CommandResult b =
+        run_program(program("mppm-preprocess"), {scene_for(cube), "-o", dir + "/intact.vtp", "--quiet"});
     ASSERT_EQ(a.exit_code, 0) << a.output;
     ASSERT_EQ(b.exit_code, 0) << b.output;
     const PointCloud pa = read_point_cloud(dir + "/turned.vtp"), pb = read_point_cloud(dir + "/intact.vtp");
@@ -406,8 +415,8 @@ TEST_F(StabilityRefusals, NegativeVolumeFromABrokenGeometryIsImpossibleOrRefused
     const CommandResult pre =
         run_program(program("mppm-preprocess"), {scene_path("elastic_block.yaml"), "-o", out, "--quiet", "--set", set});
     const std::string run = fresh_directory("negative-volume-thickness-run");
-    const CommandResult solve = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points", points_,
-                                                                    "-o", run, "--quiet", "--set", set});
+    const CommandResult solve = run_program(program("mppm-solve"), {scene_path("elastic_block.yaml"), "--points",
+                                                                    points_, "-o", run, "--quiet", "--set", set});
     std::printf("--set %s: preprocess exit %d, solve exit %d\n%s%s", set.c_str(), pre.exit_code, solve.exit_code,
                 pre.output.c_str(), solve.output.c_str());
     EXPECT_EQ(pre.exit_code, 2);
@@ -416,14 +425,17 @@ TEST_F(StabilityRefusals, NegativeVolumeFromABrokenGeometryIsImpossibleOrRefused
     EXPECT_TRUE(contains(solve.output, "thickness")) << solve.output;
     EXPECT_FALSE(fs::exists(out));
     EXPECT_TRUE(nothing_written(run));
-    note("thickness " + std::string(t) + ": exit " + std::to_string(pre.exit_code) + " / " + std::to_string(solve.exit_code),
+    note("thickness " + std::string(t) + ": exit " + std::to_string(pre.exit_code) + " / " +
+             std::to_string(solve.exit_code),
          pre.exit_code == 2 && solve.exit_code == 2 && !fs::exists(out) && nothing_written(run));
   }
-  record_margin({"09b-negative-volume-geometry", "a geometry that would give negative volumes: clockwise outline, inside-out surface, "
-                 "self-overlapping outline, non-positive thickness",
-                 "no negative volume ever reaches a points file: oriented (same points) or refused with exit 2 naming the "
-                 "file or key",
-                 measured, "contract check (no numeric margin)", all});
+  record_margin(
+      {"09b-negative-volume-geometry",
+       "a geometry that would give negative volumes: clockwise outline, inside-out surface, "
+       "self-overlapping outline, non-positive thickness",
+       "no negative volume ever reaches a points file: oriented (same points) or refused with exit 2 naming the "
+       "file or key",
+       measured, "contract check (no numeric margin)", all});
 }
 
 }  // namespace

@@ -32,15 +32,15 @@ TEST(StabilitySoftening, VanishingViscosityStaysFiniteAndBalanced) {
   for (std::size_t k = 0; k < viscosities.size(); ++k) {
     const std::string& eta = viscosities[k];
     const std::vector<std::string> overrides{
-        "material.viscoplasticity.viscosity=" + eta + " MPa*s",
-        "time.end=" + exact(static_cast<double>(steps) * dt),
+        "material.viscoplasticity.viscosity=" + eta + " MPa*s", "time.end=" + exact(static_cast<double>(steps) * dt),
         "boundary_conditions[0].history=[[0, 0], [" + exact(20 * dt) + ", 1], [" + exact(40 * dt) + ", 0]]",
         "output.load_interval=" + exact(20 * dt)};
     const RunReport r = solve_scene(scene, overrides, "softening-eta-" + eta);
-    std::printf("eta = %s MPa s: %s, %lld steps, plastic dissipation %.4g J of external work %.4g J, "
-                "never decreasing %d, worst balance error %.3g\n",
-                eta.c_str(), r.status.c_str(), static_cast<long long>(r.steps), r.final_plastic_dissipation,
-                r.final_external_work, r.plastic_dissipation_never_decreases, r.worst_balance_error);
+    std::printf(
+        "eta = %s MPa s: %s, %lld steps, plastic dissipation %.4g J of external work %.4g J, "
+        "never decreasing %d, worst balance error %.3g\n",
+        eta.c_str(), r.status.c_str(), static_cast<long long>(r.steps), r.final_plastic_dissipation,
+        r.final_external_work, r.plastic_dissipation_never_decreases, r.worst_balance_error);
     const bool yielded = r.final_plastic_dissipation > 0.1 * r.final_external_work;
     const bool pass = r.status == "completed" && r.steps == steps && r.all_finite && yielded &&
                       r.plastic_dissipation_never_decreases && r.worst_balance_error < 5e-3;
@@ -69,11 +69,12 @@ TEST(StabilitySoftening, VanishingViscosityStaysFiniteAndBalanced) {
   // 1 % between the two smallest viscosities (measured ~4e-4).
   const double change = std::abs(dissipation[3] - dissipation[2]) / dissipation[3];
   std::printf("dissipation change eta 1e-6 -> 1e-8 MPa s: %.3g (relative)\n", change);
-  record_margin({"11-softening-limit", "softening, eta -> 0: the rate-independent limit",
-                 "plastic dissipation converges (1e-6 vs 1e-8 MPa s within 1 %)",
-                 "dissipation " + sci(dissipation[2]) + " J vs " + sci(dissipation[3]) + " J",
-                 "relative change " + sci(change) + " vs limit 1e-2 (" + sci(1e-2 / std::max(change, 1e-300), 2) + " x)",
-                 change < 1e-2});
+  record_margin(
+      {"11-softening-limit", "softening, eta -> 0: the rate-independent limit",
+       "plastic dissipation converges (1e-6 vs 1e-8 MPa s within 1 %)",
+       "dissipation " + sci(dissipation[2]) + " J vs " + sci(dissipation[3]) + " J",
+       "relative change " + sci(change) + " vs limit 1e-2 (" + sci(1e-2 / std::max(change, 1e-300), 2) + " x)",
+       change < 1e-2});
   EXPECT_LT(change, 1e-2);
 }
 

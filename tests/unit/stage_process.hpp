@@ -8,8 +8,8 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <optional>
@@ -28,7 +28,8 @@ struct StageOutcome {
 
 inline StageOutcome run_stage_process(const std::vector<std::string>& args,
                                       std::optional<rlim_t> file_size_limit = std::nullopt) {
-  const std::string err_path = std::string(MPPM_BINARY_DIR) + "/test_scratch/stage_stderr_" + std::to_string(::getpid());
+  const std::string err_path =
+      std::string(MPPM_BINARY_DIR) + "/test_scratch/stage_stderr_" + std::to_string(::getpid());
   const pid_t pid = ::fork();
   if (pid == 0) {
     if (file_size_limit) {

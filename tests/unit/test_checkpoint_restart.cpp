@@ -174,7 +174,9 @@ void check_restart_is_bit_for_bit(const Case& c_in, const std::string& name) {
   expect_same_results(reference, completed);
 }
 
-TEST(CheckpointRestart, ElasticMicropolarRunContinuesBitForBit) { check_restart_is_bit_for_bit(elastic_bar(), "elastic"); }
+TEST(CheckpointRestart, ElasticMicropolarRunContinuesBitForBit) {
+  check_restart_is_bit_for_bit(elastic_bar(), "elastic");
+}
 
 TEST(CheckpointRestart, DamageRunContinuesBitForBit) {
   const Case c = damage_bar();

@@ -118,8 +118,8 @@ std::uint64_t json_integer(const std::string& json, const std::string& key) {
 // must not fall short of what the run takes (an accepted run would die of memory later), 0.9x
 // allowing for page rounding in ru_maxrss, and must not exceed it so far that runs which fit are
 // refused: at most 1.5x.
-void expect_estimate_matches_run(const std::string& name, const std::string& scene, const std::vector<std::string>& sets,
-                                 MemoryEstimateInput input) {
+void expect_estimate_matches_run(const std::string& name, const std::string& scene,
+                                 const std::vector<std::string>& sets, MemoryEstimateInput input) {
 #if defined(__SANITIZE_ADDRESS__)
   // AddressSanitizer's shadow memory and redzones multiply the resident size by design: the peak
   // says nothing about the estimate there (the release build runs this check).
@@ -130,8 +130,15 @@ void expect_estimate_matches_run(const std::string& name, const std::string& sce
   pre.insert(pre.end(), sets.begin(), sets.end());
   const auto p = testing::run_stage_process(pre);
   ASSERT_EQ(p.code, 0) << p.err;
-  std::vector<std::string> run{testing::binary("mppm-solve"), scene, "--points", dir + "/points.vtp", "-o",
-                               dir + "/run", "--quiet", "--threads", "1"};
+  std::vector<std::string> run{testing::binary("mppm-solve"),
+                               scene,
+                               "--points",
+                               dir + "/points.vtp",
+                               "-o",
+                               dir + "/run",
+                               "--quiet",
+                               "--threads",
+                               "1"};
   run.insert(run.end(), sets.begin(), sets.end());
   const auto r = testing::run_stage_process(run);
   ASSERT_EQ(r.code, 0) << r.err;
@@ -170,10 +177,10 @@ MemoryEstimateInput scene_input(int dimension, double horizon_factor, std::vecto
 TEST(MemoryEstimate, AgreesWithThePeakMemoryOfARealRun) {
   // The quickstart plate at 0.25 mm: ~65,000 points and ~1.8 million bond entries, so that the
   // run's arrays, not the program, dominate its memory; its scene's three output fields.
-  expect_estimate_matches_run("real_run", std::string(MPPM_SOURCE_DIR) + "/workflows/quickstart/scene.yaml",
-                              {"--set", "geometry.spacing=0.25 mm", "--set", "time.end=0.2 us", "--set",
-                               "output.interval=0.1 us"},
-                              scene_input(2, 3.015, {"micropolar"}, {"displacement", "rotation", "stress"}));
+  expect_estimate_matches_run(
+      "real_run", std::string(MPPM_SOURCE_DIR) + "/workflows/quickstart/scene.yaml",
+      {"--set", "geometry.spacing=0.25 mm", "--set", "time.end=0.2 us", "--set", "output.interval=0.1 us"},
+      scene_input(2, 3.015, {"micropolar"}, {"displacement", "rotation", "stress"}));
 }
 
 // The 3-D block of the benchmarks with every effect (micro-rotation, damage, viscoplasticity) at
@@ -190,7 +197,8 @@ TEST(MemoryEstimate, AgreesWithThePeakMemoryOfAFullModelRunIn3d) {
 TEST(MemoryEstimate, SolverRefusesARunThatDoesNotFit) {
   const std::string dir = scratch("refused");
   const std::string scene = std::string(MPPM_SOURCE_DIR) + "/workflows/quickstart/scene.yaml";
-  const auto p = testing::run_stage_process({testing::binary("mppm-preprocess"), scene, "-o", dir + "/points.vtp", "--quiet"});
+  const auto p =
+      testing::run_stage_process({testing::binary("mppm-preprocess"), scene, "-o", dir + "/points.vtp", "--quiet"});
   ASSERT_EQ(p.code, 0) << p.err;
   ::setenv("MPPM_MEMORY_AVAILABLE", "1000000", 1);
   const auto r = testing::run_stage_process(

@@ -67,7 +67,8 @@ StageOutcome preprocess(const std::string& points, std::optional<rlim_t> limit =
 
 StageOutcome solve(const std::string& points, const std::string& run, std::vector<std::string> extra = {},
                    std::optional<rlim_t> limit = std::nullopt) {
-  std::vector<std::string> args{binary("mppm-solve"), kScene, "--points", points, "-o", run, "--quiet", "--threads", "1"};
+  std::vector<std::string> args{binary("mppm-solve"), kScene, "--points", points, "-o", run, "--quiet",
+                                "--threads",          "1"};
   for (const auto& o : quickstart_overrides()) args.push_back(o);
   for (const auto& e : extra) args.push_back(e);
   return run_stage_process(args, limit);
@@ -189,14 +190,15 @@ TEST(OutputSafety, SolveWriteFailureMidRunKeepsTheLastCompleteFiles) {
   const std::string dir = scratch("solve_efbig");
   // ~950 steps with a row each, so that load.csv (~120 KB) outgrows every other file (the
   // reference snapshot, ~48 KB, is the largest of those); one small snapshot field.
-  const std::vector<std::string> extra{"--set", "time.end=1 ms", "--set", "output.interval=200 us", "--set",
-                                       "output.load_interval=0 s", "--set", "output.fields=[rotation]"};
+  const std::vector<std::string> extra{
+      "--set", "time.end=1 ms",           "--set", "output.interval=200 us", "--set", "output.load_interval=0 s",
+      "--set", "output.fields=[rotation]"};
   const std::string complete = dir + "/complete";
   ASSERT_EQ(solve(case_points(), complete, extra).code, 0);
   std::uintmax_t largest_other = 0;
   for (const auto& entry : fs::recursive_directory_iterator(complete))
-    if (entry.is_regular_file() && entry.path().filename() != run_layout::load && entry.path().filename() != run_layout::energy &&
-        entry.path().filename() != run_layout::log)
+    if (entry.is_regular_file() && entry.path().filename() != run_layout::load &&
+        entry.path().filename() != run_layout::energy && entry.path().filename() != run_layout::log)
       largest_other = std::max(largest_other, entry.file_size());
   const std::uintmax_t final_load = fs::file_size(fs::path(complete) / run_layout::load);
   ASSERT_GT(final_load, largest_other + 1024) << "the set-up does not make load.csv the file that outgrows the limit";

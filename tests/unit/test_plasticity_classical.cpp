@@ -32,11 +32,10 @@ struct ClassicalResult {
   bool apex = false;
 };
 
-ClassicalResult classical_drucker_prager(const Matrix3d& strain, const Matrix3d& plastic_strain,
-                                         double ebar, const ClassicalParameters& cp, double dt) {
+ClassicalResult classical_drucker_prager(const Matrix3d& strain, const Matrix3d& plastic_strain, double ebar,
+                                         const ClassicalParameters& cp, double dt) {
   const Matrix3d I = Matrix3d::Identity();
-  const Matrix3d e =
-      0.5 * (strain + strain.transpose()) - plastic_strain;  // mu_c = 0: skew part is stress-free
+  const Matrix3d e = 0.5 * (strain + strain.transpose()) - plastic_strain;  // mu_c = 0: skew part is stress-free
   const double bulk = cp.lambda + 2.0 * cp.mu / 3.0;
   const Matrix3d dev_e = e - e.trace() / 3.0 * I;
   const Matrix3d s_trial = 2.0 * cp.mu * dev_e;
@@ -56,23 +55,21 @@ ClassicalResult classical_drucker_prager(const Matrix3d& strain, const Matrix3d&
   // after it, so the only root is past the floor.
   const double slope = 3.0 * cp.mu + bulk * cp.m_phi * cp.m_psi + cp.k_per_c * cp.h + viscous;
   double dgamma = f_trial / slope;
-  if (slope <= 0.0 ||
-      cp.c0 + cp.h * (ebar + dgamma) < cp.c_res) {  // on the floor: no more softening
-    dgamma = (q_trial + cp.m_phi * p_trial - cp.k_per_c * cp.c_res) /
-             (3.0 * cp.mu + bulk * cp.m_phi * cp.m_psi + viscous);
+  if (slope <= 0.0 || cp.c0 + cp.h * (ebar + dgamma) < cp.c_res) {  // on the floor: no more softening
+    dgamma =
+        (q_trial + cp.m_phi * p_trial - cp.k_per_c * cp.c_res) / (3.0 * cp.mu + bulk * cp.m_phi * cp.m_psi + viscous);
   }
   if (dgamma < q_trial / (3.0 * cp.mu)) {
     const Matrix3d s = (1.0 - 3.0 * cp.mu * dgamma / q_trial) * s_trial;
     r.stress = s + (p_trial - bulk * cp.m_psi * dgamma) * I;
-    r.plastic_increment =
-        dgamma * (1.5 / q_trial * s_trial + cp.m_psi / 3.0 * I);  // n = s/q is fixed by the return
+    r.plastic_increment = dgamma * (1.5 / q_trial * s_trial + cp.m_psi / 3.0 * I);  // n = s/q is fixed by the return
     r.ebar_increment = dgamma;
     return r;
   }
   r.apex = true;
   r.ebar_increment = q_trial / (3.0 * cp.mu);  // all of the deviatoric trial strain
-  dgamma = (cp.m_phi * p_trial - cp.k_per_c * cohesion(ebar + r.ebar_increment)) /
-           (bulk * cp.m_phi * cp.m_psi + viscous);
+  dgamma =
+      (cp.m_phi * p_trial - cp.k_per_c * cohesion(ebar + r.ebar_increment)) / (bulk * cp.m_phi * cp.m_psi + viscous);
   r.stress = (p_trial - bulk * cp.m_psi * dgamma) * I;
   r.plastic_increment = dev_e + cp.m_psi * dgamma / 3.0 * I;
   return r;
@@ -113,18 +110,15 @@ void compare_with_classical(double h, double eta, std::uint64_t seed, int* cone,
     PlasticState<3> state = initial_plastic_state<3>(model);
     state.plastic_strain = vp;
     state.equivalent_plastic_strain = 0.2 * (u(rng) + 1.0);
-    const ClassicalResult ref =
-        classical_drucker_prager(strain, vp, state.equivalent_plastic_strain, cp, dt);
-    const PointUpdate<3> r =
-        drucker_prager_perzyna_update(strain, Matrix3d::Zero().eval(), state, el, model, dt);
+    const ClassicalResult ref = classical_drucker_prager(strain, vp, state.equivalent_plastic_strain, cp, dt);
+    const PointUpdate<3> r = drucker_prager_perzyna_update(strain, Matrix3d::Zero().eval(), state, el, model, dt);
     const double scale = ref.stress.norm() + cp.k_per_c * cp.c0;
-    ASSERT_LE((r.stress - ref.stress).norm(), 1e-10 * scale)
-        << "h " << h << " eta " << eta << " point " << n;
+    ASSERT_LE((r.stress - ref.stress).norm(), 1e-10 * scale) << "h " << h << " eta " << eta << " point " << n;
     EXPECT_EQ(r.apex, ref.apex);
     EXPECT_LE((r.state.plastic_strain - vp - ref.plastic_increment).norm(),
               1e-10 * (ref.plastic_increment.norm() + 1e-3));
-    EXPECT_NEAR(r.state.equivalent_plastic_strain - state.equivalent_plastic_strain,
-                ref.ebar_increment, 1e-10 * (ref.ebar_increment + 1e-3));
+    EXPECT_NEAR(r.state.equivalent_plastic_strain - state.equivalent_plastic_strain, ref.ebar_increment,
+                1e-10 * (ref.ebar_increment + 1e-3));
     EXPECT_EQ(r.couple_stress, Matrix3d::Zero());
     if (r.plastic) (ref.apex ? *apex : *cone) += 1;
   }

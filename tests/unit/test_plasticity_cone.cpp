@@ -15,8 +15,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 // f = q + M p - k for principal stresses (tension positive).
 double cone_value(const ConeCoefficients& c, double cohesion, double s1, double s2, double s3) {
   const double p = (s1 + s2 + s3) / 3.0;
-  const double q =
-      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  const double q = std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
   return q + c.friction_slope * p - c.cohesion_factor * cohesion;
 }
 
@@ -29,12 +28,10 @@ TEST(PlasticityCone, TriaxialCompressionMatchesMohrCoulombOnCompressionMeridian)
   const double c = 0.35e6;
   for (double phi_deg : {10.0, 25.0, 30.0, 35.0, 40.0, 55.0}) {
     const double phi = phi_deg * kDeg;
-    const ConeCoefficients cone =
-        cone_coefficients(phi, 15.0 * kDeg, ConeMatch::triaxial_compression);
+    const ConeCoefficients cone = cone_coefficients(phi, 15.0 * kDeg, ConeMatch::triaxial_compression);
     for (double confinement : {0.0, 0.1e6, 2.0e6}) {
       const double s1 = -confinement;
-      const double s3 =
-          -(confinement * (1.0 + std::sin(phi)) + 2.0 * c * std::cos(phi)) / (1.0 - std::sin(phi));
+      const double s3 = -(confinement * (1.0 + std::sin(phi)) + 2.0 * c * std::cos(phi)) / (1.0 - std::sin(phi));
       const double k = cone.cohesion_factor * c;
       EXPECT_NEAR(cone_value(cone, c, s1, s1, s3), 0.0, 1e-12 * k) << "phi " << phi_deg << " deg";
     }

@@ -62,8 +62,7 @@ TEST(PlasticityRegistry, DefaultModelResolvesAndMatchesFreeFunction) {
   EXPECT_EQ(s0.cohesion, 0.35e6);
   const PointUpdate<2> a = model->update(eps, Eigen::Vector2d(1.0, 2.0), s0, el, 7e-6);
   const PointUpdate<2> b = drucker_prager_perzyna_update(
-      eps, Eigen::Vector2d(1.0, 2.0), s0, el,
-      make_drucker_prager_perzyna(drucker_prager_parameters(m)), 7e-6);
+      eps, Eigen::Vector2d(1.0, 2.0), s0, el, make_drucker_prager_perzyna(drucker_prager_parameters(m)), 7e-6);
   EXPECT_TRUE(a.plastic);
   EXPECT_EQ(a.stress, b.stress);
   EXPECT_EQ(a.state.equivalent_plastic_strain, b.state.equivalent_plastic_strain);
@@ -76,8 +75,7 @@ TEST(PlasticityRegistry, PlaneStrainMatchIsSelectedByTheSceneKey) {
   const auto& dp = dynamic_cast<const DruckerPragerPerzynaModel&>(*model);
   EXPECT_EQ(dp.constants().parameters.cone_match, ConeMatch::plane_strain);
   const ConeCoefficients expected =
-      cone_coefficients(m.viscoplasticity->friction_angle, m.viscoplasticity->dilatancy_angle,
-                        ConeMatch::plane_strain);
+      cone_coefficients(m.viscoplasticity->friction_angle, m.viscoplasticity->dilatancy_angle, ConeMatch::plane_strain);
   EXPECT_EQ(dp.constants().cone.friction_slope, expected.friction_slope);
 }
 
@@ -93,9 +91,7 @@ TEST(PlasticityRegistry, UnknownModelListsValidNames) {
 
 TEST(PlasticityRegistry, ListOfValidNamesFollowsTheTable) {
   MaterialRegistry registry;
-  const MaterialRegistry::Factory none = [](const Material&) -> std::unique_ptr<ViscoplasticModel> {
-    return nullptr;
-  };
+  const MaterialRegistry::Factory none = [](const Material&) -> std::unique_ptr<ViscoplasticModel> { return nullptr; };
   registry.add("zeta-model", none);
   registry.add("alpha-model", none);
   EXPECT_THROW(registry.add("alpha-model", none), std::logic_error);
@@ -114,9 +110,8 @@ TEST(PlasticityRegistry, BadParametersNameFileAndKey) {
   {
     Material m = case1_material();
     m.viscoplasticity->friction_angle = 2.0;  // rad, > 90 deg
-    EXPECT_THAT(
-        message_of(m),
-        HasSubstr("shear.yaml: material.viscoplasticity.friction_angle: must be in [0, 90) deg"));
+    EXPECT_THAT(message_of(m),
+                HasSubstr("shear.yaml: material.viscoplasticity.friction_angle: must be in [0, 90) deg"));
   }
   {
     Material m = case1_material();
@@ -126,8 +121,7 @@ TEST(PlasticityRegistry, BadParametersNameFileAndKey) {
   {
     Material m = case1_material();
     m.viscoplasticity->residual_cohesion = 1e6;  // above c0
-    EXPECT_THAT(message_of(m),
-                HasSubstr("material.viscoplasticity.residual_cohesion: must be in [0, cohesion]"));
+    EXPECT_THAT(message_of(m), HasSubstr("material.viscoplasticity.residual_cohesion: must be in [0, cohesion]"));
   }
   {
     Material m = case1_material();

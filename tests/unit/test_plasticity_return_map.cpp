@@ -36,30 +36,24 @@ struct Case1 {
   }
 };
 
-double tri_compression_slope(double angle) {
-  return 6.0 * std::sin(angle) / (3.0 - std::sin(angle));
-}
-double tri_compression_k(double c, double phi) {
-  return 6.0 * c * std::cos(phi) / (3.0 - std::sin(phi));
-}
+double tri_compression_slope(double angle) { return 6.0 * std::sin(angle) / (3.0 - std::sin(angle)); }
+double tri_compression_k(double c, double phi) { return 6.0 * c * std::cos(phi) / (3.0 - std::sin(phi)); }
 
 // q = sqrt(3 J2), J2 = 1/4 s:s + 1/4 s:s^T + 1/2 m.m / l^2 (docs/theory.md section 6).
 double q_of(const Matrix3d& sigma, const Vector2d& m, double l) {
   const Matrix3d s = sigma - sigma.trace() / 3.0 * Matrix3d::Identity();
-  const double j2 = 0.25 * (s.cwiseProduct(s).sum() + s.cwiseProduct(s.transpose()).sum()) +
-                    0.5 * m.squaredNorm() / (l * l);
+  const double j2 =
+      0.25 * (s.cwiseProduct(s).sum() + s.cwiseProduct(s.transpose()).sum()) + 0.5 * m.squaredNorm() / (l * l);
   return std::sqrt(3.0 * j2);
 }
 
 double f_of(const Matrix3d& sigma, const Vector2d& m, double c, const DruckerPragerParameters& p) {
-  return q_of(sigma, m, p.length_scale) +
-         tri_compression_slope(p.friction_angle) * sigma.trace() / 3.0 -
+  return q_of(sigma, m, p.length_scale) + tri_compression_slope(p.friction_angle) * sigma.trace() / 3.0 -
          tri_compression_k(c, p.friction_angle);
 }
 
 Matrix3d elastic_stress(const Matrix3d& e, const CosseratElasticity<2>& el) {
-  return el.lambda * e.trace() * Matrix3d::Identity() + (el.mu + el.mu_c) * e +
-         (el.mu - el.mu_c) * e.transpose();
+  return el.lambda * e.trace() * Matrix3d::Identity() + (el.mu + el.mu_c) * e + (el.mu - el.mu_c) * e.transpose();
 }
 
 struct RandomPoint {
@@ -70,8 +64,7 @@ struct RandomPoint {
 
 // Plane-strain strain (z components zero), wryness of the same order times 1/l, and a random
 // earlier plastic state (eps_vp has a zz part: plastic flow is 3-D even in plane strain).
-RandomPoint random_point(std::mt19937_64& rng, double strain_size, double l,
-                         const DruckerPragerPerzyna& model) {
+RandomPoint random_point(std::mt19937_64& rng, double strain_size, double l, const DruckerPragerPerzyna& model) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   RandomPoint rp;
   rp.strain.setZero();
@@ -129,8 +122,7 @@ TEST(PlasticityReturnMap, RateIndependentLimitLandsOnYieldSurface) {
     int plastic = 0, apex = 0;
     for (int n = 0; n < 400; ++n) {
       const RandomPoint rp = random_point(rng, 0.02, c1.prm.length_scale, model);
-      const PointUpdate<2> r =
-          drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, dt);
+      const PointUpdate<2> r = drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, dt);
       const Matrix3d trial = elastic_stress(rp.strain - rp.state.plastic_strain, c1.elastic);
       const double tol = 1e-9 * trial.norm();
       ASSERT_TRUE(r.stress.allFinite());
@@ -165,28 +157,24 @@ TEST(PlasticityReturnMap, ConeReturnFollowsPotentialGradientAtEndOfStep) {
   int checked = 0;
   for (int n = 0; n < 400; ++n) {
     const RandomPoint rp = random_point(rng, 0.02, l, model);
-    const PointUpdate<2> r =
-        drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
+    const PointUpdate<2> r = drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
     if (!r.plastic || r.apex) continue;
     ++checked;
     const Matrix3d s = r.stress - r.stress.trace() / 3.0 * Matrix3d::Identity();
     const double q = q_of(r.stress, r.couple_stress, l);
-    const Matrix3d flow =
-        3.0 / (2.0 * q) * 0.5 * (s + s.transpose()) + m_psi / 3.0 * Matrix3d::Identity();
+    const Matrix3d flow = 3.0 / (2.0 * q) * 0.5 * (s + s.transpose()) + m_psi / 3.0 * Matrix3d::Identity();
     const Vector2d couple_flow = 3.0 * r.couple_stress / (2.0 * q * l * l);
     const Matrix3d d_eps = r.state.plastic_strain - rp.state.plastic_strain;
     const Vector2d d_kap = r.state.plastic_wryness - rp.state.plastic_wryness;
     EXPECT_LE((d_eps - r.multiplier * flow).norm(), 1e-9 * d_eps.norm());
     EXPECT_LE((d_kap - r.multiplier * couple_flow).norm(), 1e-9 * d_kap.norm() + 1e-300);
-    EXPECT_NEAR(r.state.equivalent_plastic_strain - rp.state.equivalent_plastic_strain,
-                r.multiplier, 1e-9 * r.multiplier);
+    EXPECT_NEAR(r.state.equivalent_plastic_strain - rp.state.equivalent_plastic_strain, r.multiplier,
+                1e-9 * r.multiplier);
     // Elastic law holds with the updated plastic strain: the stress is not invented.
     const Matrix3d elastic = elastic_stress(rp.strain - r.state.plastic_strain, c1.elastic);
     EXPECT_LE((r.stress - elastic).norm(), 1e-9 * elastic.norm());
-    EXPECT_LE(
-        (r.couple_stress - c1.elastic.bending_modulus * (rp.wryness - r.state.plastic_wryness))
-            .norm(),
-        1e-9 * r.couple_stress.norm() + 1e-300);
+    EXPECT_LE((r.couple_stress - c1.elastic.bending_modulus * (rp.wryness - r.state.plastic_wryness)).norm(),
+              1e-9 * r.couple_stress.norm() + 1e-300);
   }
   EXPECT_GT(checked, 100);
 }
@@ -215,8 +203,7 @@ TEST(PlasticityReturnMap, SteadyViscousOverstressEqualsViscosityTimesRate) {
     d_rate(0, 0) = 0.3 * rate;
     d_rate(1, 1) = -0.3 * rate;
     const Vector2d kap_rate = Vector2d(0.4, -0.7) * rate / l;
-    const double ebar_rate =
-        std::sqrt(2.0 / 3.0 * d_rate.squaredNorm() + 2.0 / 3.0 * l * l * kap_rate.squaredNorm());
+    const double ebar_rate = std::sqrt(2.0 / 3.0 * d_rate.squaredNorm() + 2.0 / 3.0 * l * l * kap_rate.squaredNorm());
     Matrix3d confinement = Matrix3d::Zero();
     confinement(0, 0) = confinement(1, 1) = -2e-3;  // p < 0, constant because psi = 0
     const double dt = tau / 10.0;
@@ -225,8 +212,7 @@ TEST(PlasticityReturnMap, SteadyViscousOverstressEqualsViscosityTimesRate) {
     PointUpdate<2> r;
     for (int n = 1; n <= steps; ++n) {
       const double t = n * dt;
-      r = drucker_prager_perzyna_update(confinement + d_rate * t, kap_rate * t, state, c1.elastic,
-                                        model, dt);
+      r = drucker_prager_perzyna_update(confinement + d_rate * t, kap_rate * t, state, c1.elastic, model, dt);
       state = r.state;
     }
     ASSERT_TRUE(r.plastic);
@@ -294,8 +280,7 @@ TEST(PlasticityReturnMap, ConeAndApexReturnsMeetContinuously) {
     Matrix3d eps = Matrix3d::Zero();
     eps(0, 0) = eps(1, 1) = 0.02 * i / n;
     eps(0, 1) = eps(1, 0) = 2e-3;
-    const PointUpdate<2> r =
-        drucker_prager_perzyna_update(eps, Vector2d(0.3, 0.1), s0, c1.elastic, model, 7e-6);
+    const PointUpdate<2> r = drucker_prager_perzyna_update(eps, Vector2d(0.3, 0.1), s0, c1.elastic, model, 7e-6);
     saw_cone |= r.plastic && !r.apex;
     saw_apex |= r.apex;
     if (i > 0) largest_jump = std::max(largest_jump, (r.stress - prev).norm());
@@ -329,10 +314,8 @@ TEST(PlasticityReturnMap, SofteningWithTinyViscosityStaysFiniteAndOnSurface) {
         eps(1, 1) = -1e-3;
         eps(0, 1) = g;
         const Vector2d kap(0.5 * g / c1.prm.length_scale, 0.0);
-        const PointUpdate<2> r =
-            drucker_prager_perzyna_update(eps, kap, state, c1.elastic, model, dt);
-        ASSERT_TRUE(r.stress.allFinite() && r.couple_stress.allFinite())
-            << "h " << h << " step " << n;
+        const PointUpdate<2> r = drucker_prager_perzyna_update(eps, kap, state, c1.elastic, model, dt);
+        ASSERT_TRUE(r.stress.allFinite() && r.couple_stress.allFinite()) << "h " << h << " step " << n;
         const double f = f_of(r.stress, r.couple_stress, r.state.cohesion, c1.prm);
         const double tol = 1e-9 * r.stress.norm() + 1e-9 * c1.prm.cohesion;
         EXPECT_LE(f, eta * r.multiplier / dt + tol);
@@ -345,8 +328,7 @@ TEST(PlasticityReturnMap, SofteningWithTinyViscosityStaysFiniteAndOnSurface) {
         max_iterations = std::max(max_iterations, r.iterations);
         state = r.state;
       }
-      EXPECT_EQ(state.cohesion, c1.prm.residual_cohesion)
-          << "the path must reach the floor, h " << h;
+      EXPECT_EQ(state.cohesion, c1.prm.residual_cohesion) << "the path must reach the floor, h " << h;
       EXPECT_LT(max_iterations, 60);
     }
   }
@@ -367,16 +349,14 @@ TEST(PlasticityReturnMap, DissipationIsNonNegative) {
         const DruckerPragerPerzyna model = make_drucker_prager_perzyna(c1.prm);
         for (int n = 0; n < 100; ++n) {
           const RandomPoint rp = random_point(rng, 0.02, c1.prm.length_scale, model);
-          const PointUpdate<2> r = drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state,
-                                                                 c1.elastic, model, 7e-6);
+          const PointUpdate<2> r =
+              drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
           plastic += r.plastic;
-          const double direct =
-              r.stress.cwiseProduct(r.state.plastic_strain - rp.state.plastic_strain).sum() +
-              r.couple_stress.dot(r.state.plastic_wryness - rp.state.plastic_wryness);
+          const double direct = r.stress.cwiseProduct(r.state.plastic_strain - rp.state.plastic_strain).sum() +
+                                r.couple_stress.dot(r.state.plastic_wryness - rp.state.plastic_wryness);
           // The direct sum differences the accumulated plastic strains: allow their rounding.
-          const double cancellation =
-              1e-15 * (r.stress.norm() * r.state.plastic_strain.norm() +
-                       r.couple_stress.norm() * r.state.plastic_wryness.norm());
+          const double cancellation = 1e-15 * (r.stress.norm() * r.state.plastic_strain.norm() +
+                                               r.couple_stress.norm() * r.state.plastic_wryness.norm());
           EXPECT_NEAR(r.dissipation, direct, 1e-12 * std::abs(direct) + 10.0 * cancellation);
           EXPECT_GE(r.dissipation, 0.0);
         }
@@ -409,16 +389,13 @@ TEST(PlasticityReturnMap, TwoDimensionalUpdateEqualsEmbeddedThreeDimensional) {
     s3.plastic_wryness = embed(rp.state.plastic_wryness);
     s3.equivalent_plastic_strain = rp.state.equivalent_plastic_strain;
     s3.cohesion = rp.state.cohesion;
-    const PointUpdate<2> r2 =
-        drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
-    const PointUpdate<3> r3 =
-        drucker_prager_perzyna_update(rp.strain, embed(rp.wryness), s3, el3, model, 7e-6);
+    const PointUpdate<2> r2 = drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
+    const PointUpdate<3> r3 = drucker_prager_perzyna_update(rp.strain, embed(rp.wryness), s3, el3, model, 7e-6);
     plastic += r2.plastic;
     EXPECT_EQ(r2.plastic, r3.plastic);
     EXPECT_EQ(r2.apex, r3.apex);
     EXPECT_LE((r2.stress - r3.stress).norm(), 1e-12 * r2.stress.norm());
-    EXPECT_LE((embed(r2.couple_stress) - r3.couple_stress).norm(),
-              1e-12 * r2.couple_stress.norm() + 1e-300);
+    EXPECT_LE((embed(r2.couple_stress) - r3.couple_stress).norm(), 1e-12 * r2.couple_stress.norm() + 1e-300);
     EXPECT_LE((embed(r2.state.plastic_wryness) - r3.state.plastic_wryness).norm(),
               1e-12 * r2.state.plastic_wryness.norm() + 1e-300);
     EXPECT_NEAR(r2.state.equivalent_plastic_strain, r3.state.equivalent_plastic_strain,
@@ -434,15 +411,13 @@ TEST(PlasticityReturnMap, BitwiseIdenticalForAnyThreadCount) {
   const DruckerPragerPerzyna model = make_drucker_prager_perzyna(c1.prm);
   std::mt19937_64 rng(5);
   std::vector<RandomPoint> points;
-  for (int n = 0; n < 20000; ++n)
-    points.push_back(random_point(rng, 0.02, c1.prm.length_scale, model));
+  for (int n = 0; n < 20000; ++n) points.push_back(random_point(rng, 0.02, c1.prm.length_scale, model));
   const auto run = [&](int threads) {
     std::vector<double> out(points.size() * 12);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 64)
     for (std::size_t i = 0; i < points.size(); ++i) {
       const RandomPoint& rp = points[i];
-      const PointUpdate<2> r =
-          drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
+      const PointUpdate<2> r = drucker_prager_perzyna_update(rp.strain, rp.wryness, rp.state, c1.elastic, model, 7e-6);
       std::memcpy(&out[i * 12], r.stress.data(), 9 * sizeof(double));
       out[i * 12 + 9] = r.couple_stress(0);
       out[i * 12 + 10] = r.state.equivalent_plastic_strain;

@@ -49,8 +49,7 @@ TEST(PlasticityScene, SceneDefaultsResolveToTheDruckerPragerPerzynaModel) {
   const Scene scene = parse_scene(kScene, kPath);
   const auto model = make_viscoplastic_model(scene.material, scene.path);
   ASSERT_EQ(model->name(), "drucker-prager-perzyna");
-  const DruckerPragerParameters& p =
-      dynamic_cast<const DruckerPragerPerzynaModel&>(*model).constants().parameters;
+  const DruckerPragerParameters& p = dynamic_cast<const DruckerPragerPerzynaModel&>(*model).constants().parameters;
   EXPECT_NEAR(p.friction_angle, 35.0 * std::numbers::pi / 180.0, 1e-15);
   EXPECT_NEAR(p.dilatancy_angle, 15.0 * std::numbers::pi / 180.0, 1e-15);
   EXPECT_DOUBLE_EQ(p.cohesion, 0.35e6);
@@ -63,12 +62,11 @@ TEST(PlasticityScene, SceneDefaultsResolveToTheDruckerPragerPerzynaModel) {
 }
 
 TEST(PlasticityScene, OverridesReachTheModel) {
-  const Scene scene = parse_scene(kScene, kPath,
-                                  {"material.viscoplasticity.cone_match=plane-strain",
-                                   "material.viscoplasticity.friction_angle=25deg"});
+  const Scene scene = parse_scene(
+      kScene, kPath,
+      {"material.viscoplasticity.cone_match=plane-strain", "material.viscoplasticity.friction_angle=25deg"});
   const auto model = make_viscoplastic_model(scene.material, scene.path);
-  const DruckerPragerPerzyna& c =
-      dynamic_cast<const DruckerPragerPerzynaModel&>(*model).constants();
+  const DruckerPragerPerzyna& c = dynamic_cast<const DruckerPragerPerzynaModel&>(*model).constants();
   EXPECT_EQ(c.parameters.cone_match, ConeMatch::plane_strain);
   EXPECT_NEAR(c.parameters.friction_angle, 25.0 * std::numbers::pi / 180.0, 1e-15);
 }

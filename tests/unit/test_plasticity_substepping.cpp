@@ -88,13 +88,12 @@ Result explicit_run(const PathSetup& su, int steps) {
     Vector2d kap;
     su.path(n * dt, &eps, &kap);
     const Matrix3d e = eps - eps_vp;
-    sigma = su.el.lambda * e.trace() * I + (su.el.mu + su.el.mu_c) * e +
-            (su.el.mu - su.el.mu_c) * e.transpose();
+    sigma = su.el.lambda * e.trace() * I + (su.el.mu + su.el.mu_c) * e + (su.el.mu - su.el.mu_c) * e.transpose();
     m = su.el.bending_modulus * (kap - kap_vp);
     if (n == steps) break;
     const Matrix3d s = sigma - sigma.trace() / 3.0 * I;
-    const double j2 = 0.25 * (s.cwiseProduct(s).sum() + s.cwiseProduct(s.transpose()).sum()) +
-                      0.5 * m.squaredNorm() / l2;
+    const double j2 =
+        0.25 * (s.cwiseProduct(s).sum() + s.cwiseProduct(s.transpose()).sum()) + 0.5 * m.squaredNorm() / l2;
     const double q = std::sqrt(3.0 * j2);
     const double c = std::max(p.cohesion + p.hardening * ebar, p.residual_cohesion);
     const double f = q + m_phi * sigma.trace() / 3.0 - k_per_c * c;
@@ -103,9 +102,9 @@ Result explicit_run(const PathSetup& su, int steps) {
     const Matrix3d d_eps = rate * (1.5 / q * 0.5 * (s + s.transpose()) + m_psi / 3.0 * I);
     const Vector2d d_kap = rate * 1.5 / q * m / l2;
     const Matrix3d dev = d_eps - d_eps.trace() / 3.0 * I;
-    const double d_ebar = std::sqrt(
-        1.0 / 3.0 * (dev.cwiseProduct(dev).sum() + dev.cwiseProduct(dev.transpose()).sum()) +
-        2.0 / 3.0 * l2 * d_kap.squaredNorm());
+    const double d_ebar =
+        std::sqrt(1.0 / 3.0 * (dev.cwiseProduct(dev).sum() + dev.cwiseProduct(dev.transpose()).sum()) +
+                  2.0 / 3.0 * l2 * d_kap.squaredNorm());
     eps_vp += dt * d_eps;
     kap_vp += dt * d_kap;
     ebar += dt * d_ebar;
@@ -114,8 +113,7 @@ Result explicit_run(const PathSetup& su, int steps) {
 }
 
 double distance(const Result& a, const Result& b, double l) {
-  return std::sqrt((a.stress - b.stress).squaredNorm() +
-                   (a.couple - b.couple).squaredNorm() / (l * l));
+  return std::sqrt((a.stress - b.stress).squaredNorm() + (a.couple - b.couple).squaredNorm() / (l * l));
 }
 
 // First order: halving dt halves the error (ratios within [1.6, 2.4]: the leading term
@@ -127,13 +125,12 @@ TEST(PlasticitySubstepping, ImplicitUpdateConvergesToFinelySubsteppedExplicitInt
   const DruckerPragerPerzyna model = make_drucker_prager_perzyna(su.prm);
   const Result reference = explicit_run(su, 400000);
   const double l = su.prm.length_scale;
-  const double size =
-      std::sqrt(reference.stress.squaredNorm() + reference.couple.squaredNorm() / (l * l));
+  const double size = std::sqrt(reference.stress.squaredNorm() + reference.couple.squaredNorm() / (l * l));
   std::vector<double> errors;
   for (int steps : {50, 100, 200, 400}) {
     errors.push_back(distance(implicit_run(su, model, steps), reference, l) / size);
-    std::printf("  %3d steps (dt = %.3f tau): relative error %.3e\n", steps,
-                su.duration / steps / su.tau, errors.back());
+    std::printf("  %3d steps (dt = %.3f tau): relative error %.3e\n", steps, su.duration / steps / su.tau,
+                errors.back());
   }
   for (std::size_t i = 1; i < errors.size(); ++i) {
     const double ratio = errors[i - 1] / errors[i];

@@ -44,9 +44,7 @@ TEST(PlasticityThreeDimensional, GeneralCoupleLawAndWeightsKeepBackwardEulerExac
   const auto stress_law = [&](const Matrix3d& e) {
     return el.lambda * e.trace() * I + (el.mu + el.mu_c) * e + (el.mu - el.mu_c) * e.transpose();
   };
-  const auto couple_law = [&](const Matrix3d& k) {
-    return el.a1 * k.trace() * I + el.a2 * k + el.a3 * k.transpose();
-  };
+  const auto couple_law = [&](const Matrix3d& k) { return el.a1 * k.trace() * I + el.a2 * k + el.a3 * k.transpose(); };
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double dt = 1e-5;
@@ -69,8 +67,7 @@ TEST(PlasticityThreeDimensional, GeneralCoupleLawAndWeightsKeepBackwardEulerExac
       const Matrix3d& sigma = r.stress;
       const Matrix3d& m = r.couple_stress;
       const Matrix3d s = sigma - sigma.trace() / 3.0 * I;
-      const double q = std::sqrt(
-          3.0 * (a.a1 * dot(s, s) + a.a2 * dot(s, s.transpose()) + a.a3 * dot(m, m) / (l * l)));
+      const double q = std::sqrt(3.0 * (a.a1 * dot(s, s) + a.a2 * dot(s, s.transpose()) + a.a3 * dot(m, m) / (l * l)));
       const double f = q + m_phi * sigma.trace() / 3.0 - k_per_c * r.state.cohesion;
       const double scale = stress_law(eps).norm() + couple_law(kap).norm() / l;
       if (!r.plastic) {
@@ -84,10 +81,9 @@ TEST(PlasticityThreeDimensional, GeneralCoupleLawAndWeightsKeepBackwardEulerExac
       EXPECT_LE((sigma - stress_law(eps - d_eps)).norm(), 1e-9 * scale);
       EXPECT_LE((m - couple_law(kap - d_kap)).norm(), 1e-9 * scale * l);
       const Matrix3d de = d_eps - d_eps.trace() / 3.0 * I;
-      const double d_ebar = std::sqrt(b.b1 * dot(de, de) + b.b2 * dot(de, de.transpose()) +
-                                      b.b3 * l * l * dot(d_kap, d_kap));
-      EXPECT_NEAR(r.state.equivalent_plastic_strain - s0.equivalent_plastic_strain, d_ebar,
-                  1e-9 * d_ebar);
+      const double d_ebar =
+          std::sqrt(b.b1 * dot(de, de) + b.b2 * dot(de, de.transpose()) + b.b3 * l * l * dot(d_kap, d_kap));
+      EXPECT_NEAR(r.state.equivalent_plastic_strain - s0.equivalent_plastic_strain, d_ebar, 1e-9 * d_ebar);
       EXPECT_NEAR(d_eps.trace(), m_psi * r.multiplier, 1e-9 * (d_eps.norm() + 1e-12));
       if (r.apex) {
         ++apex;
@@ -137,8 +133,8 @@ TEST(PlasticityThreeDimensional, OutputMeasuresUnderProportionalShear) {
   }
   const double ebar = state.equivalent_plastic_strain;
   ASSERT_GT(ebar, 0.01);
-  EXPECT_NEAR(equivalent_plastic_shear_strain(state.plastic_strain, state.plastic_wryness,
-                                              prm.equivalent_strain, prm.length_scale),
+  EXPECT_NEAR(equivalent_plastic_shear_strain(state.plastic_strain, state.plastic_wryness, prm.equivalent_strain,
+                                              prm.length_scale),
               ebar, 1e-12 * ebar);
   EXPECT_NEAR(volumetric_plastic_strain(state.plastic_strain), m_psi * ebar, 1e-12 * ebar);
 }

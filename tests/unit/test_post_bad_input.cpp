@@ -138,7 +138,8 @@ TEST(PostBadInput, BadOptions) {
   auto r = run_command({postprocess_executable(), dir + "/run"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("-o"), std::string::npos) << r.output;
-  r = run_command({postprocess_executable(), dir + "/run", "-o", dir + "/post", "--figures", "--fields", "damage,temperature"});
+  r = run_command(
+      {postprocess_executable(), dir + "/run", "-o", dir + "/post", "--figures", "--fields", "damage,temperature"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("temperature"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("plastic_shear_strain"), std::string::npos) << "lists what is available: " << r.output;

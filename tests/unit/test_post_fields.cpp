@@ -17,7 +17,8 @@ namespace {
 
 using namespace mppm::post;
 
-std::vector<double> tensor(double xx, double xy, double xz, double yx, double yy, double yz, double zx, double zy, double zz) {
+std::vector<double> tensor(double xx, double xy, double xz, double yx, double yy, double yz, double zx, double zy,
+                           double zz) {
   return {xx, xy, xz, yx, yy, yz, zx, zy, zz};
 }
 
@@ -103,7 +104,8 @@ TEST_F(PostLoadCurve, IncompleteLastLineIsDroppedBadRowIsAnError) {
 
 TEST(PostResolvedBlocks, QuantitiesBecomeSINumbersAnglesDegrees) {
   const YAML::Node node = YAML::Load(
-      "{density: 2650, lambda: 14000000000, friction_angle: 35 deg, cohesion: 0.35 MPa, model: drucker-prager-perzyna,\n"
+      "{density: 2650, lambda: 14000000000, friction_angle: 35 deg, cohesion: 0.35 MPa, model: "
+      "drucker-prager-perzyna,\n"
       " couple_moduli: [0, 0, 56000], name: '1', value: [free, -0.05], on: true}");
   const std::string json = yaml_to_json(node).dump();
   const YAML::Node back = YAML::Load(json);

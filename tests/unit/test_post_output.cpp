@@ -35,8 +35,9 @@ void write_expected(const std::string& run, const std::vector<std::string>& snap
   const mppm::Snapshot reference = mppm::read_snapshot(run + "/reference.snap");
   out << "{\"dimension\": " << reference.dimension << ", \"reference\": {";
   for (std::size_t f = 0; f < reference.fields.size(); ++f)
-    out << (f ? ", " : "") << "\"" << reference.fields[f].name << "\": {\"components\": "
-        << reference.fields[f].components << ", \"data\": " << json_array(reference.fields[f].data) << "}";
+    out << (f ? ", " : "") << "\"" << reference.fields[f].name
+        << "\": {\"components\": " << reference.fields[f].components
+        << ", \"data\": " << json_array(reference.fields[f].data) << "}";
   out << "}, \"frames\": [";
   for (std::size_t k = 0; k < snapshot_files.size(); ++k) {
     const mppm::Snapshot s = mppm::read_snapshot(snapshot_files[k]);
@@ -184,7 +185,8 @@ TEST(PostOutput, LoadCurveHasOneDisplacementAndForcePerLoadedBoundary) {
   ASSERT_EQ(curve.header, (std::vector<std::string>{"time_s", "bottom_uy_m", "bottom_Fy_N", "top_uy_m", "top_Fy_N"}));
   ASSERT_EQ(curve.rows.size(), load.rows.size());
   for (std::size_t r = 0; r < load.rows.size(); ++r)
-    for (const auto& name : curve.header) EXPECT_EQ(curve.rows[r][column(curve, name)], load.rows[r][column(load, name)]);
+    for (const auto& name : curve.header)
+      EXPECT_EQ(curve.rows[r][column(curve, name)], load.rows[r][column(load, name)]);
   // load_curve.png: a PNG image of some substance (matplotlib figure with two panels).
   const std::string png = read_text(dir + "/post/load_curve.png");
   ASSERT_GT(png.size(), 10000u);

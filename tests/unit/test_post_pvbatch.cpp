@@ -3,7 +3,6 @@
 // --figures renders contour images. These tests FAIL (never skip) without ParaView: the
 // workflows' make targets install the Debian packages paraview, xvfb and xauth.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -45,7 +44,7 @@ TEST(PostParaView, PvbatchRendersTheSeriesWarpedAndColouredByDamage) {
   // -n: start the free-display search away from xvfb-run's default 99 (concurrent runs race).
   command.insert(command.end(), {"xvfb-run", "-a", "-n", std::to_string(900 + ::getpid() % 90), "-s",
                                  "-screen 0 1280x1024x24 -nolisten tcp -noreset", "pvbatch",
-                                   std::string(MPPM_SOURCE_DIR) + "/tests/tools/check_post_render_pvbatch.py",
+                                 std::string(MPPM_SOURCE_DIR) + "/tests/tools/check_post_render_pvbatch.py",
                                  dir + "/post/results.pvd", dir + "/render.png"});
   auto render = run_command(command);
   // Xvfb under load is sometimes not ready when pvbatch connects ("bad X server connection");
@@ -54,8 +53,9 @@ TEST(PostParaView, PvbatchRendersTheSeriesWarpedAndColouredByDamage) {
     render = run_command(command);
   ASSERT_EQ(render.exit_code, 0) << render.output;
   ASSERT_TRUE(fs::exists(dir + "/render.png")) << render.output;
-  const auto colours = run_command({"/usr/bin/python3", std::string(MPPM_SOURCE_DIR) + "/tests/tools/check_post_png_colours.py",
-                                    kMinimumColours, dir + "/render.png"});
+  const auto colours =
+      run_command({"/usr/bin/python3", std::string(MPPM_SOURCE_DIR) + "/tests/tools/check_post_png_colours.py",
+                   kMinimumColours, dir + "/render.png"});
   EXPECT_EQ(colours.exit_code, 0) << colours.output;
 }
 
@@ -63,8 +63,9 @@ TEST(PostParaView, FiguresOptionWritesContourImagesOfChosenFieldsAndTimes) {
   ASSERT_TRUE(paraview_installed());
   const std::string dir = scratch_directory("figures");
   write_run_directory(dir + "/run", RunFixture{});
-  const auto post = run_command({postprocess_executable(), dir + "/run", "-o", dir + "/post", "--quiet", "--no-plot",
-                                 "--figures", "--fields", "damage,rotation", "--times", "1 us,3us", "--warp-scale", "10"});
+  const auto post =
+      run_command({postprocess_executable(), dir + "/run", "-o", dir + "/post", "--quiet", "--no-plot", "--figures",
+                   "--fields", "damage,rotation", "--times", "1 us,3us", "--warp-scale", "10"});
   ASSERT_EQ(post.exit_code, 0) << post.output;
   std::vector<std::string> images;
   for (const char* field : {"damage", "rotation"})
@@ -80,8 +81,8 @@ TEST(PostParaView, FiguresOptionWritesContourImagesOfChosenFieldsAndTimes) {
     EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
   }
   EXPECT_EQ(files, 4u);
-  std::vector<std::string> command{"/usr/bin/python3", std::string(MPPM_SOURCE_DIR) + "/tests/tools/check_post_png_colours.py",
-                                   kMinimumColours};
+  std::vector<std::string> command{
+      "/usr/bin/python3", std::string(MPPM_SOURCE_DIR) + "/tests/tools/check_post_png_colours.py", kMinimumColours};
   command.insert(command.end(), images.begin(), images.end());
   const auto colours = run_command(command);
   EXPECT_EQ(colours.exit_code, 0) << colours.output;

@@ -30,9 +30,7 @@ std::string number(double v) {
 
 }  // namespace
 
-std::int64_t fixture_points(const RunFixture& f) {
-  return static_cast<std::int64_t>(f.nx) * (f.ny + 2 * kLayerRows);
-}
+std::int64_t fixture_points(const RunFixture& f) { return static_cast<std::int64_t>(f.nx) * (f.ny + 2 * kLayerRows); }
 
 std::vector<std::string> write_run_directory(const std::string& directory, const RunFixture& f) {
   const fs::path dir(directory);
@@ -54,8 +52,8 @@ std::vector<std::string> write_run_directory(const std::string& directory, const
     }
   const std::size_t n = volume.size();
   reference.point_count = n;
-  reference.fields = {{"position", 3, position}, {"volume", 1, volume}, {"region", 1, region},
-                      {"boundary_id", 1, boundary_id}};
+  reference.fields = {
+      {"position", 3, position}, {"volume", 1, volume}, {"region", 1, region}, {"boundary_id", 1, boundary_id}};
   write_snapshot(reference, (dir / run_layout::reference).string());
 
   std::vector<std::string> files;
@@ -128,13 +126,13 @@ std::vector<std::string> write_run_directory(const std::string& directory, const
   for (const auto& e : effects) effect_list += (effect_list.empty() ? "\"" : ", \"") + e + "\"";
   const double end_time = (f.snapshots - 1) * f.snapshot_interval;
   write_text(dir / run_layout::run_info,
-             "{\"status\": \"" + f.status + "\", \"message\": \"" + f.message + "\", \"points\": " +
-                 std::to_string(n) + ", \"bonds\": " + std::to_string(28 * n) + ", \"steps\": " +
-                 std::to_string(40 * (f.snapshots - 1)) + ", \"time_s\": " + number(end_time) +
-                 ", \"wall_seconds\": 1.5, \"threads\": 2, \"effects\": [" + effect_list +
+             "{\"status\": \"" + f.status + "\", \"message\": \"" + f.message + "\", \"points\": " + std::to_string(n) +
+                 ", \"bonds\": " + std::to_string(28 * n) + ", \"steps\": " + std::to_string(40 * (f.snapshots - 1)) +
+                 ", \"time_s\": " + number(end_time) + ", \"wall_seconds\": 1.5, \"threads\": 2, \"effects\": [" +
+                 effect_list +
                  "], \"dimension\": 2, \"time_step_s\": 2.5e-08, \"critical_time_step_s\": 3e-08, "
-                 "\"limiting_mode\": \"translational\", \"snapshots\": [" + listing.str() +
-                 "], \"detached_points\": 0}\n");
+                 "\"limiting_mode\": \"translational\", \"snapshots\": [" +
+                 listing.str() + "], \"detached_points\": 0}\n");
 
   std::string material =
       "material:\n  model: cosserat-elastic\n  density: 2650\n  solid_fraction: 0.95\n"
@@ -142,18 +140,26 @@ std::vector<std::string> write_run_directory(const std::string& directory, const
   if (f.micropolar) material += "  mu_c: 4667000000\n  couple_moduli: [0, 0, 56000]\n  length_scale: 0.002\n";
   if (f.damage) material += "  damage:\n    critical_energy_release_rate: 160\n    no_fail_depth: 0.002\n";
   if (f.plasticity)
-    material += "  viscoplasticity:\n    model: drucker-prager-perzyna\n    friction_angle: 35 deg\n"
-                "    dilatancy_angle: 15.000000000000002 deg\n    cohesion: 350000\n    hardening: -1000000\n"
-                "    viscosity: 10000\n    residual_cohesion: 3500\n    cone_match: triaxial-compression\n";
-  write_text(dir / run_layout::resolved_scene,
-             "# Resolved scene (test fixture)\nmppm: 1\nname: fixture\ndimension: 2\nthickness: 0.001\n"
-             "geometry:\n  file: /nonexistent/fixture.geo\n  unit: m\n  spacing: " + number(dx) +
-                 "\n  horizon_factor: " + number(f.horizon_factor) + "\n  precracks: []\n" + material +
-                 "effects: [" + [&] { std::string s; for (const auto& e : effects) s += (s.empty() ? "" : ", ") + e; return s; }() +
-                 "]\nboundary_conditions:\n"
-                 "  - name: bottom\n    boundary: bottom\n    type: velocity\n    value: [free, 0.05]\n"
-                 "  - name: top\n    boundary: top\n    type: velocity\n    value: [free, -0.05]\n"
-                 "time:\n  end: " + number(end_time) + "\n  step: 2.5e-08\n");
+    material +=
+        "  viscoplasticity:\n    model: drucker-prager-perzyna\n    friction_angle: 35 deg\n"
+        "    dilatancy_angle: 15.000000000000002 deg\n    cohesion: 350000\n    hardening: -1000000\n"
+        "    viscosity: 10000\n    residual_cohesion: 3500\n    cone_match: triaxial-compression\n";
+  write_text(
+      dir / run_layout::resolved_scene,
+      "# Resolved scene (test fixture)\nmppm: 1\nname: fixture\ndimension: 2\nthickness: 0.001\n"
+      "geometry:\n  file: /nonexistent/fixture.geo\n  unit: m\n  spacing: " +
+          number(dx) + "\n  horizon_factor: " + number(f.horizon_factor) + "\n  precracks: []\n" + material +
+          "effects: [" +
+          [&] {
+            std::string s;
+            for (const auto& e : effects) s += (s.empty() ? "" : ", ") + e;
+            return s;
+          }() +
+          "]\nboundary_conditions:\n"
+          "  - name: bottom\n    boundary: bottom\n    type: velocity\n    value: [free, 0.05]\n"
+          "  - name: top\n    boundary: top\n    type: velocity\n    value: [free, -0.05]\n"
+          "time:\n  end: " +
+          number(end_time) + "\n  step: 2.5e-08\n");
 
   // load.csv: rows every quarter snapshot interval; top/bottom move at 0.05 m/s towards each
   // other, the reaction rises then softens (peak at 60% of the run).
@@ -164,9 +170,8 @@ std::vector<std::string> write_run_directory(const std::string& directory, const
     const double t = r * 0.25 * f.snapshot_interval;
     const double phase = rows > 1 ? static_cast<double>(r) / (rows - 1) : 0.0;
     const double force = 1000.0 * (phase / 0.6) * std::exp(1.0 - phase / 0.6);  // peak 1 kN at 60%
-    load << number(t) << ',' << 0.0 << ',' << number(0.05 * t) << ',' << number(0.01 * force) << ','
-         << number(force) << ',' << 0.0 << ',' << number(-0.05 * t) << ',' << number(-0.01 * force) << ','
-         << number(-force) << '\n';
+    load << number(t) << ',' << 0.0 << ',' << number(0.05 * t) << ',' << number(0.01 * force) << ',' << number(force)
+         << ',' << 0.0 << ',' << number(-0.05 * t) << ',' << number(-0.01 * force) << ',' << number(-force) << '\n';
   }
   write_text(dir / run_layout::load, load.str());
   write_text(dir / run_layout::energy,

@@ -10,8 +10,8 @@
 namespace mppm::post::testing {
 
 struct RunFixture {
-  int nx = 40, ny = 30;             // body lattice (2-D); two layer rows below and above
-  double spacing = 1e-3;            // [m]
+  int nx = 40, ny = 30;   // body lattice (2-D); two layer rows below and above
+  double spacing = 1e-3;  // [m]
   double horizon_factor = 3.015;
   int snapshots = 4;                // at t = k * snapshot_interval
   double snapshot_interval = 1e-6;  // [s]

@@ -79,8 +79,9 @@ TEST(PostShearBand, CoarseCaseLatticeWithNoiseAndBackground) {
   const double fwhm = 15e-3;
   std::vector<double> strain(lattice.x.size());
   for (std::size_t i = 0; i < strain.size(); ++i)
-    strain[i] = 0.005 + 0.05 * std::max(band(lattice.x[i], lattice.y[i], 0.05, 0.1, 60.0, fwhm),
-                                        band(lattice.x[i], lattice.y[i], 0.05, 0.1, 120.0, fwhm)) *
+    strain[i] = 0.005 + 0.05 *
+                            std::max(band(lattice.x[i], lattice.y[i], 0.05, 0.1, 60.0, fwhm),
+                                     band(lattice.x[i], lattice.y[i], 0.05, 0.1, 120.0, fwhm)) *
                             (1.0 + 0.1 * noise(i));
   ShearBandSettings settings;
   settings.spacing = lattice.spacing;

@@ -20,7 +20,8 @@ FacetMesh loops_2d(const std::vector<std::vector<std::array<double, 2>>>& loops)
     const auto first = static_cast<std::int64_t>(mesh.vertices.size());
     for (const auto& p : loop) mesh.vertices.push_back({p[0], p[1], 0.0});
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const std::int64_t c[2] = {first + static_cast<std::int64_t>(i), first + static_cast<std::int64_t>((i + 1) % loop.size())};
+      const std::int64_t c[2] = {first + static_cast<std::int64_t>(i),
+                                 first + static_cast<std::int64_t>((i + 1) % loop.size())};
       mesh.add_facet(c, 1);
     }
   }

@@ -69,7 +69,8 @@ TEST(PreprocessCommandLine, UnknownPhysicalGroup) {
 }
 
 TEST(PreprocessCommandLine, SpacingLargerThanTheBody) {
-  expect_bad_input("pre_bad_dx_too_large.yaml", {"pre_bad_dx_too_large.yaml", "branching_plate.geo", "larger than the body"});
+  expect_bad_input("pre_bad_dx_too_large.yaml",
+                   {"pre_bad_dx_too_large.yaml", "branching_plate.geo", "larger than the body"});
 }
 
 TEST(PreprocessCommandLine, OpenSurface) {

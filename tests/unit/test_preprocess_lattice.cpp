@@ -75,8 +75,8 @@ TEST(PreprocessInside2d, DegenerateLinesThroughVerticesAndAlongEdgesMatchBruteFo
   // hole: every degenerate case of a scanline test at once.
   const std::vector<std::vector<std::array<double, 2>>> loops = {
       {{0, 0}, {9, 0}, {9, 3}, {6, 3}, {6, 6}, {3, 6}, {3, 9}, {0, 9}},
-      {{1, 1}, {1, 2}, {2, 2}, {2, 1}},           // hole (orientation irrelevant)
-      {{4, 1}, {5, 2}, {4, 3}, {3, 2}}};          // diamond hole, vertices on rows and columns
+      {{1, 1}, {1, 2}, {2, 2}, {2, 1}},   // hole (orientation irrelevant)
+      {{4, 1}, {5, 2}, {4, 3}, {3, 2}}};  // diamond hole, vertices on rows and columns
   const FacetMesh mesh = polygon_facets(loops);
   const LatticeGrid grid = integer_grid(2, -2, 14);
   const auto inside = classify_inside_2d(grid, mesh);
@@ -175,8 +175,8 @@ TEST(PreprocessInside3d, VoxelSolidWithNotchAndCavityMatchesBruteForce) {
         for (int x = 0; x < 5 && !expected; ++x)
           for (int y = 0; y < 5 && !expected; ++y)
             for (int z = 0; z < 5 && !expected; ++z)
-              expected = filled(x, y, z) && p[0] >= x && p[0] <= x + 1 && p[1] >= y &&
-                         p[1] <= y + 1 && p[2] >= z && p[2] <= z + 1;
+              expected = filled(x, y, z) && p[0] >= x && p[0] <= x + 1 && p[1] >= y && p[1] <= y + 1 && p[2] >= z &&
+                         p[2] <= z + 1;
         mismatches += expected != static_cast<bool>(inside[grid.index(i, j, k)]);
       }
   EXPECT_EQ(mismatches, 0);
@@ -238,8 +238,8 @@ namespace {
 // The lattice count itself differs from volume/dx^3 by the lattice-point fluctuation of the
 // shape (Gauss circle problem), which is why this check, not the count, is the sharp one.
 template <class SignedDistance>
-void expect_matches_analytic_shape(const PointCloud& cloud, const Vec3& low, const Vec3& high,
-                                   double band, SignedDistance inside_distance) {
+void expect_matches_analytic_shape(const PointCloud& cloud, const Vec3& low, const Vec3& high, double band,
+                                   SignedDistance inside_distance) {
   // The lattice is whatever the preprocessor chose (centred on the facet bounding box): take
   // its origin from the points and visit every lattice point of the analytic bounding box.
   const double dx = cloud.spacing;

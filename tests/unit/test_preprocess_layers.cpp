@@ -29,13 +29,15 @@ double distance_to_segment(double px, double py, double ax, double ay, double bx
 }
 
 // The plate with: 1 top velocity, 2 left displacement, 3 bottom traction, 4 right pressure.
-Scene plate_scene(const std::string& top_selector = "boundary: top",
-                  const std::string& bottom_extra = "") {
+Scene plate_scene(const std::string& top_selector = "boundary: top", const std::string& bottom_extra = "") {
   return inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", kFactor,
-                      "  - {" + top_selector + ", type: velocity, value: [0, 1 m/s]}\n"
-                      "  - {boundary: left, type: displacement, value: [0, 0]}\n"
-                      "  - {boundary: bottom, type: traction, value: [0, -8 MPa]" + bottom_extra + "}\n"
-                      "  - {boundary: right, type: pressure, value: 1 MPa}\n",
+                      "  - {" + top_selector +
+                          ", type: velocity, value: [0, 1 m/s]}\n"
+                          "  - {boundary: left, type: displacement, value: [0, 0]}\n"
+                          "  - {boundary: bottom, type: traction, value: [0, -8 MPa]" +
+                          bottom_extra +
+                          "}\n"
+                          "  - {boundary: right, type: pressure, value: 1 MPa}\n",
                       "[]", "2 mm");
 }
 
@@ -141,7 +143,8 @@ TEST(PreprocessLayers, BoxAndEntitySelectionsEqualThePhysicalGroup) {
   // Line 3 of branching_plate.geo is the top edge; the box holds only that edge (facets entirely
   // inside the box are selected, so it must not hold the end facets of the side edges).
   const PointCloud by_entity = pre::preprocess(plate_scene("entities: [3]")).cloud;
-  const PointCloud by_box = pre::preprocess(plate_scene("box: [[-1 mm, 39.95 mm, -1 mm], [101 mm, 40.05 mm, 1 mm]]")).cloud;
+  const PointCloud by_box =
+      pre::preprocess(plate_scene("box: [[-1 mm, 39.95 mm, -1 mm], [101 mm, 40.05 mm, 1 mm]]")).cloud;
   for (const PointCloud* other : {&by_entity, &by_box}) {
     EXPECT_EQ(other->x, by_name.x);
     EXPECT_EQ(other->y, by_name.y);
@@ -180,7 +183,8 @@ TEST(PreprocessLayers, LayerInAHoleAndPressureOnACurvedBoundary) {
   EXPECT_NEAR(static_cast<double>(layer), ring, 0.05 * ring);
   const double rim = std::numbers::pi * (20.0 * 20.0 - 19.5 * 19.5) / 0.25;
   EXPECT_NEAR(static_cast<double>(loaded), rim, 0.1 * rim);
-  EXPECT_NEAR(cloud.boundaries[1].area, 2 * std::numbers::pi * 20e-3 * 1e-3, 1e-3 * 2 * std::numbers::pi * 20e-3 * 1e-3);
+  EXPECT_NEAR(cloud.boundaries[1].area, 2 * std::numbers::pi * 20e-3 * 1e-3,
+              1e-3 * 2 * std::numbers::pi * 20e-3 * 1e-3);
 }
 
 TEST(PreprocessLayers, ThreeDimensionalBoxLayersAndNormals) {

@@ -16,11 +16,11 @@ using mppm::test::inline_scene;
 TEST(PrecrackCrossing, HandCases2d) {
   const std::vector<double> crack = {0, 0, 0, 1, 0, 0};  // segment (0,0)-(1,0)
   EXPECT_TRUE(bond_crosses_precrack({0.5, -1, 0}, {0.5, 1, 0}, 2, crack));
-  EXPECT_FALSE(bond_crosses_precrack({1.5, -1, 0}, {1.5, 1, 0}, 2, crack));   // beyond the tip
-  EXPECT_TRUE(bond_crosses_precrack({1, -1, 0}, {1, 1, 0}, 2, crack));        // through the tip
-  EXPECT_FALSE(bond_crosses_precrack({0.2, 0.1, 0}, {0.8, 0.1, 0}, 2, crack)); // parallel
-  EXPECT_TRUE(bond_crosses_precrack({0.5, 0, 0}, {0.5, 1, 0}, 2, crack));     // end point on it
-  EXPECT_TRUE(bond_crosses_precrack({-1, -1, 0}, {2, 2, 0}, 2, crack));       // oblique at (0,0)
+  EXPECT_FALSE(bond_crosses_precrack({1.5, -1, 0}, {1.5, 1, 0}, 2, crack));                  // beyond the tip
+  EXPECT_TRUE(bond_crosses_precrack({1, -1, 0}, {1, 1, 0}, 2, crack));                       // through the tip
+  EXPECT_FALSE(bond_crosses_precrack({0.2, 0.1, 0}, {0.8, 0.1, 0}, 2, crack));               // parallel
+  EXPECT_TRUE(bond_crosses_precrack({0.5, 0, 0}, {0.5, 1, 0}, 2, crack));                    // end point on it
+  EXPECT_TRUE(bond_crosses_precrack({-1, -1, 0}, {2, 2, 0}, 2, crack));                      // oblique at (0,0)
   EXPECT_FALSE(bond_crosses_precrack({-1, -0.5, 0}, {0.9, 1.5, 0}, 2, {0, 0, 0, 0, 0, 0}));  // degenerate crack
 }
 
@@ -46,9 +46,8 @@ enum class Truth { apart, crosses, on_crack_edge };
 // lies exactly on the rectangle's edge (e.g. through the crack tip) is a tie of the ideal
 // geometry: in metres the lattice and crack coordinates carry round-off, so the preprocessor's
 // exact predicates may decide it either way. Those are reported apart and not compared.
-Truth crosses_axis_rectangle(const std::array<long, 3>& p, const std::array<long, 3>& q, int axis,
-                             long level, const std::array<long, 3>& lo, const std::array<long, 3>& hi,
-                             int dimension) {
+Truth crosses_axis_rectangle(const std::array<long, 3>& p, const std::array<long, 3>& q, int axis, long level,
+                             const std::array<long, 3>& lo, const std::array<long, 3>& hi, int dimension) {
   const long dp = p[axis] - level, dq = q[axis] - level;
   if (dp == 0 || dq == 0 || (dp > 0) == (dq > 0)) return Truth::apart;  // no point on the crack plane here
   const long den = dp - dq;
@@ -69,8 +68,8 @@ Truth crosses_axis_rectangle(const std::array<long, 3>& p, const std::array<long
 }  // namespace
 
 TEST(PrecrackCrossing, PlateNotchBondsEqualBruteForce) {
-  const pre::PreprocessResult result = pre::preprocess(
-      inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, "", "[notch]"));
+  const pre::PreprocessResult result =
+      pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, "", "[notch]"));
   const PointCloud& cloud = result.cloud;
   ASSERT_GT(cloud.precrack_element_count(), 0u);
   const PrecrackIndex index(2, cloud.precrack_vertices, cloud.horizon);
@@ -84,7 +83,8 @@ TEST(PrecrackCrossing, PlateNotchBondsEqualBruteForce) {
   long expected = 0, found = 0, mismatches = 0, brute_checked = 0, ties = 0;
   // Neighbour search by lattice index (the plate is a full 200 x 80 grid).
   std::vector<std::int64_t> at(200 * 80, -1);
-  for (std::size_t i = 0; i < cloud.size(); ++i) at[(lattice[i][1] - 1) / 2 * 200 + (lattice[i][0] - 1) / 2] = static_cast<std::int64_t>(i);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    at[(lattice[i][1] - 1) / 2 * 200 + (lattice[i][0] - 1) / 2] = static_cast<std::int64_t>(i);
   for (std::size_t i = 0; i < cloud.size(); ++i)
     for (long dj = -reach; dj <= reach; dj += 2)
       for (long di = -reach; di <= reach; di += 2) {
@@ -116,8 +116,8 @@ TEST(PrecrackCrossing, PlateNotchBondsEqualBruteForce) {
 }
 
 TEST(PrecrackCrossing, BoxCrackBondsEqualBruteForce) {
-  const pre::PreprocessResult result = pre::preprocess(
-      inline_scene(3, "../geometry/box_with_crack.geo", "mm", "0.5 mm", 2.05, "", "[crack]"));
+  const pre::PreprocessResult result =
+      pre::preprocess(inline_scene(3, "../geometry/box_with_crack.geo", "mm", "0.5 mm", 2.05, "", "[crack]"));
   const PointCloud& cloud = result.cloud;
   ASSERT_EQ(cloud.size(), 20u * 12u * 8u);
   const PrecrackIndex index(3, cloud.precrack_vertices, cloud.horizon);
@@ -126,8 +126,10 @@ TEST(PrecrackCrossing, BoxCrackBondsEqualBruteForce) {
   for (std::size_t i = 0; i < cloud.size(); ++i)
     for (std::size_t j = 0; j < cloud.size(); ++j) {
       if (i == j) continue;
-      const std::array<long, 3> p{std::lround(cloud.x[i] / unit), std::lround(cloud.y[i] / unit), std::lround(cloud.z[i] / unit)};
-      const std::array<long, 3> q{std::lround(cloud.x[j] / unit), std::lround(cloud.y[j] / unit), std::lround(cloud.z[j] / unit)};
+      const std::array<long, 3> p{std::lround(cloud.x[i] / unit), std::lround(cloud.y[i] / unit),
+                                  std::lround(cloud.z[i] / unit)};
+      const std::array<long, 3> q{std::lround(cloud.x[j] / unit), std::lround(cloud.y[j] / unit),
+                                  std::lround(cloud.z[j] / unit)};
       const long dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
       if (dx * dx + dy * dy + dz * dz > 4.1 * 4.1 + 1e-9) continue;  // horizon 2.05 dx = 4.1 units
       const Truth exact = crosses_axis_rectangle(p, q, 2, 8, {0, 0, 0}, {20, 24, 0}, 3);
@@ -145,22 +147,28 @@ TEST(PrecrackCrossing, BoxCrackBondsEqualBruteForce) {
 }
 
 TEST(PrecrackCrossing, BoxAndEntitySelectionsOfTheNotchAgree) {
-  const auto by_name = pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, "", "[notch]")).cloud;
-  const auto by_entity = pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, "", "[{entities: [5]}]")).cloud;
+  const auto by_name =
+      pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, "", "[notch]"))
+          .cloud;
+  const auto by_entity = pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05,
+                                                      "", "[{entities: [5]}]"))
+                             .cloud;
   // The box also holds part of the left edge, but a box selects pre-cracks only among curves
   // that are not on the body boundary.
   const auto by_box = pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 4.05, "",
-                                                   "[{box: [[-1 mm, 19 mm, -1 mm], [51 mm, 21 mm, 1 mm]]}]")).cloud;
+                                                   "[{box: [[-1 mm, 19 mm, -1 mm], [51 mm, 21 mm, 1 mm]]}]"))
+                          .cloud;
   EXPECT_EQ(by_entity.precrack_vertices, by_name.precrack_vertices);
   EXPECT_EQ(by_box.precrack_vertices, by_name.precrack_vertices);
 }
 
 TEST(PrecrackCrossing, LatticePointsOnAPrecrackAreReported) {
   // 40 mm / 41 rows puts the middle row on the notch (y = 20 mm); 0.5 mm puts it between rows.
-  const auto on = pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m",
-                                               "0.975609756097561 mm", 3.0, "", "[notch]"));
+  const auto on = pre::preprocess(
+      inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.975609756097561 mm", 3.0, "", "[notch]"));
   ASSERT_EQ(on.report.warnings.size(), 1u);
   EXPECT_NE(on.report.warnings[0].find("lie exactly on a pre-crack"), std::string::npos);
-  const auto between = pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 3.0, "", "[notch]"));
+  const auto between =
+      pre::preprocess(inline_scene(2, "../../../geometry/branching_plate.geo", "m", "0.5 mm", 3.0, "", "[notch]"));
   EXPECT_TRUE(between.report.warnings.empty());
 }

@@ -16,17 +16,15 @@ inline std::string scenes_dir() { return std::string(MPPM_SOURCE_DIR) + "/tests/
 
 // A scene with the given geometry (path relative to tests/data/scenes), lattice and boundary
 // conditions (YAML list items, one per line, already indented by two spaces).
-inline Scene inline_scene(int dimension, const std::string& file, const std::string& unit,
-                          const std::string& spacing, double horizon_factor,
-                          const std::string& boundary_conditions, const std::string& precracks = "[]",
-                          const std::string& thickness = "1 mm") {
+inline Scene inline_scene(int dimension, const std::string& file, const std::string& unit, const std::string& spacing,
+                          double horizon_factor, const std::string& boundary_conditions,
+                          const std::string& precracks = "[]", const std::string& thickness = "1 mm") {
   std::string text = "mppm: 1\nname: inline-test\ndimension: " + std::to_string(dimension) + "\n";
   if (dimension == 2) text += "thickness: " + thickness + "\n";
   text += "geometry:\n  file: " + file + "\n  unit: " + unit + "\n  spacing: " + spacing +
           "\n  horizon_factor: " + std::to_string(horizon_factor) + "\n  precracks: " + precracks + "\n";
   text += "material: {density: 2650, lambda: 14 GPa, mu: 14 GPa}\neffects: []\n";
-  text += boundary_conditions.empty() ? "boundary_conditions: []\n"
-                                      : "boundary_conditions:\n" + boundary_conditions;
+  text += boundary_conditions.empty() ? "boundary_conditions: []\n" : "boundary_conditions:\n" + boundary_conditions;
   text += "time: {end: 1 us, step: 0.025 us}\noutput: {interval: 0.25 us}\n";
   return parse_scene(text, scenes_dir() + "/inline_test.yaml");
 }

@@ -53,7 +53,8 @@ std::vector<std::string> inputs_of(const std::string& target) {
     const fs::path folder = kFuzzDir / dir / target;
     if (!fs::is_directory(folder)) continue;
     for (const auto& entry : fs::directory_iterator(folder)) {
-      if (entry.is_regular_file()) keys.push_back(std::string(dir) + "/" + target + "/" + entry.path().filename().string());
+      if (entry.is_regular_file())
+        keys.push_back(std::string(dir) + "/" + target + "/" + entry.path().filename().string());
     }
   }
   std::sort(keys.begin(), keys.end());
@@ -97,7 +98,8 @@ TEST_P(CorpusReplay, EveryInputIsAcceptedOrRejectedWithAMessageNamingTheProblem)
       EXPECT_FALSE(outcome.accepted) << "a malformed seed was accepted";
       const auto it = expected.find(key);
       if (it == expected.end()) {
-        ADD_FAILURE() << "no line for it in expected_errors.txt (what must its message say?); it said: " << outcome.message;
+        ADD_FAILURE() << "no line for it in expected_errors.txt (what must its message say?); it said: "
+                      << outcome.message;
         continue;
       }
       EXPECT_NE(outcome.message.find(it->second), std::string::npos)
@@ -105,8 +107,7 @@ TEST_P(CorpusReplay, EveryInputIsAcceptedOrRejectedWithAMessageNamingTheProblem)
       // Files must be named in the message (the entry point already checks it; the unit
       // parser sees no file, its caller adds the key and file: see the test below).
       if (target != "quantity") {
-        EXPECT_TRUE(outcome.message.find(path.string()) != std::string::npos ||
-                    outcome.message.rfind("--set ", 0) == 0)
+        EXPECT_TRUE(outcome.message.find(path.string()) != std::string::npos || outcome.message.rfind("--set ", 0) == 0)
             << outcome.message;
       }
     }
@@ -119,8 +120,8 @@ TEST_P(CorpusReplay, EveryInputIsAcceptedOrRejectedWithAMessageNamingTheProblem)
 std::string target_name(const ::testing::TestParamInfo<std::string>& target) { return target.param; }
 
 INSTANTIATE_TEST_SUITE_P(FuzzTargets, CorpusReplay,
-                         ::testing::Values(std::string("scene"), std::string("quantity"),
-                                           std::string("snapshot"), std::string("point_cloud")),
+                         ::testing::Values(std::string("scene"), std::string("quantity"), std::string("snapshot"),
+                                           std::string("point_cloud")),
                          target_name);
 
 TEST(CorpusExpectations, EveryLineNamesAnExistingMalformedInput) {
@@ -136,9 +137,10 @@ TEST(CorpusExpectations, EveryLineNamesAnExistingMalformedInput) {
 // and the key (what a user sees), not only the unit parser's message.
 TEST(CorpusExpectations, MalformedQuantitiesInASceneNameFileLineAndKey) {
   const std::string path = "/cases/reliability/scene.yaml";
-  const std::string head = "mppm: 1\ndimension: 2\nthickness: 1 mm\n"
-                           "geometry: {file: plate.geo, spacing: 1 mm, horizon_factor: 3}\n"
-                           "material:\n  density: 2000\n  lambda: 1 GPa\n  mu: ";
+  const std::string head =
+      "mppm: 1\ndimension: 2\nthickness: 1 mm\n"
+      "geometry: {file: plate.geo, spacing: 1 mm, horizon_factor: 3}\n"
+      "material:\n  density: 2000\n  lambda: 1 GPa\n  mu: ";
   const std::string tail = "\ntime: {end: 1 us}\n";
   int checked = 0;
   for (const auto& key : inputs_of("quantity")) {
@@ -148,9 +150,12 @@ TEST(CorpusExpectations, MalformedQuantitiesInASceneNameFileLineAndKey) {
     std::string quoted = "\"";
     for (unsigned char c : file_text(kFuzzDir / key)) {
       static const char* hex = "0123456789abcdef";
-      if (c == '"' || c == '\\') quoted += std::string("\\") + static_cast<char>(c);
-      else if (c >= 0x20 && c < 0x7f) quoted += static_cast<char>(c);
-      else quoted += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+      if (c == '"' || c == '\\')
+        quoted += std::string("\\") + static_cast<char>(c);
+      else if (c >= 0x20 && c < 0x7f)
+        quoted += static_cast<char>(c);
+      else
+        quoted += std::string("\\x") + hex[c >> 4] + hex[c & 15];
     }
     quoted += "\"";
     try {

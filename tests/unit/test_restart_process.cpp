@@ -51,7 +51,8 @@ std::string contents(const std::string& path) {
 }
 
 std::vector<std::string> overrides(bool checkpoints) {
-  std::vector<std::string> o{"--set", "geometry.spacing=2 mm", "--set", "time.end=2 ms", "--set", "output.interval=0.2 ms"};
+  std::vector<std::string> o{"--set", "geometry.spacing=2 mm", "--set", "time.end=2 ms",
+                             "--set", "output.interval=0.2 ms"};
   if (checkpoints) {
     o.push_back("--set");
     o.push_back("output.checkpoint_interval=0.15 ms");
@@ -60,8 +61,8 @@ std::vector<std::string> overrides(bool checkpoints) {
 }
 
 std::vector<std::string> solve_args(const std::string& run, bool checkpoints, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{binary("mppm-solve"), kScene, "--points", scratch_root() + "/points.vtp", "-o", run,
-                                "--quiet", "--threads", "1"};
+  std::vector<std::string> args{
+      binary("mppm-solve"), kScene, "--points", scratch_root() + "/points.vtp", "-o", run, "--quiet", "--threads", "1"};
   for (const auto& o : overrides(checkpoints)) args.push_back(o);
   for (const auto& e : extra) args.push_back(e);
   return args;

@@ -109,7 +109,8 @@ TEST(Scene, OverridesApplyBeforeValidation) {
   // An override that creates a new block.
   const Scene v = parse_scene(kExample, kPath,
                               {"effects=[micropolar,viscoplasticity]",
-                               "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, cohesion: 0.35 MPa, viscosity: 0.01 MPa*s}",
+                               "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, cohesion: "
+                               "0.35 MPa, viscosity: 0.01 MPa*s}",
                                "material.viscoplasticity.friction_angle=30deg"});
   ASSERT_TRUE(v.material.viscoplasticity.has_value());
   EXPECT_NEAR(v.material.viscoplasticity->friction_angle, 30 * std::numbers::pi / 180, 1e-15);
@@ -154,10 +155,10 @@ TEST(Scene, ErrorsNameFileLineKeyAndExpectation) {
 
 TEST(Scene, FreeComponentsHistoriesAndRotation) {
   const std::string text = replace(replace(kExample, "effects: [micropolar, damage]", "effects: [micropolar]"),
-      "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
-      "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0,\n"
-      "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n"
-      "  - {name: left, box: [[-1 mm, 0], [0, 40 mm]], type: pressure, value: 0.1 MPa}\n");
+                                   "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
+                                   "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0,\n"
+                                   "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n"
+                                   "  - {name: left, box: [[-1 mm, 0], [0, 40 mm]], type: pressure, value: 0.1 MPa}\n");
   const Scene s = parse_scene(text, kPath);
   const auto& top = s.boundary_conditions[0];
   EXPECT_FALSE(top.constrained[0]);
@@ -177,10 +178,9 @@ TEST(Scene, FreeComponentsHistoriesAndRotation) {
 // selector, is bad input naming the key.
 TEST(Scene, EffectRegions) {
   const std::string damage = "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm}\n";
-  const std::string text =
-      replace(kExample, damage,
-              "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm,\n"
-              "           region: {box: [[40 mm, 20 mm], [100 mm, 60 mm]]}}\n");
+  const std::string text = replace(kExample, damage,
+                                   "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm,\n"
+                                   "           region: {box: [[40 mm, 20 mm], [100 mm, 60 mm]]}}\n");
   const Scene s = parse_scene(text, kPath);
   ASSERT_TRUE(s.material.damage->region.has_value());
   ASSERT_TRUE(s.material.damage->region->box.has_value());
@@ -189,30 +189,37 @@ TEST(Scene, EffectRegions) {
   const Scene back = parse_scene(resolved_scene_yaml(s, {}), "/elsewhere/scene.resolved.yaml");
   ASSERT_TRUE(back.material.damage->region.has_value());
   EXPECT_EQ(*back.material.damage->region->box, *s.material.damage->region->box);
-  std::string e = error_of(replace(kExample, damage, "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: {}}\n"));
+  std::string e = error_of(replace(
+      kExample, damage, "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: {}}\n"));
   EXPECT_NE(e.find("material.damage.region: missing: box"), std::string::npos) << e;
-  e = error_of(replace(kExample, damage,
-                       "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: {boundary: top}}\n"));
+  e = error_of(
+      replace(kExample, damage,
+              "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: {boundary: top}}\n"));
   EXPECT_NE(e.find("material.damage.region"), std::string::npos) << e;
   EXPECT_NE(e.find("boundary"), std::string::npos) << e;
-  e = error_of(replace(kExample, damage, "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: near the notch}\n"));
+  e = error_of(
+      replace(kExample, damage,
+              "  damage: {critical_energy_release_rate: 160 N/m, no_fail_depth: 2 mm, region: near the notch}\n"));
   EXPECT_NE(e.find("material.damage.region: expected {box:"), std::string::npos) << e;
 }
 
 // The spin is written as `rotation_rate` (the name of the boundary conditions' key and of the
 // solver's field); the scene accepts that name for output.fields.
 TEST(Scene, RotationRateIsAnOutputField) {
-  const Scene s = parse_scene(replace(kExample, "fields: [displacement, rotation, damage]", "fields: [rotation_rate]"), kPath);
+  const Scene s =
+      parse_scene(replace(kExample, "fields: [displacement, rotation, damage]", "fields: [rotation_rate]"), kPath);
   ASSERT_EQ(s.output.fields.size(), 1u);
   EXPECT_EQ(s.output.fields[0], "rotation_rate");
-  const std::string e = error_of(replace(kExample, "fields: [displacement, rotation, damage]", "fields: [angular_velocity]"));
+  const std::string e =
+      error_of(replace(kExample, "fields: [displacement, rotation, damage]", "fields: [angular_velocity]"));
   EXPECT_NE(e.find("output.fields"), std::string::npos) << e;
 }
 
 TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
-  const std::string text = replace(kExample, "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
-      "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0.5,\n"
-      "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n");
+  const std::string text =
+      replace(kExample, "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
+              "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0.5,\n"
+              "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n");
   const Scene a = parse_scene(text, kPath);
   const std::string yaml = resolved_scene_yaml(a, {{"time_step_s", 2.5e-8}});
   const Scene b = parse_scene(yaml, "/elsewhere/scene.resolved.yaml");
@@ -245,28 +252,33 @@ TEST(Scene, NamedChoicesAreReadAsEnumsAndWrittenBackByName) {
     EXPECT_NE(resolved_scene_yaml(s).find(std::string("calibration: ") + name), std::string::npos) << name;
     EXPECT_EQ(parse_scene(resolved_scene_yaml(s), kPath).material.damage->calibration, value) << name;
   }
-  const std::string vp = "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, "
-                         "cohesion: 0.35 MPa, viscosity: 0.01 MPa*s}";
+  const std::string vp =
+      "material.viscoplasticity={friction_angle: 25deg, dilatancy_angle: 15 deg, "
+      "cohesion: 0.35 MPa, viscosity: 0.01 MPa*s}";
   const Scene outer = parse_scene(kExample, kPath, {"effects=[micropolar,viscoplasticity]", vp});
   EXPECT_EQ(outer.material.viscoplasticity->cone_match, ConeMatch::triaxial_compression);  // the default
   for (const auto& [value, name] : kConeMatchNames) {
-    const Scene s = parse_scene(kExample, kPath, {"effects=[micropolar,viscoplasticity]", vp,
-                                                  std::string("material.viscoplasticity.cone_match=") + name});
+    const Scene s = parse_scene(
+        kExample, kPath,
+        {"effects=[micropolar,viscoplasticity]", vp, std::string("material.viscoplasticity.cone_match=") + name});
     EXPECT_EQ(s.material.viscoplasticity->cone_match, value) << name;
     EXPECT_STREQ(to_string(value), name);
     EXPECT_NE(resolved_scene_yaml(s).find(std::string("cone_match: ") + name), std::string::npos) << name;
   }
   EXPECT_EQ(error_of(kExample, {"material.damage.calibration=latice"}),
-            kPath + ": --set material.damage.calibration=latice: material.damage.calibration: unknown calibration "
-                    "'latice' (expected lattice, continuum or dissipation)");
+            kPath +
+                ": --set material.damage.calibration=latice: material.damage.calibration: unknown calibration "
+                "'latice' (expected lattice, continuum or dissipation)");
   EXPECT_EQ(error_of(replace(kExample, "no_fail_depth: 2 mm}", "no_fail_depth: 2 mm, calibration: bulk}")),
-            kPath + ":19: material.damage.calibration: unknown calibration 'bulk' (expected lattice, continuum or "
-                    "dissipation)");
-  const auto e = error_of(kExample, {"effects=[micropolar,viscoplasticity]", vp,
-                                     "material.viscoplasticity.cone_match=triaxial"});
+            kPath +
+                ":19: material.damage.calibration: unknown calibration 'bulk' (expected lattice, continuum or "
+                "dissipation)");
+  const auto e =
+      error_of(kExample, {"effects=[micropolar,viscoplasticity]", vp, "material.viscoplasticity.cone_match=triaxial"});
   EXPECT_NE(e.find(": material.viscoplasticity.cone_match: unknown match 'triaxial' (expected triaxial-compression "
                    "or plane-strain)"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
 }
 
 // The thresholds of numerics: today's values by default, written to the resolved scene, read back,

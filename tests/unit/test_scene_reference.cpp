@@ -37,7 +37,8 @@ TEST(SceneReference, DocumentsExactlyTheKeysTheReaderAccepts) {
   const std::set<std::string> accepted(accepted_list.begin(), accepted_list.end());
   ASSERT_GT(accepted.size(), 50u);
   for (const auto& key : accepted) {
-    EXPECT_TRUE(documented.count(key)) << "the scene reader accepts " << key << ", which " << doc << " does not document";
+    EXPECT_TRUE(documented.count(key)) << "the scene reader accepts " << key << ", which " << doc
+                                       << " does not document";
   }
   for (const auto& key : documented) {
     EXPECT_TRUE(accepted.count(key)) << doc << " documents " << key << ", which the scene reader does not accept";

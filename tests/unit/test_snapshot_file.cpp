@@ -1,6 +1,5 @@
 // Snapshot files: round trip, and detection of truncation and corruption.
 #include <gtest/gtest.h>
-
 #include <zlib.h>
 
 #include <cstring>
@@ -27,7 +26,8 @@ Snapshot sample() {
   return s;
 }
 fs::path temp_dir() {
-  auto d = fs::temp_directory_path() / ("mppm_snap_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  auto d = fs::temp_directory_path() /
+           ("mppm_snap_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::create_directories(d);
   return d;
 }
@@ -46,7 +46,8 @@ TEST(SnapshotFile, RoundTripIsExact) {
   EXPECT_EQ(r.find("rotation"), nullptr);
   // No temporary file is left behind.
   int files = 0;
-  for (const auto& e : fs::directory_iterator(fs::path(path).parent_path())) files += e.path().filename() == "a.snap" ? 1 : 0;
+  for (const auto& e : fs::directory_iterator(fs::path(path).parent_path()))
+    files += e.path().filename() == "a.snap" ? 1 : 0;
   EXPECT_EQ(files, 1);
 }
 
@@ -146,7 +147,8 @@ TEST(SnapshotFile, UnknownFormatVersionIsNamed) {
     read_snapshot(path);
     FAIL() << "a snapshot of format version 3 was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("format version 3 is not supported (this mppm reads 1 and 2)"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("format version 3 is not supported (this mppm reads 1 and 2)"),
+              std::string::npos)
         << e.what();
   }
 }

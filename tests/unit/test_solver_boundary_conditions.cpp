@@ -26,9 +26,9 @@ TEST(SolverBoundaryConditions, VelocityHistoriesIntegrateExactly) {
   h.values = {{0.0}, {2.0}, {-1.0}};
   // Closed forms of the integral of the piecewise-linear velocity.
   auto exact = [](double t) {
-    if (t <= 1.0) return t * t;                                   // v = 2t
+    if (t <= 1.0) return t * t;                                                 // v = 2t
     if (t <= 3.0) return 1.0 + 2.0 * (t - 1.0) - 0.75 * (t - 1.0) * (t - 1.0);  // v = 2 - 1.5 (t-1)
-    return 1.0 + 4.0 - 3.0 - (t - 3.0);                           // v = -1
+    return 1.0 + 4.0 - 3.0 - (t - 3.0);                                         // v = -1
   };
   for (double t : {0.0, 0.3, 1.0, 1.7, 3.0, 4.5}) EXPECT_NEAR(history_integral(h, t, 0), exact(t), 1e-14) << t;
   EXPECT_DOUBLE_EQ(history_slope(h, 0.5, 0), 2.0);

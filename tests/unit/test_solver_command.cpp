@@ -82,7 +82,8 @@ TEST(SolverCommand, CaseOneMaterialRunsAndTheMisprintIsRefused) {
   fs::remove_all(bad_dir);
   const Outcome bad = run({kScenes + "solver_case1_misprint.yaml", "--points", points, "-o", bad_dir, "--quiet"});
   EXPECT_EQ(bad.code, 2);
-  for (const char* word : {"solver_case1_misprint.yaml", "time.step", "rotational", "critical step", "couple_moduli", "a3"})
+  for (const char* word :
+       {"solver_case1_misprint.yaml", "time.step", "rotational", "critical step", "couple_moduli", "a3"})
     EXPECT_NE(bad.err.find(word), std::string::npos) << word << " missing in: " << bad.err;
   EXPECT_FALSE(fs::exists(fs::path(bad_dir) / run_layout::run_info)) << "nothing is written for refused input";
 

@@ -5,10 +5,10 @@
 // with a badly conditioned family is detached for the time step's sake; an overloaded point is
 // detached when losing bonds raises its energy at all.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstring>
-#include <omp.h>
 #include <random>
 
 #include "solver/bond_breakage.hpp"
@@ -86,10 +86,11 @@ ShatterRun shatter(int dimension, std::array<int, 3> n, double speed, int steps)
 void check_shatter(int dimension, std::array<int, 3> n, double speed) {
   ShatterRun r = shatter(dimension, n, speed, 200);
   const Model& m = r.model;
-  std::printf("%d-D shatter: %zu points, %zu of %zu bond pairs broken, %zu detached (%zu for the time step), balance "
-              "error %.2g\n",
-              dimension, m.points.owned, m.broken_bonds, m.bonds.bond_count() / 2, m.detached_points,
-              m.unstable_detached_points, r.balance_error);
+  std::printf(
+      "%d-D shatter: %zu points, %zu of %zu bond pairs broken, %zu detached (%zu for the time step), balance "
+      "error %.2g\n",
+      dimension, m.points.owned, m.broken_bonds, m.bonds.bond_count() / 2, m.detached_points,
+      m.unstable_detached_points, r.balance_error);
   ASSERT_TRUE(r.finite);
   for (double v : m.points.displacement) ASSERT_TRUE(std::isfinite(v));
   for (double v : m.points.rotation) ASSERT_TRUE(std::isfinite(v));
@@ -234,8 +235,10 @@ TEST(SolverDamage, StiffnessBlockMatchesTheKernel) {
       for (int q = 0; q < N; ++q) {
         std::fill(p.displacement.begin(), p.displacement.end(), 0.0);
         std::fill(p.rotation.begin(), p.rotation.end(), 0.0);
-        if (q < D) p.displacement[i * D + q] = 1.0;
-        else p.rotation[i * R + (q - D)] = 1.0;
+        if (q < D)
+          p.displacement[i * D + q] = 1.0;
+        else
+          p.rotation[i * R + (q - D)] = 1.0;
         m.compute_internal_forces();
         for (int row = 0; row < N; ++row) {
           const double f = row < D ? p.force[i * D + row] : p.moment[i * R + (row - D)];
@@ -285,7 +288,8 @@ TEST(SolverDamage, BadlyConditionedPointIsDetachedForTheTimeStep) {
       if (keep) continue;
       leave_as_reached_critical_work(p, f, m.constants, centre, b);
     }
-    const BreakageUpdate u = update_after_breakage(p, f, m.constants, m.kernel, m.block_eigenvalue_limit, m.breakage_workspace);
+    const BreakageUpdate u =
+        update_after_breakage(p, f, m.constants, m.kernel, m.block_eigenvalue_limit, m.breakage_workspace);
     if (with_limit) {
       EXPECT_TRUE(p.detached[centre]);
       EXPECT_GE(u.unstable_detached, 1u);
@@ -350,9 +354,9 @@ OneSidedLoss lose_one_side(double load, bool keep_right, const Numerics& numeric
 TEST(SolverDamage, OverloadedPointIsDetachedWhenLosingBondsRaisesItsEnergyAtAll) {
   struct Case {
     const char* what;
-    double load;       // stored energy before the loss / family breaking energy
-    bool keep_right;   // the bonds kept: those with xi_x >= 0 (the energy rises) or <= 0 (falls)
-    bool detached;     // expected
+    double load;      // stored energy before the loss / family breaking energy
+    bool keep_right;  // the bonds kept: those with xi_x >= 0 (the energy rises) or <= 0 (falls)
+    bool detached;    // expected
   };
   const Case cases[] = {{"overloaded, energy rises", 2.0, true, true},
                         {"not overloaded, energy rises", 1.0, true, false},

@@ -56,8 +56,7 @@ TEST(SolverFamilies, CellListFindsExactlyThePointsWithinTheHorizonFromBothEnds) 
         const auto j = static_cast<std::size_t>(m.bonds.neighbor[b]);
         double xi[3];
         bond_vector(m.bonds, m.points, i, b, xi);
-        for (int a = 0; a < d; ++a)
-          EXPECT_EQ(xi[a], m.points.position[j * d + a] - m.points.position[i * d + a]);
+        for (int a = 0; a < d; ++a) EXPECT_EQ(xi[a], m.points.position[j * d + a] - m.points.position[i * d + a]);
       }
   }
   // Interior point of the 2-D lattice with factor 4.05: the number of lattice points in a disc

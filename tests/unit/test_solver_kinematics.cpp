@@ -127,7 +127,8 @@ TEST(SolverPatch, RigidTranslationAndRotationAreStrainFree) {
       // Reference: the force of a strain of the size of the rotation angle, to scale the check.
       const double theta_size = 1e-2;
       Model ref = model_for(c, micropolar);
-      for (std::size_t i = 0; i < ref.points.owned; ++i) ref.points.displacement[i * D] = theta_size * ref.points.position[i * D];
+      for (std::size_t i = 0; i < ref.points.owned; ++i)
+        ref.points.displacement[i * D] = theta_size * ref.points.position[i * D];
       ref.compute_internal_forces(true);
       const double force_scale = max_abs(ref.points.force);
       ASSERT_GT(force_scale, 0.0);
@@ -213,9 +214,9 @@ TEST(SolverPatch, PointsWithTooFewBondsAreDetachedAndCarryNoStress) {
 TEST(SolverEffects, EffectsThatAreOffAllocateNothing) {
   const Model classical = model_for(kCases[0], false);
   EXPECT_EQ(classical.points.rotation_components, 0);
-  for (const auto* v : {&classical.points.rotation, &classical.points.spin, &classical.points.moment,
-                        &classical.points.wryness, &classical.points.moment_tensor, &classical.points.stabilization_rot,
-                        &classical.points.plastic_strain})
+  for (const auto* v :
+       {&classical.points.rotation, &classical.points.spin, &classical.points.moment, &classical.points.wryness,
+        &classical.points.moment_tensor, &classical.points.stabilization_rot, &classical.points.plastic_strain})
     EXPECT_TRUE(v->empty());
   EXPECT_TRUE(classical.bonds.work.empty());
   EXPECT_TRUE(classical.bonds.pair_offset.empty());
@@ -244,9 +245,15 @@ TEST(SolverSnapshotFields, StressAndPorosityOfAUniformStrain) {
   const CosseratConstants& c = m.constants;
   const double tr = exx + eyy;
   // eps = grad u (no rotation): eps_xy = exy, eps_yx = 0.
-  const double expected[9] = {c.lambda * tr + 2 * c.mu * exx, (c.mu + c.mu_c) * exy, 0.0,
-                              (c.mu - c.mu_c) * exy, c.lambda * tr + 2 * c.mu * eyy, 0.0,
-                              0.0, 0.0, c.lambda * tr};
+  const double expected[9] = {c.lambda * tr + 2 * c.mu * exx,
+                              (c.mu + c.mu_c) * exy,
+                              0.0,
+                              (c.mu - c.mu_c) * exy,
+                              c.lambda * tr + 2 * c.mu * eyy,
+                              0.0,
+                              0.0,
+                              0.0,
+                              c.lambda * tr};
   const double porosity = 1.0 - c.solid_fraction / ((1 + exx) * (1 + eyy));
   for (std::size_t i = 0; i < m.points.owned; ++i) {
     for (int k = 0; k < 9; ++k) ASSERT_NEAR(sigma[i * 9 + k], expected[k], 1e-9 * c.mu * exx) << k;

@@ -106,7 +106,7 @@ TEST(SolverDamping, FreeVibrationDecaysAndTheBalanceAccountsForIt) {
   for (int k = 0; k < 999; ++k) dynamics.step(false);
   dynamics.step(true);
   const EnergyState& e = dynamics.energy();
-  EXPECT_LT(e.total(), 0.01 * e0);             // mostly dissipated
+  EXPECT_LT(e.total(), 0.01 * e0);               // mostly dissipated
   EXPECT_NEAR(e.external_work, -e0, 1e-3 * e0);  // ... and booked as the damper's work
   // Trapezoid-rule bookkeeping of the damping work: O((c dt)^2) per step; measured 1e-8 here,
   // 1e-6 bounds it with margin while any missing or double-counted term would be O(1).

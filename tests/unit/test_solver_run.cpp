@@ -114,7 +114,7 @@ TEST(SolverRun, WritesTheRunDirectory) {
     v = std::stod(cell);
   }
   EXPECT_NEAR(values[5], 0.5 * 30e-6, 1e-15);
-  EXPECT_GT(values[7], 0.0);  // the bar resists the pull: reaction along the motion
+  EXPECT_GT(values[7], 0.0);            // the bar resists the pull: reaction along the motion
   EXPECT_NEAR(values[1], 0.0, 1e-300);  // the held end does not move
   // Refuses to overwrite without --force, accepts with it.
   EXPECT_THROW(solve(c.scene, c.cloud, options_for(dir)), InputError);
@@ -193,7 +193,8 @@ TEST(SolverRun, NonFiniteStateStopsWithNumericalFailureAndKeepsTheLastGoodSnapsh
   BarCase c = bar({24, 6, 1}, 3.05);
   // A velocity history that turns non-finite after 20 us (the guard must catch it, whatever the cause).
   c.scene.boundary_conditions[1].value.times = {0.0, 20e-6, 25e-6};
-  c.scene.boundary_conditions[1].value.values = {{0.0, 0.0}, {0.5, 0.0}, {std::numeric_limits<double>::infinity(), 0.0}};
+  c.scene.boundary_conditions[1].value.values = {
+      {0.0, 0.0}, {0.5, 0.0}, {std::numeric_limits<double>::infinity(), 0.0}};
   const std::string dir = fresh_directory("failure");
   EXPECT_THROW(solve(c.scene, c.cloud, options_for(dir)), NumericalFailure);
   const std::string info = read_text(dir + "/" + run_layout::run_info);

@@ -1,7 +1,7 @@
 // The critical time step (docs/theory.md section 9): the Lanczos (refined power-iteration) estimate is the
 // real stability limit of the scheme, and a given step above it is refused with a message naming
-// the mode and the parameter. workflows/shear-band/README.md as printed (a3 = 83.3 kN) must be refused at dt = 7 us; with
-// the corrected a3 = 83.3 N it is accepted.
+// the mode and the parameter. workflows/shear-band/README.md as printed (a3 = 83.3 kN) must be refused at dt = 7 us;
+// with the corrected a3 = 83.3 N it is accepted.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -117,11 +117,11 @@ TEST(SolverEnergyGuard, StopsUnexplainedGrowthOnly) {
   e.kinetic = 1.0;
   e.external_work = 1.0;
   EXPECT_FALSE(guard.check(60, e, 0.0));  // fully explained by the work
-  e.kinetic = 0.5;                         // energy lost (dissipation): not a failure
+  e.kinetic = 0.5;                        // energy lost (dissipation): not a failure
   EXPECT_FALSE(guard.check(61, e, 0.0));
-  e.kinetic = 1.04;                        // 4 % unexplained: within the tolerance
+  e.kinetic = 1.04;  // 4 % unexplained: within the tolerance
   EXPECT_FALSE(guard.check(62, e, 0.0));
-  e.kinetic = 1.2;                         // 20 %: stop, and say why
+  e.kinetic = 1.2;  // 20 %: stop, and say why
   const auto reason = guard.check(63, e, 0.0);
   ASSERT_TRUE(reason);
   EXPECT_NE(reason->find("energy_check_tolerance"), std::string::npos) << *reason;

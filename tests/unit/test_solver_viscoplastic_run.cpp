@@ -105,8 +105,9 @@ void check_kernel_update_matches_material_point(int dimension) {
     Eigen::Matrix3d expected_vp, sigma;
     double expected_ebar, dissipation;
     if (dimension == 2) {
-      const auto u = model->update(eps, Eigen::Vector2d(kap[0], kap[1]), model->initial_state_2d(),
-                                   {m.constants.lambda, m.constants.mu, m.constants.mu_c, m.constants.bending_modulus}, dt);
+      const auto u =
+          model->update(eps, Eigen::Vector2d(kap[0], kap[1]), model->initial_state_2d(),
+                        {m.constants.lambda, m.constants.mu, m.constants.mu_c, m.constants.bending_modulus}, dt);
       expected_vp = u.state.plastic_strain;
       expected_ebar = u.state.equivalent_plastic_strain;
       sigma = u.stress;
@@ -118,16 +119,17 @@ void check_kernel_update_matches_material_point(int dimension) {
       Eigen::Matrix3d k;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) k(a, b) = kap[a * 3 + b];
-      const auto u = model->update(eps, k, model->initial_state_3d(),
-                                   {m.constants.lambda, m.constants.mu, m.constants.mu_c, m.constants.a1,
-                                    m.constants.a2, m.constants.a3}, dt);
+      const auto u = model->update(
+          eps, k, model->initial_state_3d(),
+          {m.constants.lambda, m.constants.mu, m.constants.mu_c, m.constants.a1, m.constants.a2, m.constants.a3}, dt);
       expected_vp = u.state.plastic_strain;
       expected_ebar = u.state.equivalent_plastic_strain;
       sigma = u.stress;
       dissipation = u.dissipation;
       plastic += u.plastic;
       for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) EXPECT_EQ(m.points.plastic_wryness[i * 9 + a * 3 + b], u.state.plastic_wryness(a, b));
+        for (int b = 0; b < 3; ++b)
+          EXPECT_EQ(m.points.plastic_wryness[i * 9 + a * 3 + b], u.state.plastic_wryness(a, b));
     }
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) {
@@ -144,8 +146,12 @@ void check_kernel_update_matches_material_point(int dimension) {
   EXPECT_GT(plastic, static_cast<int>(m.points.owned) / 2);
 }
 
-TEST(SolverViscoplasticKernel, PointUpdateIsTheMaterialPointReturnIn2D) { check_kernel_update_matches_material_point(2); }
-TEST(SolverViscoplasticKernel, PointUpdateIsTheMaterialPointReturnIn3D) { check_kernel_update_matches_material_point(3); }
+TEST(SolverViscoplasticKernel, PointUpdateIsTheMaterialPointReturnIn2D) {
+  check_kernel_update_matches_material_point(2);
+}
+TEST(SolverViscoplasticKernel, PointUpdateIsTheMaterialPointReturnIn3D) {
+  check_kernel_update_matches_material_point(3);
+}
 
 TEST(SolverViscoplasticRun, UnreachableCohesionGivesTheElasticRunBitForBit) {
   CompressionCase on = short_case();

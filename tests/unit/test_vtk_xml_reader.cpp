@@ -45,7 +45,8 @@ PointCloud cloud_of(std::size_t n) {
     c.boundary_id[i] = c.region[i] ? 1 : (i % 31 == 0 ? 2 : 0);
     c.normal_y[i] = c.boundary_id[i] == 2 ? 1.0 : 0.0;
   }
-  c.boundaries = {BoundaryInfo{"bottom", "velocity", 1e-4, 7, "", 0.0}, BoundaryInfo{"top side", "traction", 2e-4, 3, "", 0.0}};
+  c.boundaries = {BoundaryInfo{"bottom", "velocity", 1e-4, 7, "", 0.0},
+                  BoundaryInfo{"top side", "traction", 2e-4, 3, "", 0.0}};
   c.precrack_vertices = {0, 0.02, 0, 0.05, 0.02, 0};
   return c;
 }

@@ -74,12 +74,13 @@ inline void add_end_layers(PointCloud& c, int columns, int depth, const std::str
   double height = 0.0;
   for (double y : c.y) height = std::max(height, y + 0.5 * dx);
   const double area = height * (c.dimension == 2 ? c.thickness : height);
-  c.boundaries = {BoundaryInfo{"left", left_type, area, left, "", 0.0}, BoundaryInfo{"right", right_type, area, right, "", 0.0}};
+  c.boundaries = {BoundaryInfo{"left", left_type, area, left, "", 0.0},
+                  BoundaryInfo{"right", right_type, area, right, "", 0.0}};
 }
 
 // A kinematic condition: constant (one row) or piecewise-linear rows of a vector value.
-inline BoundaryCondition kinematic_condition(const std::string& name, BoundaryType type,
-                                             std::vector<double> times, std::vector<std::vector<double>> values) {
+inline BoundaryCondition kinematic_condition(const std::string& name, BoundaryType type, std::vector<double> times,
+                                             std::vector<std::vector<double>> values) {
   BoundaryCondition bc;
   bc.name = name;
   bc.type = type;

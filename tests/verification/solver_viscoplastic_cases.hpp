@@ -36,8 +36,7 @@ struct CompressionCase {
   double height = 0.0;  // body and layers [m]
 };
 
-inline CompressionCase compression_case(int nx, int ny_body, double end_time, double strain_rate,
-                                        double viscosity) {
+inline CompressionCase compression_case(int nx, int ny_body, double end_time, double strain_rate, double viscosity) {
   constexpr double dx = 1e-3;
   constexpr int depth = 5;  // > 2 * 2.05
   CompressionCase c;
@@ -75,16 +74,16 @@ inline CompressionCase compression_case(int nx, int ny_body, double end_time, do
     c.cloud.boundaries.push_back(BoundaryInfo{name, "velocity", c.width * c.scene.thickness, count[k], "", 0.0});
     // The speed ramps up over the first fifth of the run: a smooth start excites little vibration.
     const double speed = -strain_rate * ((row + 0.5) * dx - y_mid);
-    BoundaryCondition bc = kinematic_condition(name, BoundaryType::velocity, {0.0, 0.2 * end_time},
-                                               {{0.0, 0.0}, {0.0, speed}});
+    BoundaryCondition bc =
+        kinematic_condition(name, BoundaryType::velocity, {0.0, 0.2 * end_time}, {{0.0, 0.0}, {0.0, speed}});
     bc.constrained = {false, true};
     bc.rotation = History{{0.0}, {{0.0}}};
     c.scene.boundary_conditions.push_back(bc);
   }
   c.scene.time.end = end_time;
   c.scene.output.interval = end_time / 4;
-  c.scene.output.fields = {"displacement", "rotation", "stress", "plastic_strain", "plastic_shear_strain",
-                           "equivalent_plastic_strain"};
+  c.scene.output.fields = {
+      "displacement", "rotation", "stress", "plastic_strain", "plastic_shear_strain", "equivalent_plastic_strain"};
   return c;
 }
 

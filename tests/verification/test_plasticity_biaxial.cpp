@@ -55,8 +55,7 @@ struct Biaxial {
 };
 
 double analytic_limit_load(const Biaxial& b) {
-  const double phi = b.prm.friction_angle, psi = b.prm.dilatancy_angle, c = b.prm.cohesion,
-               pc = b.confinement;
+  const double phi = b.prm.friction_angle, psi = b.prm.dilatancy_angle, c = b.prm.cohesion, pc = b.confinement;
   double sigma_yy;
   if (b.prm.cone_match == ConeMatch::plane_strain) {
     sigma_yy = -(pc * (1.0 + std::sin(phi)) + 2.0 * c * std::cos(phi)) / (1.0 - std::sin(phi));
@@ -64,8 +63,7 @@ double analytic_limit_load(const Biaxial& b) {
     const double m_phi = 6.0 * std::sin(phi) / (3.0 - std::sin(phi));
     const double m_psi = 6.0 * std::sin(psi) / (3.0 - std::sin(psi));
     const double k = 6.0 * c * std::cos(phi) / (3.0 - std::sin(phi));
-    const double alpha =
-        std::sqrt(1.0 - m_psi * m_psi / 9.0) / (std::sqrt(3.0) * (1.0 - m_phi * m_psi / 9.0));
+    const double alpha = std::sqrt(1.0 - m_psi * m_psi / 9.0) / (std::sqrt(3.0) * (1.0 - m_phi * m_psi / 9.0));
     const double big_a = k * alpha, big_b = m_phi * alpha;
     sigma_yy = -(pc * (1.0 + big_b) + 2.0 * big_a) / (1.0 - big_b);
   }
@@ -88,8 +86,7 @@ struct Curve {
 // a central difference of the update, which is a pure function of the step's inputs).
 Curve run(const Biaxial& b, double strain_rate, double total_strain, int steps) {
   const DruckerPragerPerzyna model = make_drucker_prager_perzyna(b.prm);
-  const double e0 =
-      -b.confinement / (2.0 * (b.el.lambda + b.el.mu));  // isotropic in-plane confinement
+  const double e0 = -b.confinement / (2.0 * (b.el.lambda + b.el.mu));  // isotropic in-plane confinement
   const double dt = total_strain / strain_rate / steps;
   PlasticState<2> state = initial_plastic_state<2>(model);
   double exx = e0;
@@ -108,16 +105,13 @@ Curve run(const Biaxial& b, double strain_rate, double total_strain, int steps) 
       const double residual = r.stress(0, 0) + b.confinement;
       if (std::abs(residual) <= 1e-10 * b.confinement) break;
       const double h = 1e-9;
-      const double up = drucker_prager_perzyna_update(strain(exx + h, eyy), Vector2d::Zero(), state,
-                                                      b.el, model, dt)
-                            .stress(0, 0);
-      const double down = drucker_prager_perzyna_update(strain(exx - h, eyy), Vector2d::Zero(),
-                                                        state, b.el, model, dt)
-                              .stress(0, 0);
+      const double up =
+          drucker_prager_perzyna_update(strain(exx + h, eyy), Vector2d::Zero(), state, b.el, model, dt).stress(0, 0);
+      const double down =
+          drucker_prager_perzyna_update(strain(exx - h, eyy), Vector2d::Zero(), state, b.el, model, dt).stress(0, 0);
       exx -= residual / ((up - down) / (2.0 * h));
     }
-    EXPECT_NEAR(r.stress(0, 0), -b.confinement, 1e-8 * b.confinement)
-        << "lateral control failed at step " << n;
+    EXPECT_NEAR(r.stress(0, 0), -b.confinement, 1e-8 * b.confinement) << "lateral control failed at step " << n;
     state = r.state;
     curve.load.push_back(-r.stress(1, 1) * b.width * b.thickness);
   }
@@ -142,8 +136,8 @@ void check_limit(ConeMatch match) {
     const double error = (c.load.back() - limit) / limit;
     errors.push_back(std::abs(error));
     ::testing::Test::RecordProperty("eta_" + std::to_string(eta), std::to_string(error));
-    std::printf("  %s eta %8.1e Pa s: load %.6g N, analytic %.6g N, error %+.3e\n",
-                to_string(match), eta, c.load.back(), limit, error);
+    std::printf("  %s eta %8.1e Pa s: load %.6g N, analytic %.6g N, error %+.3e\n", to_string(match), eta,
+                c.load.back(), limit, error);
     if (eta <= 1e3) {
       for (double load : c.load) EXPECT_LE(load, limit * 1.02);
     }
@@ -158,9 +152,7 @@ TEST(PlasticityBiaxial, TriaxialCompressionMatchReachesAnalyticDruckerPragerLimi
   check_limit(ConeMatch::triaxial_compression);
 }
 
-TEST(PlasticityBiaxial, PlaneStrainMatchReachesMohrCoulombLimit) {
-  check_limit(ConeMatch::plane_strain);
-}
+TEST(PlasticityBiaxial, PlaneStrainMatchReachesMohrCoulombLimit) { check_limit(ConeMatch::plane_strain); }
 
 // The same limit holds with any dilatancy: associated and non-dilatant flow.
 TEST(PlasticityBiaxial, LimitHoldsForOtherDilatancyAngles) {
@@ -172,8 +164,8 @@ TEST(PlasticityBiaxial, LimitHoldsForOtherDilatancyAngles) {
       b.prm.viscosity = 1e-2;
       const double limit = analytic_limit_load(b);
       const Curve c = run(b, 0.01, kTotalStrain, kSteps);
-      std::printf("  %s psi %4.1f deg: load %.6g N, analytic %.6g N, error %+.3e\n",
-                  to_string(match), psi_deg, c.load.back(), limit, (c.load.back() - limit) / limit);
+      std::printf("  %s psi %4.1f deg: load %.6g N, analytic %.6g N, error %+.3e\n", to_string(match), psi_deg,
+                  c.load.back(), limit, (c.load.back() - limit) / limit);
       EXPECT_NEAR(c.load.back(), limit, 0.02 * limit) << to_string(match) << " psi " << psi_deg;
     }
   }

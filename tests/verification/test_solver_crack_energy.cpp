@@ -37,11 +37,12 @@ Scene crack_scene(int dimension, double horizon_factor) {
 void check(const char* what, const verification::CrackEnergyResult& r) {
   const double crossing = r.crossing_bond_work / r.crack_area / r.critical_g;
   const double all = r.broken_bond_work / r.crack_area / r.critical_g;
-  std::printf("%s: per unit new crack area / G_cr: work of the broken crossing bonds %.4f (all broken bonds %.4f), "
-              "energy removed (fracture dissipation) %.4f; separated at %.4g s after %lld steps of %.3g s; crossing "
-              "pairs %zu/%zu broken, other pairs %zu; balance error %.2g; %.2f s\n",
-              what, crossing, all, r.ratio(), r.separation_time, static_cast<long long>(r.steps), r.time_step,
-              r.crossing_bonds_broken, r.crossing_bonds, r.other_bonds_broken, r.balance_error, r.solve_seconds);
+  std::printf(
+      "%s: per unit new crack area / G_cr: work of the broken crossing bonds %.4f (all broken bonds %.4f), "
+      "energy removed (fracture dissipation) %.4f; separated at %.4g s after %lld steps of %.3g s; crossing "
+      "pairs %zu/%zu broken, other pairs %zu; balance error %.2g; %.2f s\n",
+      what, crossing, all, r.ratio(), r.separation_time, static_cast<long long>(r.steps), r.time_step,
+      r.crossing_bonds_broken, r.crossing_bonds, r.other_bonds_broken, r.balance_error, r.solve_seconds);
   ASSERT_TRUE(r.separated);
   EXPECT_EQ(r.crossing_bonds_broken, r.crossing_bonds);
   EXPECT_NEAR(crossing, 1.0, 0.10);
@@ -89,10 +90,11 @@ Scene dissipation_scene(int dimension, double horizon_factor, double stabilizati
 }
 
 void check_dissipation(const char* what, const verification::CrackEnergyResult& r) {
-  std::printf("%s, dissipation calibration: energy removed per unit new crack area %.4g J/m^2 = %.4f G_cr; work of the "
-              "crossing bonds %.4f G_cr; separated at %.4g s; other pairs %zu; balance error %.2g; %.2f s\n",
-              what, r.measured_g, r.ratio(), r.crossing_bond_work / r.crack_area / r.critical_g, r.separation_time,
-              r.other_bonds_broken, r.balance_error, r.solve_seconds);
+  std::printf(
+      "%s, dissipation calibration: energy removed per unit new crack area %.4g J/m^2 = %.4f G_cr; work of the "
+      "crossing bonds %.4f G_cr; separated at %.4g s; other pairs %zu; balance error %.2g; %.2f s\n",
+      what, r.measured_g, r.ratio(), r.crossing_bond_work / r.crack_area / r.critical_g, r.separation_time,
+      r.other_bonds_broken, r.balance_error, r.solve_seconds);
   ASSERT_TRUE(r.separated);
   EXPECT_NEAR(r.ratio(), 1.0, 0.10);
   EXPECT_LT(std::abs(r.balance_error), 1e-9);
@@ -159,7 +161,8 @@ TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
     for (double m : {2.05, 3.05, 4.05, 8.05, 16.05}) {
       DamageParameters lattice{160.0, 0.0, DamageCalibration::lattice, std::nullopt};
       const double dx = 1e-3, t = 2e-3;
-      const double ratio = critical_bond_work(lattice, d, dx, m, t, 0.1) / continuum_critical_bond_work(d, 160.0, m * dx, t);
+      const double ratio =
+          critical_bond_work(lattice, d, dx, m, t, 0.1) / continuum_critical_bond_work(d, 160.0, m * dx, t);
       std::printf("dimension %d, horizon factor %.2f: lattice / continuum w_cr = %.4f\n", d, m, ratio);
       // The lattice points within the horizon fill the disc / ball up to a boundary layer of
       // about one spacing: a relative difference of the order of 1/m (measured: at most 0.26 at
@@ -170,7 +173,8 @@ TEST(SolverCrackEnergy, LatticeCalibrationTendsToTheContinuumFormula) {
       }
     }
   DamageParameters continuum{160.0, 0.0, DamageCalibration::continuum, std::nullopt};
-  EXPECT_DOUBLE_EQ(critical_bond_work(continuum, 2, 1e-3, 3.05, 2e-3, 0.1), continuum_critical_bond_work(2, 160.0, 3.05e-3, 2e-3));
+  EXPECT_DOUBLE_EQ(critical_bond_work(continuum, 2, 1e-3, 3.05, 2e-3, 0.1),
+                   continuum_critical_bond_work(2, 160.0, 3.05e-3, 2e-3));
 }
 
 }  // namespace

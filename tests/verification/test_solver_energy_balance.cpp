@@ -29,8 +29,7 @@ void check_balance(bool micropolar) {
   const double t1 = 10e-6;
   scene.boundary_conditions = {
       kinematic_condition("left", BoundaryType::displacement, {0.0}, {{0.0, 0.0}}),
-      kinematic_condition("right", BoundaryType::velocity, {0.0, t1, 2 * t1},
-                          {{0.0, 0.0}, {1.0, 0.5}, {0.0, 0.0}})};
+      kinematic_condition("right", BoundaryType::velocity, {0.0, t1, 2 * t1}, {{0.0, 0.0}, {1.0, 0.5}, {0.0, 0.0}})};
   Model model = testing::make_model(cloud, scene);
   const BoundaryConditions conditions(scene, cloud, model.points, "bar");
   const CriticalTimeStep critical = critical_time_step(model);

@@ -64,8 +64,9 @@ TEST(SolverLayerShear, CosseratLayerStiffnessMatchesAnalytic) {
   EXPECT_LT(h_eff, h + 2 * kFactor * kDx);  // the faces are smeared over at most a horizon each
   // lam h_eff = 3: a 23 % size effect over mu, which the 3 % tolerance resolves.
   const LayerShearResult cosserat = shear_layer(rows, bending_for(3.0, h_eff), h_eff);
-  std::printf("layer shear: h = %g m, h_eff = %g m; Cosserat discrete %.5g Pa, analytic %.5g Pa (ratio %.4f), mu %.5g Pa\n",
-              h, h_eff, cosserat.stiffness, cosserat.analytic, cosserat.stiffness / cosserat.analytic, kMu);
+  std::printf(
+      "layer shear: h = %g m, h_eff = %g m; Cosserat discrete %.5g Pa, analytic %.5g Pa (ratio %.4f), mu %.5g Pa\n", h,
+      h_eff, cosserat.stiffness, cosserat.analytic, cosserat.stiffness / cosserat.analytic, kMu);
   EXPECT_GT(cosserat.analytic, 1.15 * kMu);
   EXPECT_NEAR(cosserat.stiffness / cosserat.analytic, 1.0, 0.03);
 }

@@ -106,8 +106,8 @@ TEST(SolverViscoplasticCompression, EnergyBalanceWithPlasticDissipationBelowOneP
   double worst = 0.0;
   for (const auto& row : r.energy) worst = std::max(worst, std::abs(row[8]));
   const auto& last = r.energy.back();
-  std::printf("energy: work %.5g J, elastic %.5g J, plastic dissipation %.5g J, worst balance error %.3e\n",
-              last[7], last[3], last[5], worst);
+  std::printf("energy: work %.5g J, elastic %.5g J, plastic dissipation %.5g J, worst balance error %.3e\n", last[7],
+              last[3], last[5], worst);
   // The check is on a run where dissipation dominates: most of the work went into plastic flow.
   EXPECT_GT(last[5], 0.5 * last[7]);
   EXPECT_LT(worst, 0.01);  // the acceptance bound

@@ -28,8 +28,8 @@ void set_crack_branching_material(Scene& s) {
   s.material.mu = 14e9;
   s.material.mu_c = 14e9 / 3;
   s.material.length_scale = 2e-3;
-  s.material.couple_moduli = s.dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3}
-                                              : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
+  s.material.couple_moduli =
+      s.dimension == 2 ? std::array<double, 3>{0.0, 0.0, 56e3} : std::array<double, 3>{0.2 * 56e3, 56e3, 0.3 * 56e3};
   s.effects.micropolar = true;
   s.effects.damage = true;
   s.material.damage = DamageParameters{160.0, 0.0, DamageCalibration::lattice, std::nullopt};
@@ -59,7 +59,8 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   }
   const double thickness = D == 2 ? scene.thickness : depth * dx;  // of the crack front
   const double face = strip.length * dx * thickness;
-  cloud.boundaries = {BoundaryInfo{"below", "velocity", face, below, "", 0.0}, BoundaryInfo{"above", "velocity", face, above, "", 0.0}};
+  cloud.boundaries = {BoundaryInfo{"below", "velocity", face, below, "", 0.0},
+                      BoundaryInfo{"above", "velocity", face, above, "", 0.0}};
 
   // The pre-crack on the mid-plane from outside the left edge to the notch tip (3-D: a rectangle
   // of two triangles through the whole periodic thickness, so that its wrapped bonds are cut too).
@@ -70,7 +71,7 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
   } else {
     const double z0 = -2.0 * depth * dx, z1 = 3.0 * depth * dx;
     cloud.precrack_vertices = {-dx, y_crack, z0, x_tip, y_crack, z0, x_tip, y_crack, z1,
-                               -dx, y_crack, z0, x_tip, y_crack, z1, -dx, y_crack, z1};
+                               -dx, y_crack, z0, x_tip, y_crack, z1, -dx,   y_crack, z1};
   }
 
   // Both grips move away from the mid-plane (x and z held) until the opening gives W H =
@@ -127,8 +128,7 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
     std::size_t count = 0;
     for (std::size_t i = 0; i < p.owned; ++i)
       for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-        if (f.neighbor_of(b) > i && crossing(i, b) && (!intact_only || f.acting(b)))
-          ++count;
+        if (f.neighbor_of(b) > i && crossing(i, b) && (!intact_only || f.acting(b))) ++count;
     return count;
   };
   r.crossing_bonds = count_crossing(false);
@@ -160,7 +160,8 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       const std::size_t j = f.neighbor_of(b);
       const double work = solver::bond_work(f, i, b);
-      if (f.acting(b)) r.largest_bond_work_ratio = std::max(r.largest_bond_work_ratio, work / model.constants.critical_bond_work);
+      if (f.acting(b))
+        r.largest_bond_work_ratio = std::max(r.largest_bond_work_ratio, work / model.constants.critical_bond_work);
       if (j <= i || f.acting(b)) continue;
       r.broken_bond_work += p.volume[i] * p.volume[j] * work;
       if (crossing(i, b)) r.crossing_bond_work += p.volume[i] * p.volume[j] * work;

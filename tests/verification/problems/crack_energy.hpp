@@ -25,30 +25,30 @@ namespace mppm::verification {
 void set_crack_branching_material(Scene& scene);
 
 struct CrackStrip {
-  int length = 80;          // body points along x
-  int height = 20;          // body points along y (even: the crack plane lies between two rows)
-  int depth = 6;            // body points along z (3-D only; periodic)
-  int notch = 20;           // pre-crack from the left edge, in points along x
-  double overload = 1.3;          // W H / G_cr at the final opening
-  double grip_speed = 0.1;        // each grip moves away from the mid-plane at this speed [m/s]
-  double end_time = 200e-6;       // [s] stop at the latest here
-  double safety = 0.4;            // time step = safety x critical step
+  int length = 80;           // body points along x
+  int height = 20;           // body points along y (even: the crack plane lies between two rows)
+  int depth = 6;             // body points along z (3-D only; periodic)
+  int notch = 20;            // pre-crack from the left edge, in points along x
+  double overload = 1.3;     // W H / G_cr at the final opening
+  double grip_speed = 0.1;   // each grip moves away from the mid-plane at this speed [m/s]
+  double end_time = 200e-6;  // [s] stop at the latest here
+  double safety = 0.4;       // time step = safety x critical step
   int threads = 1;
 };
 
 struct CrackEnergyResult {
-  bool separated = false;          // no intact bond crosses the mid-plane any more
-  double separation_time = 0.0;    // [s]
-  double fracture_dissipation = 0.0;   // [J] as the solver reports it (energy.csv)
-  double crack_area = 0.0;             // new crack area (length - notch) x t (2-D) or x depth (3-D) [m^2]
-  double measured_g = 0.0;             // fracture_dissipation / crack_area [J/m^2]
-  double broken_bond_work = 0.0;       // sum V_i V_j W_ij over the broken pairs [J]
-  double crossing_bond_work = 0.0;     // the same over the broken pairs across the mid-plane [J]
-  double largest_bond_work_ratio = 0.0;  // max W_ij / w_cr over the intact bonds at the end
-  double critical_g = 0.0;             // the scene's G_cr
-  double balance_error = 0.0;          // of the run at its end (ExplicitDynamics::balance_error)
-  double external_work = 0.0;          // [J]
-  double available_energy = 0.0;       // W H x crack area at the final opening [J]
+  bool separated = false;                 // no intact bond crosses the mid-plane any more
+  double separation_time = 0.0;           // [s]
+  double fracture_dissipation = 0.0;      // [J] as the solver reports it (energy.csv)
+  double crack_area = 0.0;                // new crack area (length - notch) x t (2-D) or x depth (3-D) [m^2]
+  double measured_g = 0.0;                // fracture_dissipation / crack_area [J/m^2]
+  double broken_bond_work = 0.0;          // sum V_i V_j W_ij over the broken pairs [J]
+  double crossing_bond_work = 0.0;        // the same over the broken pairs across the mid-plane [J]
+  double largest_bond_work_ratio = 0.0;   // max W_ij / w_cr over the intact bonds at the end
+  double critical_g = 0.0;                // the scene's G_cr
+  double balance_error = 0.0;             // of the run at its end (ExplicitDynamics::balance_error)
+  double external_work = 0.0;             // [J]
+  double available_energy = 0.0;          // W H x crack area at the final opening [J]
   std::size_t crossing_bonds_broken = 0;  // pairs across the mid-plane right of the notch, broken
   std::size_t crossing_bonds = 0;         // pairs across the mid-plane right of the notch
   std::size_t other_bonds_broken = 0;     // broken pairs that do not cross the mid-plane
@@ -56,8 +56,8 @@ struct CrackEnergyResult {
   std::size_t bonds = 0;
   std::int64_t steps = 0;
   double time_step = 0.0;
-  double solve_seconds = 0.0;      // the time integration (model build and time step excluded)
-  std::int64_t bond_updates = 0;   // bonds x force evaluations of the integration
+  double solve_seconds = 0.0;     // the time integration (model build and time step excluded)
+  std::int64_t bond_updates = 0;  // bonds x force evaluations of the integration
   double ratio() const { return measured_g / critical_g; }
 };
 

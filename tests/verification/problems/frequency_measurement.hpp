@@ -18,19 +18,18 @@ struct TimeStepChoice {
 };
 
 struct FrequencyMeasurement {
-  double omega = 0.0;              // angular frequency [rad/s]; 0 with fewer than 2 crossings
+  double omega = 0.0;  // angular frequency [rad/s]; 0 with fewer than 2 crossings
   int crossings = 0;
   std::int64_t steps = 0;
-  double time_step = 0.0;          // [s]
-  double critical_step = 0.0;      // 2 / omega_max of the discrete operator [s]
-  double critical_seconds = 0.0;   // wall time of the critical-step estimate
+  double time_step = 0.0;         // [s]
+  double critical_step = 0.0;     // 2 / omega_max of the discrete operator [s]
+  double critical_seconds = 0.0;  // wall time of the critical-step estimate
   double integration_seconds = 0.0;
 };
 
 // Integrates from the model's current state (velocities zero) over about `periods` periods of
 // `expected_omega` and measures the frequency of `probe` from its zero crossings.
 FrequencyMeasurement measure_frequency(solver::Model& model, double expected_omega, double periods,
-                                       const std::function<double(const solver::Model&)>& probe,
-                                       TimeStepChoice choice);
+                                       const std::function<double(const solver::Model&)>& probe, TimeStepChoice choice);
 
 }  // namespace mppm::verification

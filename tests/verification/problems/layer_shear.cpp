@@ -51,8 +51,10 @@ LayerShearResult shear_layer(const Scene& s, int body_rows, double height, Stati
   const int nf = static_cast<int>(free_dofs.size());
   auto set_dof = [&](int dof, double v) {
     const auto i = static_cast<std::size_t>(dof / per_point);
-    if (dof % per_point < 2) m.points.displacement[i * 2 + dof % per_point] = v;
-    else m.points.rotation[i] = v;
+    if (dof % per_point < 2)
+      m.points.displacement[i * 2 + dof % per_point] = v;
+    else
+      m.points.rotation[i] = v;
   };
   auto generalized_force = [&](int dof) {  // f V (force or moment on the point)
     const auto i = static_cast<std::size_t>(dof / per_point);

@@ -25,18 +25,18 @@ enum class StaticSolver {
 };
 
 struct LayerShearResult {
-  double stiffness = 0.0;        // tau / (U / h) of the discrete model [Pa]
-  double analytic = 0.0;         // the formula above at the given h [Pa]
-  double classical = 0.0;        // mu [Pa]
-  double symmetry_defect = 0.0;  // |K - K^T| / |K| (dense solver only)
-  bool positive_definite = true; // Cholesky succeeded (dense solver only)
-  bool converged = true;         // conjugate gradients reached their tolerance
-  double residual = 0.0;         // max |f V| over the free points / max |right-hand side|
-  int iterations = 0;            // conjugate-gradient iterations
+  double stiffness = 0.0;         // tau / (U / h) of the discrete model [Pa]
+  double analytic = 0.0;          // the formula above at the given h [Pa]
+  double classical = 0.0;         // mu [Pa]
+  double symmetry_defect = 0.0;   // |K - K^T| / |K| (dense solver only)
+  bool positive_definite = true;  // Cholesky succeeded (dense solver only)
+  bool converged = true;          // conjugate gradients reached their tolerance
+  double residual = 0.0;          // max |f V| over the free points / max |right-hand side|
+  int iterations = 0;             // conjugate-gradient iterations
   std::int64_t force_evaluations = 0;
   std::size_t points = 0;
   std::size_t bonds = 0;
-  double solve_seconds = 0.0;    // wall time of the solve (model built before)
+  double solve_seconds = 0.0;  // wall time of the solve (model built before)
 };
 
 // 2-D layer of `body_rows` rows of the scene's spacing and horizon factor, with the scene's
