@@ -84,16 +84,19 @@ void emit_geometry(YAML::Emitter& out, const Scene& scene) {
   out << YAML::EndSeq << YAML::EndMap;
 }
 
+// The block an effect is limited to (`region:`), with the keys of its selector.
+void emit_region(YAML::Emitter& out, const Selector& region) {
+  out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
+  emit_selector_keys(out, region);
+  out << YAML::EndMap;
+}
+
 void emit_damage(YAML::Emitter& out, const DamageParameters& damage) {
   out << YAML::Key << "damage" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{damage.critical_energy_release_rate};
   out << YAML::Key << "no_fail_depth" << YAML::Value << Num{damage.no_fail_depth};
   out << YAML::Key << "calibration" << YAML::Value << to_string(damage.calibration);
-  if (damage.region) {
-    out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
-    emit_selector_keys(out, *damage.region);
-    out << YAML::EndMap;
-  }
+  if (damage.region) emit_region(out, *damage.region);
   out << YAML::EndMap;
 }
 
@@ -107,11 +110,7 @@ void emit_viscoplasticity(YAML::Emitter& out, const ViscoplasticParameters& vp) 
   out << YAML::Key << "viscosity" << YAML::Value << Num{vp.viscosity};
   out << YAML::Key << "residual_cohesion" << YAML::Value << Num{vp.residual_cohesion};
   out << YAML::Key << "cone_match" << YAML::Value << to_string(vp.cone_match);
-  if (vp.region) {
-    out << YAML::Key << "region" << YAML::Value << YAML::BeginMap;
-    emit_selector_keys(out, *vp.region);
-    out << YAML::EndMap;
-  }
+  if (vp.region) emit_region(out, *vp.region);
   out << YAML::EndMap;
 }
 

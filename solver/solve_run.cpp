@@ -26,6 +26,7 @@
 #include "solver/energy_guard.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/interruption.hpp"
+#include "solver/log_number.hpp"
 #include "solver/model.hpp"
 #include "solver/plasticity/material_registry.hpp"
 #include "solver/run_writer.hpp"
@@ -35,12 +36,7 @@ namespace mppm::solver {
 
 namespace {
 
-std::string text(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string text(double v) { return log_number(v); }
 
 // The scene and the points file must describe the same discretization.
 void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const std::string& file) {

@@ -9,17 +9,13 @@
 
 #include "common/input_error.hpp"
 #include "common/units.hpp"
+#include "solver/log_number.hpp"
 
 namespace mppm::solver {
 
 namespace {
 
-std::string text(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string text(double v) { return log_number(v); }
 
 // The value of a test hook (--inject-nan, --inject-kick) cut at its colons.
 std::vector<std::string> hook_parts(const std::string& value) {
