@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "solver/plasticity/drucker_prager_perzyna.hpp"
+#include "tests/unit/shear_band_material.hpp"
 
 namespace mppm::plasticity {
 namespace {
@@ -23,17 +24,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The shear-band case (workflows/shear-band): the material the model is built for.
 struct Case1 {
-  CosseratElasticity<2> elastic{13.9e6, 20.8e6, 41.6e6, 83.3};
-  DruckerPragerParameters prm;
-  Case1() {
-    prm.friction_angle = 35.0 * kDeg;
-    prm.dilatancy_angle = 15.0 * kDeg;
-    prm.cohesion = 0.35e6;
-    prm.hardening = -1.0e6;
-    prm.residual_cohesion = 0.0035e6;
-    prm.viscosity = 0.01e6;
-    prm.length_scale = 2e-3;
-  }
+  CosseratElasticity<2> elastic = testing::shear_band_elasticity();
+  DruckerPragerParameters prm = testing::shear_band_parameters();
 };
 
 double tri_compression_slope(double angle) { return 6.0 * std::sin(angle) / (3.0 - std::sin(angle)); }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "solver/plasticity/drucker_prager_perzyna.hpp"
+#include "tests/unit/shear_band_material.hpp"
 
 namespace mppm::plasticity {
 namespace {
@@ -22,18 +23,12 @@ using Eigen::Vector2d;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct PathSetup {
-  CosseratElasticity<2> el{13.9e6, 20.8e6, 41.6e6, 83.3};
-  DruckerPragerParameters prm;
+  CosseratElasticity<2> el = testing::shear_band_elasticity();
+  DruckerPragerParameters prm = testing::shear_band_parameters();
   double tau = 0.0;       // eta / (3 mu): the viscous relaxation time
   double duration = 0.0;  // of the path
   PathSetup() {
-    prm.friction_angle = 35.0 * kDeg;
-    prm.dilatancy_angle = 15.0 * kDeg;
-    prm.cohesion = 0.35e6;
-    prm.hardening = -2.0e6;
-    prm.residual_cohesion = 0.0035e6;
-    prm.viscosity = 0.01e6;
-    prm.length_scale = 2e-3;
+    prm.hardening = -2.0e6;  // twice the case's softening
     tau = prm.viscosity / (3.0 * el.mu);
     duration = 20.0 * tau;
   }

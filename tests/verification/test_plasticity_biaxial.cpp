@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "solver/plasticity/drucker_prager_perzyna.hpp"
+#include "tests/unit/shear_band_material.hpp"
 
 namespace mppm::plasticity {
 namespace {
@@ -40,17 +41,13 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Case 1 (shear band) material and specimen, without softening (h = 0) so a limit exists.
 struct Biaxial {
-  CosseratElasticity<2> el{13.9e6, 20.8e6, 41.6e6, 83.3};
-  DruckerPragerParameters prm;
+  CosseratElasticity<2> el = testing::shear_band_elasticity();
+  DruckerPragerParameters prm = testing::shear_band_parameters();
   double confinement = 0.1e6;            // p_c [Pa]
   double width = 0.1, thickness = 0.01;  // [m]
   Biaxial() {
-    prm.friction_angle = 35.0 * kDeg;
-    prm.dilatancy_angle = 15.0 * kDeg;
-    prm.cohesion = 0.35e6;
     prm.hardening = 0.0;
-    prm.residual_cohesion = 0.0035e6;
-    prm.length_scale = 2e-3;
+    prm.viscosity = DruckerPragerParameters{}.viscosity;  // rate-independent limit
   }
 };
 
