@@ -199,33 +199,17 @@ BreakageUpdate BreakageUpdater::run() {
   for (const std::size_t i : w.changed) record(i);
   for (const std::int64_t b : w.breaking) f.break_bond(b);
 
-  // Points to detach, found after the shape tensors of the changed points are recomputed:
+  // Points to detach, found after the shape tensors of the changed points are recomputed
+  // (docs/theory.md section 7, where the margins and what they were measured against are given;
+  // tests/stability/README.md findings 3 and 8):
   //  - a singular shape tensor (docs/theory.md section 2);
-  //  - a stored energy more than numerics.detach_energy_rise (default 0.5) above the one before the point lost its
-  //    bonds: breaking bonds takes energy out, but a point left with a lopsided family
-  //    renormalizes its shape tensor and can read a larger strain from the bonds it kept, which
-  //    puts energy into the model (measured before this rule: up to 1.9 x the work on high-rate
-  //    fragments, 28 % in a 3-D impact; on a running crack's faces one point in 1068 broken
-  //    pairs, 2e-7 J). Such a point has lost the family it needs to carry stress. The margin
-  //    keeps the rule off the small rises of points next to a detached one: with 1 % or 10 % a
-  //    clean crack turns into an avalanche of detachments across the strip (measured), with 50 %
-  //    the strip is as without the rule while the fragments put 1e-6 of the work into the model;
+  //  - a stored energy more than numerics.detach_energy_rise above the one before the point lost
+  //    its bonds: a point left with a lopsided family can read a larger strain from the bonds it
+  //    kept, which puts energy into the model;
   //  - any rise of the stored energy of an overloaded point, one that stored more than
-  //    numerics.overload_factor (default 1.5) times its family's breaking energy before the loss (the
-  //    energy it takes to break all its bonds at w_cr, family_breaking_energy). The margin above
-  //    is relative, so a point can ratchet up by just under 50 % at every loss: in the 3-D impact
-  //    the points crushed at the striker's edges (next to its no-fail zone, bonds into it kept)
-  //    lost a bond or two in each of 5-10 updates, rose by up to 48 % each time and came to
-  //    store up to 24-34 times their breaking energy. Their rises were three quarters of all
-  //    rises and put 1.2 % of the work into the model at 20 m/s, 4.8 % at 15 m/s. A point that holds
-  //    more energy than its whole family can dissipate is past what the bond-breaking model
-  //    represents (crushing, not a separating crack): its breaks cannot take out what it holds,
-  //    and a rise is not a small redistribution against what they do take out. On running
-  //    tensile cracks a point stores at most 1.26 times its breaking energy when it loses bonds
-  //    (measured: the crack-branching case's four runs, the 2-D calibration matrix of
-  //    mppm-damage-calibration, the 2-D verification strip), so 1.5 leaves them to the margin
-  //    above: those, the 3-D slabs and the 3-D calibration settings are unchanged to the bit
-  //    (tests/stability/README.md finding 8);
+  //    numerics.overload_factor times its family's breaking energy before the loss
+  //    (family_breaking_energy): it is crushed, not separating, and would otherwise ratchet up by
+  //    just under the relative margin at every loss;
   //  - a body point whose stiffness block the lopsided family pushed beyond what the run's time
   //    step allows (point_stability.hpp). The blocks of a changed point's neighbours depend on its
   //    shape tensor too, so that check covers them.

@@ -28,13 +28,15 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.detach_energy_rise = scene.numerics.detach_energy_rise;
   c.overload_factor = scene.numerics.overload_factor;
   c.damaged_frequency_ratio = scene.numerics.damaged_frequency_ratio;
-  if (scene.effects.damage && m.damage) try {
+  if (scene.effects.damage && m.damage) {
+    try {
       c.critical_bond_work =
           critical_bond_work(*m.damage, scene.dimension, scene.geometry.spacing, scene.geometry.horizon_factor,
                              scene.thickness, scene.numerics.stabilization);
     } catch (const std::invalid_argument& e) {
       throw InputError(scene.where("material.damage.calibration") + ": " + e.what());
     }
+  }
 
   // Every value was validated where the scene was read (common/scene.cpp), the one place
   // that owns the rules and knows the file lines; nothing is re-checked here.

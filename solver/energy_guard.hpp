@@ -21,10 +21,10 @@ namespace mppm::solver {
 
 class EnergyGuard {
  public:
-  // The first `start_step` steps are not checked: a load switched on at t = 0 gives tiny
-  // energies at first, and a real instability grows exponentially anyway.
-  explicit EnergyGuard(double tolerance, std::int64_t start_step = 50)
-      : tolerance_(tolerance), start_step_(start_step) {}
+  // The first `start_step` steps are not checked (numerics.energy_check_start_step): a load
+  // switched on at t = 0 gives tiny energies at first, and a real instability grows
+  // exponentially anyway.
+  EnergyGuard(double tolerance, std::int64_t start_step) : tolerance_(tolerance), start_step_(start_step) {}
 
   // Returns the reason to stop, if any. Call it at every energy row (the decreases of the
   // dissipations are measured from row to row).

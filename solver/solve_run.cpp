@@ -36,8 +36,6 @@ namespace mppm::solver {
 
 namespace {
 
-std::string text(double v) { return log_number(v); }
-
 // The scene and the points file must describe the same discretization.
 void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const std::string& file) {
   if (cloud.dimension != scene.dimension)
@@ -47,11 +45,12 @@ void check_points_match_scene(const Scene& scene, const PointCloud& cloud, const
   const double dx = scene.geometry.spacing;
   auto close = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); };
   if (cloud.spacing > 0.0 && !close(cloud.spacing, dx))
-    throw InputError(file + ": made with spacing " + text(cloud.spacing) + " m but the scene's geometry.spacing is " +
-                     text(dx) + " m (rerun mppm-preprocess with this scene)");
+    throw InputError(file + ": made with spacing " + log_number(cloud.spacing) +
+                     " m but the scene's geometry.spacing is " + log_number(dx) +
+                     " m (rerun mppm-preprocess with this scene)");
   if (cloud.horizon > 0.0 && !close(cloud.horizon, scene.geometry.horizon()))
-    throw InputError(file + ": made with horizon " + text(cloud.horizon) + " m but the scene asks for " +
-                     text(scene.geometry.horizon()) +
+    throw InputError(file + ": made with horizon " + log_number(cloud.horizon) + " m but the scene asks for " +
+                     log_number(scene.geometry.horizon()) +
                      " m (geometry.horizon_factor; the boundary layers depend on it: rerun mppm-preprocess)");
 }
 
@@ -85,7 +84,7 @@ class Schedule {
 // "1.5e-3, 2e-3" for the position of point i.
 std::string position_of(const PointData& p, std::size_t i) {
   std::string s;
-  for (int c = 0; c < p.dimension; ++c) s += (c ? ", " : "") + text(p.position[i * p.dimension + c]);
+  for (int c = 0; c < p.dimension; ++c) s += (c ? ", " : "") + log_number(p.position[i * p.dimension + c]);
   return "(" + s + ") m";
 }
 
@@ -281,7 +280,7 @@ class RunDriver {
     Progress progress("mppm-solve", plan_.steps, options_.quiet);
     const InterruptionHandlers handlers;
     if (advance(progress)) finish_completed();
-    progress.finish("t = " + text(dynamics().time()) + " s");
+    progress.finish("t = " + log_number(dynamics().time()) + " s");
     return result();
   }
 
@@ -374,7 +373,7 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
   if (release) *release = PointCloud{};
   if (model().detached_points == model().points.owned)
     throw InputError(options_.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
-                     text(scene_.geometry.horizon()) +
+                     log_number(scene_.geometry.horizon()) +
                      " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
 }
 
@@ -384,7 +383,7 @@ void RunDriver::fit_time_step() {
   plan_.critical = critical_time_step(model());
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
-                           text(plan_.critical.step) + " s): the discrete operator is not positive");
+                           log_number(plan_.critical.step) + " s): the discrete operator is not positive");
   plan_.damage_step = model().damage_critical_step(plan_.critical.step);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
@@ -432,7 +431,7 @@ void RunDriver::log_start() {
     writer().log("mppm-solve " MPPM_VERSION ": scene " + scene_.path + ", points " + options_.points_file);
   if (resume_)
     writer().log("mppm-solve " MPPM_VERSION " --restart: continues from " + resume_->path + " (step " +
-                 std::to_string(resume_->header.step) + ", t = " + text(resume_->header.time) + " s), points " +
+                 std::to_string(resume_->header.step) + ", t = " + log_number(resume_->header.time) + " s), points " +
                  options_.points_file + ", threads " + std::to_string(info_.threads) +
                  "; rows and snapshots after the checkpoint are dropped and written again");
   if (!resume_) {
@@ -455,21 +454,22 @@ void RunDriver::log_start_up_report() {
   writer().log("points " + std::to_string(info_.points) + ", bonds " + std::to_string(info_.bonds) +
                " (stored from both ends), pre-crack cuts " + std::to_string(m.precrack_cut_bonds) +
                " bonds, detached points " + std::to_string(m.detached_points));
-  writer().log("critical time step " + text(critical.step) + " s (translational " + text(critical.translational) +
-               " s" + (critical.rotational > 0.0 ? ", rotational " + text(critical.rotational) + " s" : std::string()) +
+  writer().log("critical time step " + log_number(critical.step) + " s (translational " +
+               log_number(critical.translational) + " s" +
+               (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
                "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " +
                critical.limiting_mode + ", driven by " + critical.driver);
-  writer().log("time step " + text(dt) + " s (" +
-               (scene_in_.time.step ? "given" : "auto, safety " + text(scene_.time.safety)) + "), " +
+  writer().log("time step " + log_number(dt) + " s (" +
+               (scene_in_.time.step ? "given" : "auto, safety " + log_number(scene_.time.safety)) + "), " +
                std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads));
   if (scene_.effects.damage)
-    writer().log("damage: critical bond work w_cr " + text(m.constants.critical_bond_work) + " J/m^6 (G_cr " +
-                 text(scene_.material.damage->critical_energy_release_rate) + " J/m^2, " +
+    writer().log("damage: critical bond work w_cr " + log_number(m.constants.critical_bond_work) + " J/m^6 (G_cr " +
+                 log_number(scene_.material.damage->critical_energy_release_rate) + " J/m^2, " +
                  to_string(scene_.material.damage->calibration) + " calibration), no-fail depth " +
-                 text(scene_.material.damage->no_fail_depth) + " m; largest step of a damage run " +
-                 text(plan_.damage_step) + " s (" + text(plan_.damage_step / critical.step) +
-                 " of the critical step); a point whose lopsided family would need a step below " + text(dt) +
-                 " s is detached (stiffness block limit " + text(m.block_eigenvalue_limit) + " 1/s^2)");
+                 log_number(scene_.material.damage->no_fail_depth) + " m; largest step of a damage run " +
+                 log_number(plan_.damage_step) + " s (" + log_number(plan_.damage_step / critical.step) +
+                 " of the critical step); a point whose lopsided family would need a step below " + log_number(dt) +
+                 " s is detached (stiffness block limit " + log_number(m.block_eigenvalue_limit) + " 1/s^2)");
   if (m.viscoplastic_model)
     writer().log("viscoplastic model " + m.viscoplastic_model->name() +
                  " (return map once per step; the critical step above is the elastic bound, which "
@@ -510,8 +510,8 @@ void RunDriver::start_dynamics() {
 void RunDriver::restore_from_checkpoint() {
   RunLoopState loop = restore_checkpoint(*resume_, identity_, model(), dynamics());
   if (loop.time_step != plan_.dt)
-    throw InputError(resume_->path + ": the checkpoint's time step " + text(loop.time_step) +
-                     " s is not the one this run arrives at (" + text(plan_.dt) +
+    throw InputError(resume_->path + ": the checkpoint's time step " + log_number(loop.time_step) +
+                     " s is not the one this run arrives at (" + log_number(plan_.dt) +
                      " s); cannot continue it bit for bit");
   rows_.restore(loop.next_row);
   snapshots_.restore(loop.next_snapshot);
@@ -557,7 +557,7 @@ bool RunDriver::advance(Progress& progress) {
       stop_on_interruption(s, snap);
       return false;
     }
-    progress.update(s, "t = " + text(dynamics().time()) + " s");
+    progress.update(s, "t = " + log_number(dynamics().time()) + " s");
   }
   return true;
 }
@@ -579,7 +579,7 @@ void RunDriver::stop_on_interruption(std::int64_t s, bool snapshot_written) {
   clear_interruption();
   if (!snapshot_written) write_snapshot();
   const std::string message = "interrupted at step " + std::to_string(s) + " of " + std::to_string(plan_.steps) +
-                              ", t = " + text(dynamics().time()) + " s; the state there is the last snapshot" +
+                              ", t = " + log_number(dynamics().time()) + " s; the state there is the last snapshot" +
                               (checkpointing_ ? "; mppm-solve --restart " + writer().directory() +
                                                     " continues from the checkpoint written there"
                                               : std::string());
@@ -594,8 +594,9 @@ void RunDriver::stop_on_interruption(std::int64_t s, bool snapshot_written) {
 std::string RunDriver::damage_summary() const {
   const Model& m = *model_;
   return "broken bonds " + std::to_string(m.broken_bonds) + " (pairs), fracture dissipation " +
-         text(dynamics_->energy().fracture_dissipation) + " J, detached points " + std::to_string(m.detached_points) +
-         " (" + std::to_string(m.unstable_detached_points) + " of them for the time step's sake)";
+         log_number(dynamics_->energy().fracture_dissipation) + " J, detached points " +
+         std::to_string(m.detached_points) + " (" + std::to_string(m.unstable_detached_points) +
+         " of them for the time step's sake)";
 }
 
 // The end of a run that reached time.end: the balance warning, the summary, the files.
@@ -603,14 +604,14 @@ void RunDriver::finish_completed() {
   std::string warning;
   const double tolerance = scene_.numerics.energy_check_tolerance;
   if (std::abs(worst_balance_) > tolerance)
-    warning = "warning: the energy balance error reached " + text(worst_balance_) +
-              " (beyond numerics.energy_check_tolerance " + text(tolerance) + "): energy " +
+    warning = "warning: the energy balance error reached " + log_number(worst_balance_) +
+              " (beyond numerics.energy_check_tolerance " + log_number(tolerance) + "): energy " +
               (worst_balance_ < 0.0 ? "disappeared" : "appeared") +
               " that neither the external work nor a dissipation accounts for (energy.csv, balance_error)";
   if (!warning.empty()) writer().log(warning);
   update_info("completed", warning);
-  writer().log("completed " + std::to_string(plan_.steps) + " steps in " + text(info_.wall_seconds) +
-               " s, final balance error " + text(dynamics().balance_error()) +
+  writer().log("completed " + std::to_string(plan_.steps) + " steps in " + log_number(info_.wall_seconds) +
+               " s, final balance error " + log_number(dynamics().balance_error()) +
                (scene_.effects.damage ? ", " + damage_summary() : std::string()));
   writer().flush(info_);
 }
@@ -667,7 +668,7 @@ void RunDriver::snapshot() {
 // A numerical failure (exit 3): the run directory keeps everything up to the last good snapshot.
 void RunDriver::fail(const std::string& reason) {
   const std::string message = "numerical failure at step " + std::to_string(dynamics().steps()) +
-                              ", t = " + text(dynamics().time()) + " s: " + reason +
+                              ", t = " + log_number(dynamics().time()) + " s: " + reason +
                               "; the last good snapshot is kept (try a smaller time.step or check the material)";
   if (scene_.effects.damage) writer().log("at the failure: " + damage_summary());
   writer().log(message);

@@ -15,8 +15,6 @@ namespace mppm::solver {
 
 namespace {
 
-std::string text(double v) { return log_number(v); }
-
 // The value of a test hook (--inject-nan, --inject-kick) cut at its colons.
 std::vector<std::string> hook_parts(const std::string& value) {
   std::vector<std::string> parts;
@@ -194,9 +192,10 @@ std::vector<std::string> TestHooks::armed() const {
                     std::string(NanInjection::name(k->field)) + " component " + std::to_string(k->component) +
                     " of point " + std::to_string(k->point) + " in step " + std::to_string(k->step));
   if (const auto& k = inject_kick)
-    lines.push_back("test hook (--inject-kick): " + text(k->velocity) + " m/s will be added to velocity component " +
-                    std::to_string(k->component) + " of point " + std::to_string(k->point) + " in step " +
-                    std::to_string(k->step) + " (kinetic energy that nothing accounts for)");
+    lines.push_back("test hook (--inject-kick): " + log_number(k->velocity) +
+                    " m/s will be added to velocity component " + std::to_string(k->component) + " of point " +
+                    std::to_string(k->point) + " in step " + std::to_string(k->step) +
+                    " (kinetic energy that nothing accounts for)");
   return lines;
 }
 
