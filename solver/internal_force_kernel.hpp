@@ -12,15 +12,9 @@
 // Templated on dimension and on the compile-time effect set: an effect that is off costs nothing.
 // Viscoplasticity: sigma = C : (eps - eps_vp), m = m(kap - kap_vp); with a StepAdvance, pass 1
 // first advances each point's plastic state by the return map (once per time step).
-// Damage (docs/theory.md section 7): broken bonds are skipped; with a StepAdvance, pass 2 also adds to each
-// bond's work W_ij the trapezoid-rule increment 1/2 (t_old + t) . (U - U_old) + 1/2 (m_old + m) .
-// (Om - Om_old) of its pair force t = T_ij - T_ji and pair moment m = M_ij - M_ji, and counts it
-// as breaking when W_ij >= w_cr (update_after_breakage breaks it). The old pair force is rebuilt
-// from per-point arrays (the previous displacement and rotation, and the sums A + A_prev,
-// Q + Q_prev that pass 1 forms: a few numbers per point instead of D + R per bond). Seen from j, every term of the
-// increment is the exact negative of the one seen from i (xi, U, Om, t, m all change sign, and
-// IEEE addition commutes), so the increment is computed once, by the lower-index end, which holds
-// the bond pair's W_ij (BondFamilies::work). Both ends break in the same step, for any thread count.
+// Damage (docs/theory.md section 7): broken bonds are skipped; with a StepAdvance, pass 2 also books
+// each bond's work and counts the bonds that reach the critical work, through the damage policy
+// (bond_work_policy.hpp), which is empty without the effect.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
@@ -28,6 +22,8 @@
 #include <vector>
 
 #include "solver/bond_families.hpp"
+#include "solver/bond_kinematics.hpp"
+#include "solver/bond_work_policy.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/internal_forces.hpp"
@@ -50,27 +46,6 @@ using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
 // The bond loops work on plain doubles with loops over compile-time extents: Eigen's small
 // expression templates are not reliably inlined in a loop this large (measured: 4x slower in 3-D).
 #define MPPM_INLINE inline __attribute__((always_inline))
-
-// U = (u_j - u_i) - 1/2 (w_i + w_j) x xi: the composite state, with the MINUS sign of the fix in
-// docs/theory.md section 2 (with `+` a rigid rotation u = theta x x, w = theta would not be strain free).
-// Without micropolar, U = u_j - u_i.
-template <int D, int R, bool Polar>
-MPPM_INLINE void composite_state(const double* ui, const double* uj, const double* wi, const double* wj,
-                                 const double* xi, double* U) {
-  for (int a = 0; a < D; ++a) U[a] = uj[a] - ui[a];
-  if constexpr (Polar) {
-    if constexpr (D == 2) {
-      const double wm = 0.5 * (wi[0] + wj[0]);
-      U[0] += wm * xi[1];  // -(w x xi)_x = +w xi_y
-      U[1] -= wm * xi[0];
-    } else {
-      const double wm[3] = {0.5 * (wi[0] + wj[0]), 0.5 * (wi[1] + wj[1]), 0.5 * (wi[2] + wj[2])};
-      U[0] -= wm[1] * xi[2] - wm[2] * xi[1];
-      U[1] -= wm[2] * xi[0] - wm[0] * xi[2];
-      U[2] -= wm[0] * xi[1] - wm[1] * xi[0];
-    }
-  }
-}
 
 // xi x t (its z component in 2-D), added with a factor.
 template <int D>
@@ -171,16 +146,13 @@ MPPM_INLINE void bond_sums(const PointData& p, const BondFamilies& f, std::size_
   // Locals, not the output struct: the compiler keeps them in registers.
   double S[DD] = {}, s[D] = {}, m[D] = {}, Sk[RD > 0 ? RD : 1] = {}, sw[R > 0 ? R : 1] = {};
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-    const std::int32_t entry = nb[b];
-    if constexpr (Effects::damage)
-      if (entry < 0) continue;  // broken (BondFamilies::kBrokenBit)
-    const auto j = static_cast<std::size_t>(entry);
-    double xi[D];
-    for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
-    const double vj = vol[j];
-    const double* wj = polar ? w + j * R : zero_rotation;
+    BondView<D> bond;
+    if (!read_bond<D, R, polar, Effects::damage, StoredXi>(b, nb, xis, pos, pos_i, vol, w, bond)) continue;
+    const double* xi = bond.xi;
+    const double vj = bond.vj;
+    const double* wj = bond.wj;
     double U[D];
-    composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
+    composite_state<D, R, polar>(ui, u + bond.j * D, wi, wj, xi, U);
     for (int r = 0; r < D; ++r) {
       const double vu = vj * U[r];
       for (int col = 0; col < D; ++col) S[r * D + col] += vu * xi[col];
@@ -361,17 +333,11 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   [[maybe_unused]] const double* __restrict vol = p.volume.data();
   Eigen::Map<Mat<D>> eps_out(&p.strain[i * DD]);
   Eigen::Map<Mat<D>> a_out(&p.force_tensor[i * DD]);
-  // Damage, advancing: the sums of this evaluation's tensors and the previous ones (point_data.hpp),
-  // formed before the previous ones are overwritten.
-  [[maybe_unused]] const bool sum_tensors = Effects::damage && advance != nullptr;
+  using Work = BondWorkPolicy<D, Effects>;
+  // Damage, advancing: the tensor sums of the bond work, before the tensors are overwritten.
+  const bool advancing = advance != nullptr;
   if (p.detached[i]) {
-    // Its tensors are zero now, so the sums are the previous tensors.
-    if constexpr (Effects::damage)
-      if (sum_tensors) {
-        for (int k = 0; k < DD; ++k) p.force_tensor_sum[i * DD + k] = p.force_tensor[i * DD + k];
-        if constexpr (polar)
-          for (int k = 0; k < RD; ++k) p.moment_tensor_sum[i * RD + k] = p.moment_tensor[i * RD + k];
-      }
+    Work::detached_tensor_sums(p, i, advancing);
     eps_out.setZero();
     a_out.setZero();
     for (int r = 0; r < D; ++r) p.force[i * D + r] = 0.0;
@@ -412,9 +378,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
   const Mat<D> a = sigma * kinv - ck * eps;
-  if constexpr (Effects::damage)
-    if (sum_tensors)
-      for (int k = 0; k < DD; ++k) p.force_tensor_sum[i * DD + k] = a.data()[k] + p.force_tensor[i * DD + k];
+  Work::force_tensor_sum(p, i, a.data(), advancing);
   a_out = a;
   [[maybe_unused]] RMat<R, D> q;
   [[maybe_unused]] double g = 0.0;
@@ -424,9 +388,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     const RMat<R, D> m = couple_stress<D, R>(kap_elastic, c);
     g = p.stabilization_rot[i];
     q = m * kinv - g * kap;
-    if constexpr (Effects::damage)
-      if (sum_tensors)
-        for (int k = 0; k < RD; ++k) p.moment_tensor_sum[i * RD + k] = q.data()[k] + p.moment_tensor[i * RD + k];
+    Work::moment_tensor_sum(p, i, q.data(), advancing);
     Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]) = kap;
     Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]) = q;
   }
@@ -436,11 +398,12 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
 // Pass 2 at point i: adds to the own share that pass 1 left in its force and moment the
 // neighbours' shares, bond by bond: sum_j V_j (A_j xi + C:K_j^-1 U) to the force and
 // sum_j V_j [Q_j xi + g_j Om + 1/2 xi x (A_j xi + C:K_j^-1 U)] to the moment. With
-// accumulate_work (damage) also the bond work and the count of bonds that reach the critical
-// work (points.bonds_broken); with WithEnergy the point's stabilization energy.
+// accumulate_work (damage, advancing) the damage policy also books the bond work and counts the
+// bonds that reach the critical work (bond_work_policy.hpp); with WithEnergy the point's
+// stabilization energy.
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
 MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConstants& c, std::size_t i,
-                             [[maybe_unused]] bool accumulate_work) {
+                             bool accumulate_work) {
   constexpr int R = rotation_components<D>;
   constexpr bool polar = Effects::micropolar;
   constexpr int DD = D * D;
@@ -458,11 +421,6 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   const double* __restrict ck_all = p.stabilization_ck.data();
   [[maybe_unused]] const double* __restrict q_all = polar ? p.moment_tensor.data() : nullptr;
   [[maybe_unused]] const double* __restrict g_all = polar ? p.stabilization_rot.data() : zero_rotation;
-  [[maybe_unused]] const double* __restrict u_old = Effects::damage ? p.previous_displacement.data() : nullptr;
-  [[maybe_unused]] const double* __restrict w_old =
-      Effects::damage && polar ? p.previous_rotation.data() : zero_rotation;
-  [[maybe_unused]] const double* __restrict a_sum = Effects::damage ? p.force_tensor_sum.data() : nullptr;
-  [[maybe_unused]] const double* __restrict q_sum = Effects::damage && polar ? p.moment_tensor_sum.data() : nullptr;
   // Point i's values in locals: the loop's stores (the bond work) could alias the arrays,
   // which would make the compiler reload them for every bond.
   double ui[D], pos_i[D], wi[3] = {0.0, 0.0, 0.0};
@@ -470,51 +428,21 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   for (int k = 0; k < D; ++k) pos_i[k] = pos[i * D + k];
   if constexpr (polar)
     for (int k = 0; k < R; ++k) wi[k] = w[i * R + k];
-  // Damage: A_i + A_i0 and Q_i + Q_i0 of this and the previous evaluation (the bond work uses the
-  // sum of the two pair forces), C:K_i^-1 and g_i (the pair force has both ends' shares).
-  [[maybe_unused]] double ui0[D] = {}, wi0[3] = {0.0, 0.0, 0.0}, ai_both[DD] = {}, qi_both[RD > 0 ? RD : 1] = {},
-                          cki[S] = {}, gi = 0.0;
-  // A bond with a no-fail end never breaks, so its work is not needed: a no-fail point (near a
-  // boundary condition, or outside material.damage.region) skips the bookkeeping of all its bonds.
-  [[maybe_unused]] const bool work_here = Effects::damage && accumulate_work && !p.no_fail[i];
-  [[maybe_unused]] const std::uint8_t* no_fail = Effects::damage ? p.no_fail.data() : nullptr;
-  if constexpr (Effects::damage) {
-    if (work_here) {
-      for (int k = 0; k < D; ++k) ui0[k] = u_old[i * D + k];
-      for (int k = 0; k < DD; ++k) ai_both[k] = a_sum[i * DD + k];
-      for (int k = 0; k < S; ++k) cki[k] = ck_all[i * S + k];
-      if constexpr (polar) {
-        for (int k = 0; k < R; ++k) wi0[k] = w_old[i * R + k];
-        for (int k = 0; k < RD; ++k) qi_both[k] = q_sum[i * RD + k];
-        gi = g_all[i];
-      }
-    }
-  }
-  // Damage: a bond's work is the same bits from both ends (see the top of this file), so it is
-  // computed once, at the lower-index end; the bonds to lower indices come first (sorted
-  // neighbours), and the k-th bond from `split` on is the point's k-th pair.
-  [[maybe_unused]] const double critical_work = c.critical_bond_work;
-  [[maybe_unused]] const std::int64_t split = Effects::damage && work_here ? f.first_pair_bond(i) : off[i + 1];
-  [[maybe_unused]] const std::int64_t pair_base = Effects::damage && work_here ? f.pair_offset[i] - split : 0;
+  BondWorkPolicy<D, Effects> work(p, f, c, i, accumulate_work);
   double force[D] = {};
   double moment[R > 0 ? R : 1] = {};
-  [[maybe_unused]] double* pair_work = Effects::damage ? f.work.data() : nullptr;
-  [[maybe_unused]] std::int32_t broken = 0;
   // With energies (the steps that report them), the stabilization energy from the same bonds.
   [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
-  // One bond; with Work (damage, a bond to a higher index from a point that books work) also its
-  // work increment and its count if it reaches the critical work.
-  auto visit_bond = [&]<bool Work>(std::int64_t b) __attribute__((always_inline)) {
+  // One bond; with BooksWork (from the damage policy's first_work_bond on) also its work.
+  auto visit_bond = [&]<bool BooksWork>(std::int64_t b) __attribute__((always_inline)) {
     // Nothing writes the neighbour lists during the force pass: a bond that reaches its critical
     // work here still acts in this evaluation, and update_after_breakage breaks it afterwards.
-    const std::int32_t entry = nb[b];
-    if constexpr (Effects::damage)
-      if (entry < 0) return;  // broken (BondFamilies::kBrokenBit)
-    const auto j = static_cast<std::size_t>(entry);
-    double xi[D];
-    for (int a = 0; a < D; ++a) xi[a] = StoredXi ? xis[b * D + a] : pos[j * D + a] - pos_i[a];
-    const double vj = vol[j];
-    const double* wj = polar ? w + j * R : zero_rotation;
+    BondView<D> bond;
+    if (!read_bond<D, R, polar, Effects::damage, StoredXi>(b, nb, xis, pos, pos_i, vol, w, bond)) return;
+    const std::size_t j = bond.j;
+    const double* xi = bond.xi;
+    const double vj = bond.vj;
+    const double* wj = bond.wj;
     const double* aj = a_all + j * DD;
     const double* ckj = ck_all + j * S;
     double U[D];
@@ -536,48 +464,11 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
       }
       add_cross<D>(xi, t, 0.5 * vj, moment);
     }
-    if constexpr (Work) {
-      if (!no_fail[j]) {
-        // dW = 1/2 (t0 + t) . (U - U0) + 1/2 (m0 + m) . (Om - Om0) of the pair force
-        // t = T_ij - T_ji and pair moment m = M_ij - M_ji, with t0 + t summed before it is formed:
-        // the stabilization tensors are those of the previous evaluation (they change only where
-        // bonds broke, and refresh_after_breakage then starts the next increment from the new
-        // ones), so t0 + t = (A_i0 + A_i + A_j0 + A_j) xi + (Ck_i + Ck_j)(U0 + U) and
-        // m0 + m = (Q_i0 + Q_i + Q_j0 + Q_j) xi + (g_i + g_j)(Om0 + Om).
-        const double* wj0 = polar ? w_old + j * R : zero_rotation;
-        double U0[D];
-        composite_state<D, R, polar>(ui0, u_old + j * D, wi0, wj0, xi, U0);
-        const double* aj_both = a_sum + j * DD;
-        double dw = 0.0;
-        for (int r = 0; r < D; ++r) {
-          double both = 0.0;
-          for (int col = 0; col < D; ++col)
-            both += (ai_both[r * D + col] + aj_both[r * D + col]) * xi[col] +
-                    (cki[symmetric_index<D>(r, col)] + ckj[symmetric_index<D>(r, col)]) * (U0[col] + U[col]);
-          dw += both * (U[r] - U0[r]);
-        }
-        if constexpr (polar) {
-          const double* qj_both = q_sum + j * RD;
-          const double g = gi + g_all[j];
-          for (int r = 0; r < R; ++r) {
-            const double om = wj[r] - wi[r], om0 = wj0[r] - wi0[r];
-            double both = g * (om0 + om);
-            for (int col = 0; col < D; ++col) both += (qi_both[r * D + col] + qj_both[r * D + col]) * xi[col];
-            dw += both * (om - om0);
-          }
-        }
-        // The pair's work W_ij, at this (lower-index) end; counted here and broken afterwards by
-        // update_after_breakage, which finds it by its work (this step's force had the bond, and
-        // the energy the break releases is measured with it still acting).
-        double& pair = pair_work[pair_base + b];
-        const double work = pair + 0.5 * dw;
-        pair = work;
-        if (work >= critical_work) ++broken;
-      }
-    }
+    if constexpr (BooksWork) work.add(b, j, xi, U, wi, wj, ckj);
     if constexpr (WithEnergy) stab_energy.add(U, wi, wj, vj);
   };
-  if constexpr (Effects::damage) {
+  if constexpr (BondWorkPolicy<D, Effects>::active) {
+    const std::int64_t split = work.first_work_bond();
     for (std::int64_t b = off[i]; b < split; ++b) visit_bond.template operator()<false>(b);
     for (std::int64_t b = split; b < off[i + 1]; ++b) visit_bond.template operator()<true>(b);
   } else {
@@ -590,15 +481,12 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     p.stabilization_energy[i] = 0.5 * vol[i] *
                                 stab_energy.contract(&p.strain[i * DD], polar ? &p.wryness[i * RD] : nullptr,
                                                      &p.shape_inverse[i * S], &ck_all[i * S], polar ? g_all[i] : 0.0);
-  if constexpr (Effects::damage) {
-    if (accumulate_work) p.bonds_broken[i] = broken;
-  }
+  work.finish(p, i);
 }
 
 template <int D, class Effects, bool WithEnergy>
 void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
                      [[maybe_unused]] const StepAdvance* advance) {
-  constexpr int R = rotation_components<D>;
   const auto n = static_cast<std::int64_t>(p.owned);
   const bool accumulate_work = Effects::damage && advance != nullptr;
   const bool threaded = thread_bond_loop(f.bond_count());
@@ -625,17 +513,8 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
         pass2_point<D, Effects, WithEnergy, false>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
     }
 
-    // Damage: remember this evaluation's state for the next bond-work increment (after the barrier
-    // of pass 2, which read the previous one; pass 1 formed the tensor sums).
-    if constexpr (Effects::damage) {
-#pragma omp for schedule(static)
-      for (std::int64_t s = 0; s < n; ++s) {
-        const auto i = static_cast<std::size_t>(s);
-        for (int r = 0; r < D; ++r) p.previous_displacement[i * D + r] = p.displacement[i * D + r];
-        if constexpr (Effects::micropolar)
-          for (int r = 0; r < R; ++r) p.previous_rotation[i * R + r] = p.rotation[i * R + r];
-      }
-    }
+    // Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2).
+    BondWorkPolicy<D, Effects>::remember_state(p, n);
   }  // omp parallel
 }
 
