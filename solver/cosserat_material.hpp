@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/scene.hpp"
+#include "solver/plasticity/cosserat_elasticity.hpp"
 
 namespace mppm::solver {
 
@@ -33,25 +34,37 @@ struct CosseratConstants {
 // Derives the constants from a scene that load_scene/parse_scene has already validated.
 CosseratConstants cosserat_constants(const Scene& scene);
 
-// sigma = lambda tr(eps) 1 + (mu + mu_c) eps + (mu - mu_c) eps^T
+// sigma(eps) and m(kap) of the D x D strain and the R x D wryness: the one Cosserat law
+// (plasticity::isotropic_cosserat_law) with these constants. One copy per source file (static:
+// internal linkage) and never inlined:
+//  - every instantiation of the force kernel calls the same code, so an effect that is on but
+//    inactive gives the bits of the run without it (inlined, the law's multiply-adds would be
+//    fused differently in each instantiation: the kernel's file is compiled with fused
+//    multiply-adds, solver/CMakeLists.txt);
+//  - the files compiled without fused multiply-adds (the energies, the snapshots) keep their own
+//    copy: with one copy shared by the linker, they would round as the kernel does, or the kernel
+//    as they do, depending on the link order (tests/solver.cmake checks that no such copy is shared).
 template <int D>
-inline Eigen::Matrix<double, D, D, Eigen::RowMajor> cosserat_stress(
+[[gnu::noinline]] static Eigen::Matrix<double, D, D, Eigen::RowMajor> cosserat_stress(
     const Eigen::Matrix<double, D, D, Eigen::RowMajor>& eps, const CosseratConstants& c) {
-  Eigen::Matrix<double, D, D, Eigen::RowMajor> s = (c.mu + c.mu_c) * eps + (c.mu - c.mu_c) * eps.transpose();
-  s.diagonal().array() += c.lambda * eps.trace();
-  return s;
+  return plasticity::isotropic_cosserat_law(eps, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c);
 }
 
-// m = a1 tr(kap) 1 + a2 kap + a3 kap^T (3-D); m = B_w kap (2-D, kap = grad w_z).
+// m = a1 tr(kap) 1 + a2 kap + a3 kap^T in 3-D: one copy per file, as cosserat_stress.
+[[gnu::noinline, maybe_unused]] static Eigen::Matrix<double, 3, 3, Eigen::RowMajor> couple_stress_3d(
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>& kap, const CosseratConstants& c) {
+  return plasticity::isotropic_cosserat_law(kap, c.a1, c.a2, c.a3);
+}
+
+// m = B_w kap in 2-D (kap = grad w_z: one product per component, nothing to fuse, so inlined),
+// the 3-D law otherwise.
 template <int D, int R>
-inline Eigen::Matrix<double, R, D, Eigen::RowMajor> couple_stress(
+[[gnu::always_inline]] inline Eigen::Matrix<double, R, D, Eigen::RowMajor> couple_stress(
     const Eigen::Matrix<double, R, D, Eigen::RowMajor>& kap, const CosseratConstants& c) {
   if constexpr (D == 2) {
     return c.bending_modulus * kap;
   } else {
-    Eigen::Matrix<double, R, D, Eigen::RowMajor> m = c.a2 * kap + c.a3 * kap.transpose();
-    m.diagonal().array() += c.a1 * kap.trace();
-    return m;
+    return couple_stress_3d(kap, c);
   }
 }
 

@@ -87,20 +87,29 @@ struct StabilizationEnergySum {
   }
   // sum_j V_j [z_u . Ck z_u + g |z_w|^2] with the point's strain and wryness (row-major), its
   // stored K^-1 and C:K^-1 (packed, symmetric_tensor.hpp) and g; 0 for a detached point (K^-1 = 0).
-  double contract(const double* eps_i, [[maybe_unused]] const double* kap_i, const double* kinv_packed,
-                  const double* cki, [[maybe_unused]] double gi) const {
+  MPPM_INLINE double contract(const double* eps_i, [[maybe_unused]] const double* kap_i, const double* kinv_packed,
+                              const double* cki, [[maybe_unused]] double gi) const {
     using M = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
     const M kinv = unpack_symmetric<D>(kinv_packed);
     const double det = kinv.determinant();
     if (!(det != 0.0)) return 0.0;
     const M k = kinv.inverse();
-    const Eigen::Map<const M> eps(eps_i);
-    const M eke = eps * k * eps.transpose();
+    // eps_i K_i eps_i^T in plain loops: Eigen's product of three is emitted out of line, and its one
+    // copy would be shared by the force kernel's file (fused multiply-adds) and the energies' file.
+    double ek[D * D];
+    for (int r = 0; r < D; ++r)
+      for (int b = 0; b < D; ++b) {
+        double sum = 0.0;
+        for (int a = 0; a < D; ++a) sum += eps_i[r * D + a] * k(a, b);
+        ek[r * D + b] = sum;
+      }
     double e = 0.0;
     for (int r = 0; r < D; ++r)
       for (int col = r; col < D; ++col) {
+        double eke = 0.0;
+        for (int b = 0; b < D; ++b) eke += ek[r * D + b] * eps_i[col * D + b];
         const int s = symmetric_index<D>(r, col);
-        e += (col == r ? 1.0 : 2.0) * cki[s] * (uu[s] - eke(r, col));
+        e += (col == r ? 1.0 : 2.0) * cki[s] * (uu[s] - eke);
       }
     if constexpr (Polar) {
       using RM = Eigen::Matrix<double, R, D, Eigen::RowMajor>;

@@ -35,7 +35,9 @@ void point_stress(const Model& m, std::size_t i, double* out) {
   const Mat sigma = cosserat_stress<D>(eps, m.constants);
   for (int r = 0; r < D; ++r)
     for (int c = 0; c < D; ++c) out[r * 3 + c] = sigma(r, c);
-  if constexpr (D == 2) out[8] = m.constants.lambda * eps.trace();  // eps_zz = 0
+  const CosseratConstants& c = m.constants;
+  if constexpr (D == 2)  // plane strain: eps_zz = 0
+    out[8] = plasticity::plane_strain_normal_stress(eps.trace(), 0.0, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c);
 }
 
 // The weights of ebar of the run's model (the default ones for a model that has none).
@@ -46,13 +48,22 @@ plasticity::EquivalentStrainWeights equivalent_strain_weights(const Model& m) {
 }
 
 // sqrt(b1 e:e + b2 e:e^T + b3 l^2 kap_vp:kap_vp) of the accumulated plastic tensors.
+// kap_vp as the return map holds it (a 2-vector in 2-D, 3 x 3 in 3-D; zero without micropolar).
+template <int D>
 double point_plastic_shear_strain(const Model& m, const plasticity::EquivalentStrainWeights& weights, std::size_t i) {
+  using Wryness = plasticity::Curvature<D>;
   const PointData& p = m.points;
-  const int RD = p.rotation_components * p.dimension;
   const Eigen::Matrix3d eps_vp =
       Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
-  Eigen::VectorXd kap_vp = Eigen::VectorXd::Zero(std::max(RD, 1));
-  for (int k = 0; k < RD; ++k) kap_vp[k] = p.plastic_wryness[i * RD + k];
+  Wryness kap_vp = Wryness::Zero();
+  if (!p.plastic_wryness.empty())
+    for (int k = 0; k < kap_vp.size(); ++k) {
+      const double value = p.plastic_wryness[i * kap_vp.size() + k];  // row-major R x D
+      if constexpr (D == 2)
+        kap_vp(k) = value;
+      else
+        kap_vp(k / 3, k % 3) = value;
+    }
   return plasticity::equivalent_plastic_shear_strain(eps_vp, kap_vp, weights, m.constants.length_scale);
 }
 
@@ -159,8 +170,8 @@ std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vec
     } else if (name == "plastic_strain") {
       sources.push_back(stored(name, 9, p.plastic_strain));  // eps_vp, 3 x 3 row-major (plane strain has an eps_vp,zz)
     } else if (name == "plastic_shear_strain") {
-      sources.push_back(per_point(name, 1, [&m, weights = equivalent_strain_weights(m)](std::size_t i, double* out) {
-        *out = point_plastic_shear_strain(m, weights, i);
+      sources.push_back(per_point(name, 1, [&m, D, weights = equivalent_strain_weights(m)](std::size_t i, double* out) {
+        *out = D == 2 ? point_plastic_shear_strain<2>(m, weights, i) : point_plastic_shear_strain<3>(m, weights, i);
       }));
     } else if (name == "equivalent_plastic_strain") {
       sources.push_back(stored(name, 1, p.equivalent_plastic_strain));

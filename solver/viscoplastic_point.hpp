@@ -43,8 +43,11 @@ inline ElasticStrain<D> elastic_strain(const Mat<D>& eps, const double* plastic_
   return e;
 }
 
-// sigma (D x D block) of the elastic strain, written as the elastic kernel writes it (so that a
-// point with eps_vp = 0 gives the same bits as a run without the effect), plus sigma_zz in 2-D.
+// sigma (D x D block) of the elastic strain, plus sigma_zz in 2-D: the Cosserat law of the 3 x 3
+// strain with the out-of-plane eps_e,zz. The in-plane block is summed as the law of the D x D
+// strain plus lambda eps_e,zz on the diagonal, so that a point with eps_vp = 0 gives the elastic
+// kernel's bits (the force kernel contracts multiply-adds by the shape of the code, so only the
+// same expression is sure to give the same bits).
 template <int D>
 struct ElasticStress {
   Mat<D> in_plane;
@@ -52,12 +55,12 @@ struct ElasticStress {
 };
 
 template <int D>
-inline ElasticStress<D> elastic_stress(const ElasticStrain<D>& e, const CosseratConstants& c) {
+[[gnu::always_inline]] inline ElasticStress<D> elastic_stress(const ElasticStrain<D>& e, const CosseratConstants& c) {
   ElasticStress<D> s;
   s.in_plane = cosserat_stress<D>(e.in_plane, c);
   if constexpr (D == 2) {
     s.in_plane.diagonal().array() += c.lambda * e.zz;
-    s.zz = c.lambda * (e.in_plane.trace() + e.zz) + 2.0 * c.mu * e.zz;
+    s.zz = plasticity::plane_strain_normal_stress(e.in_plane.trace(), e.zz, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c);
   }
   return s;
 }
@@ -124,8 +127,8 @@ inline double advance_point(const Mat<D>& eps, const double* kap, const Mat<D>& 
     }
   }
   const Eigen::Matrix3d d_strain = r.state.plastic_strain - state.plastic_strain;
-  const Eigen::Matrix3d sigma_start = plasticity::cosserat_stress<D>(eps3_start - state.plastic_strain, el);
-  const Eigen::Matrix3d sigma_end = plasticity::cosserat_stress<D>(eps3 - r.state.plastic_strain, el);
+  const Eigen::Matrix3d sigma_start = plasticity::cosserat_stress(eps3_start - state.plastic_strain, el);
+  const Eigen::Matrix3d sigma_end = plasticity::cosserat_stress(eps3 - r.state.plastic_strain, el);
   double dissipation = 0.5 * plasticity::contract(sigma_start + sigma_end, d_strain);
   if constexpr (Polar) {
     const Curvature d_wryness = r.state.plastic_wryness - state.plastic_wryness;

@@ -11,6 +11,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_command.cpp
   unit/test_solver_boundary_conditions.cpp
   unit/test_solver_damage.cpp
+  unit/test_solver_cosserat_law.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
@@ -19,3 +20,9 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_solver_energy_balance.cpp
   verification/test_solver_crack_energy.cpp
 )
+# The energies are computed without the force kernel's fused multiply-adds only if the two files
+# share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).
+add_test(NAME SolverBuild.EnergiesShareNoArithmeticWithTheForceKernel
+  COMMAND ${CMAKE_COMMAND} -DNM=${CMAKE_NM} "-DOBJECTS=$<JOIN:$<TARGET_OBJECTS:mppm_solver>,|>"
+          -P ${PROJECT_SOURCE_DIR}/cmake/check_kernel_objects.cmake)
+set_tests_properties(SolverBuild.EnergiesShareNoArithmeticWithTheForceKernel PROPERTIES LABELS unit)

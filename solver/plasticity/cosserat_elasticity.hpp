@@ -52,18 +52,51 @@ inline double bulk_modulus(const CosseratElasticity<Dim>& e) {
   return e.lambda + 2.0 * e.mu / 3.0;
 }
 
-template <int Dim>
-inline Eigen::Matrix3d cosserat_stress(const Eigen::Matrix3d& elastic_strain, const CosseratElasticity<Dim>& e) {
-  return e.lambda * elastic_strain.trace() * Eigen::Matrix3d::Identity() + (e.mu + e.mu_c) * elastic_strain +
-         (e.mu - e.mu_c) * elastic_strain.transpose();
+// The Cosserat law of the whole code (docs/theory.md section 5), written once: the elastic force
+// kernel applies it to the D x D strain, the return map to the 3 x 3 strain (plane strain
+// embedded, with its zz component), the energies, the stability check and the snapshots to
+// either, and all of them sum its terms in this order:
+//   sigma = [(mu + mu_c) e + (mu - mu_c) e^T] + lambda tr(e) 1,
+//   m     = [a2 k + a3 k^T] + a1 tr(k) 1                          (3-D couple stress).
+// Always inlined into its callers, which decide how many copies there are (the solver's
+// cosserat_stress and couple_stress: one per source file, solver/cosserat_material.hpp).
+template <typename Tensor>
+[[gnu::always_inline]] inline typename Tensor::PlainObject isotropic_cosserat_law(const Eigen::MatrixBase<Tensor>& t,
+                                                                                  double trace_modulus,
+                                                                                  double symmetric_modulus,
+                                                                                  double transpose_modulus) {
+  const typename Tensor::PlainObject e = t;
+  typename Tensor::PlainObject s = symmetric_modulus * e + transpose_modulus * e.transpose();
+  // The trace summed in index order (Eigen's trace of a 3 x 3 adds e_00 + (e_11 + e_22)), so that
+  // the plane-strain zz entry can be formed from the in-plane trace (plane_strain_normal_stress).
+  double trace = e(0, 0);
+  for (int k = 1; k < e.rows(); ++k) trace += e(k, k);
+  s.diagonal().array() += trace_modulus * trace;
+  return s;
 }
 
-inline Eigen::Matrix3d couple_stress(const Eigen::Matrix3d& elastic_wryness, const CosseratElasticity<3>& e) {
-  return e.a1 * elastic_wryness.trace() * Eigen::Matrix3d::Identity() + e.a2 * elastic_wryness +
-         e.a3 * elastic_wryness.transpose();
+// The zz entry of isotropic_cosserat_law for a plane strain (e_xz = e_yz = 0), from the trace of
+// its in-plane block and e_zz: the same terms in the same order.
+[[gnu::always_inline]] inline double plane_strain_normal_stress(double in_plane_trace, double zz, double trace_modulus,
+                                                                double symmetric_modulus, double transpose_modulus) {
+  return (symmetric_modulus * zz + transpose_modulus * zz) + trace_modulus * (in_plane_trace + zz);
 }
 
-inline Eigen::Vector2d couple_stress(const Eigen::Vector2d& elastic_wryness, const CosseratElasticity<2>& e) {
+// sigma of a strain (any square size) with the moduli of either dimension.
+template <typename Strain, int Dim>
+[[gnu::always_inline]] inline typename Strain::PlainObject cosserat_stress(const Eigen::MatrixBase<Strain>& strain,
+                                                                           const CosseratElasticity<Dim>& e) {
+  return isotropic_cosserat_law(strain, e.lambda, e.mu + e.mu_c, e.mu - e.mu_c);
+}
+
+[[gnu::always_inline]] inline Eigen::Matrix3d couple_stress(const Eigen::Matrix3d& elastic_wryness,
+                                                            const CosseratElasticity<3>& e) {
+  return isotropic_cosserat_law(elastic_wryness, e.a1, e.a2, e.a3);
+}
+
+// 2-D: m = B_w grad w_z.
+[[gnu::always_inline]] inline Eigen::Vector2d couple_stress(const Eigen::Vector2d& elastic_wryness,
+                                                            const CosseratElasticity<2>& e) {
   return e.bending_modulus * elastic_wryness;
 }
 

@@ -284,7 +284,7 @@ PointUpdate<Dim> update(const Eigen::Matrix3d& strain, const Curvature<Dim>& wry
                         const CosseratElasticity<Dim>& elasticity, const DruckerPragerPerzyna& model, double dt) {
   const DruckerPragerParameters& prm = model.parameters;
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d stress_trial = cosserat_stress<Dim>(strain - state.plastic_strain, elasticity);
+  const Eigen::Matrix3d stress_trial = cosserat_stress(strain - state.plastic_strain, elasticity);
   const Curvature<Dim> couple_trial = couple_stress(Curvature<Dim>(wryness - state.plastic_wryness), elasticity);
   const double p_trial = stress_trial.trace() / 3.0;
   const Eigen::Matrix3d dev = stress_trial - p_trial * identity;
