@@ -6,12 +6,8 @@
 # define a common inline (weak) function other than ones that only copy numbers.
 #   cmake -DNM=<nm> -DOBJECTS=<object files joined by |> -P check_kernel_objects.cmake
 string(REPLACE "|" ";" objects "${OBJECTS}")
-set(kernel_objects "")
-foreach(object ${objects})
-  if(object MATCHES "/internal_(forces|energies)\\.cpp\\.o(bj)?$")
-    list(APPEND kernel_objects "${object}")
-  endif()
-endforeach()
+set(kernel_objects ${objects})
+list(FILTER kernel_objects INCLUDE REGEX "/internal_(forces|energies)\\.cpp\\.o(bj)?$")
 list(LENGTH kernel_objects found)
 if(NOT found EQUAL 2)
   message(FATAL_ERROR "expected the object files of internal_forces.cpp and internal_energies.cpp, found: ${kernel_objects}")

@@ -15,16 +15,9 @@ namespace {
 using Mat2 = Eigen::Matrix<double, 2, 2, Eigen::RowMajor>;
 using Mat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
+// Moduli of no particular material, all different, so that a swapped term shows.
 CosseratConstants constants() {
-  CosseratConstants c;
-  c.lambda = 1.7e9;
-  c.mu = 2.9e9;
-  c.mu_c = 0.8e9;
-  c.a1 = 13.0;
-  c.a2 = 41.0;
-  c.a3 = 23.0;
-  c.bending_modulus = 23.0;
-  return c;
+  return {.lambda = 1.7e9, .mu = 2.9e9, .mu_c = 0.8e9, .a1 = 13.0, .a2 = 41.0, .a3 = 23.0, .bending_modulus = 23.0};
 }
 
 template <class M>
