@@ -7,11 +7,11 @@ add_test(NAME workflows.quickstart_end_to_end
 set_tests_properties(workflows.quickstart_end_to_end PROPERTIES LABELS "regression" TIMEOUT 600)
 
 # The shear-band case (workflows/shear-band, workflows/shear-band/README.md) in its reduced form: the five runs
-# of the friction and dilatancy sweeps on the case's lattice with the long runs' 9 mm platen
+# of the friction and dilatancy sweeps on the case's lattice with the case's 9 mm platen
 # travel at 4x the platen speed (0.2 m/s, 0.05 s), then check_case.py --quick: two conjugate
 # bands in every run, band angle growing with the dilatancy angle, peak load growing with the
 # friction angle, energy balance below 1 %, run status. The micro-rotation ratio and the ridge
-# fit are printed but asserted only by the full `make check-long` (README of the case).
+# fit are printed but asserted only by the full `make check` (README of the case).
 # 5 runs of 7143 steps on 3372 points, two at a time, from scratch: about 13 s of CPU per run
 # (65 s in all); 111 s wall measured with the 2 cores shared (load average 5).
 add_test(NAME workflows.shear_band_quick

@@ -14,13 +14,13 @@ Per run:
 Across runs: the band angle grows with the dilatancy angle (friction 35 deg) and the peak load
 grows with the friction angle (dilatancy 15 deg), both strictly.
 
---quick (the reduced form of the test suite, `make quick`: the long runs at 4x the platen
+--quick (the reduced form of the test suite, `make quick`: the case at 4x the platen
 speed) does not assert the micro-rotation ratio and the ridge fit, and prints them as SKIP
 with the measured value: at 4x the speed the bands are wider and less mature at the end
 (when this was written: widths 24-34 mm against 19-27 mm, rotation ratios 2.5-4.2 against
-3.3-7.0 for the long runs), and a 45-degree band 34 mm wide leaves no lattice row whose
+3.3-7.0 for the case), and a 45-degree band 34 mm wide leaves no lattice row whose
 maximum lies inside the 75 mm interior for the ridge fit. The full checks are `make check`
-and `make check-long`.
+(the case) and `make check-published` (the published 4.5 mm form, on which most of them fail).
 Prints one PASS/FAIL/SKIP line per check; exit 1 if any fails, 2 if the outputs are unusable.
 """
 import argparse
@@ -40,7 +40,7 @@ MIN_ROTATION_RATIO = 3.0  # the case's criterion: mean |w| inside the bands >= 3
 # band's peak; a mean twice the outside mean says the outside is not a plateau at that level,
 # i.e. the strain is localized in the band. The nearly elastic run with the
 # triaxial-compression cone, whose faint X the postprocessor still reports as two bands,
-# measured 1.4; the long runs 2.9-5.9 (results.md).
+# measured 1.4 at 4.5 mm of travel; the case's runs 2.9-5.9 (results.md).
 MIN_STRAIN_CONTRAST = 2.0
 # Independent ridge fit against the postprocessor's angle: the ridge points are interpolated
 # to a fraction of dx and the arms span 60-100 mm of the 75 x 180 mm interior, so a ridge

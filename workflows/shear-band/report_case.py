@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes results.md and its figures for the shear-band case from the outputs of its runs.
 
-Usage: report_case.py --out OUT --runs R... --long-runs R... --cone-run R --results results.md
+Usage: report_case.py --out OUT --runs R... --published-runs R... --cone-run R --results results.md
                       --figures figures/
 
 Every number in results.md is read from the run folders (post/summary.json,
@@ -185,19 +185,19 @@ def mm(length):
     return f"{1e3 * length:g} mm"
 
 
-def plot_load_curves(case_runs, long_runs, path):
+def plot_load_curves(case_runs, published_runs, path):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), sharey=True)
-    long_by_angles = {(r.phi, r.psi): r for r in long_runs}
+    published_by_angles = {(r.phi, r.psi): r for r in published_runs}
     for ax, (members, title, label) in zip(axes, sweeps(case_runs)):
         for k, r in enumerate(sorted(members, key=lambda r: (r.phi, r.psi))):
             colour = f"C{k}"
-            longer = long_by_angles.get((r.phi, r.psi))
-            if longer is not None:
-                ax.plot(np.abs(longer.curve["top_uy_m"]) * 1e3, np.abs(longer.curve["top_Fy_N"]) / 1e3,
-                        color=colour, lw=0.9, ls="--", label=f"{label(r)}, long ({mm(LONG_TRAVEL)})")
             ax.plot(np.abs(r.curve["top_uy_m"]) * 1e3, np.abs(r.curve["top_Fy_N"]) / 1e3, color=colour, lw=1.6,
                     label=f"{label(r)}, case ({mm(CASE_TRAVEL)})")
-        ax.axvline(1e3 * CASE_TRAVEL, color="0.5", lw=0.8, ls=":")
+            shorter = published_by_angles.get((r.phi, r.psi))
+            if shorter is not None:
+                ax.plot(np.abs(shorter.curve["top_uy_m"]) * 1e3, np.abs(shorter.curve["top_Fy_N"]) / 1e3,
+                        color=colour, lw=0.9, ls="--", label=f"{label(r)}, as published ({mm(PUBLISHED_TRAVEL)})")
+        ax.axvline(1e3 * PUBLISHED_TRAVEL, color="0.5", lw=0.8, ls=":")
         ax.set_title(title)
         ax.set_xlabel("top platen displacement [mm]")
         ax.grid(alpha=0.3)
@@ -264,29 +264,30 @@ def plot_contours(runs, path, title):
 
 
 CASE_TRAVEL = None  # platen travel of the case runs [m], set from their resolved scenes in main()
-LONG_TRAVEL = None  # the same for the long runs
+PUBLISHED_TRAVEL = None  # the same for the published form
 CASE_THICKNESS = None  # the scene's thickness [m], set from the case runs' resolved scenes in main()
 
 
 def main():
-    global CASE_TRAVEL, LONG_TRAVEL, CASE_THICKNESS
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    global CASE_TRAVEL, PUBLISHED_TRAVEL, CASE_THICKNESS
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", required=True)
     ap.add_argument("--runs", nargs="+", required=True, help="the case's runs")
-    ap.add_argument("--long-runs", nargs="+", required=True, help="the same runs with the travel doubled")
+    ap.add_argument("--published-runs", nargs="+", required=True,
+                    help="the same runs with the published platen travel")
     ap.add_argument("--cone-run", required=True, help="phi35-psi15 with the other cone match")
     ap.add_argument("--results", default="results.md")
     ap.add_argument("--figures", default="figures")
     args = ap.parse_args()
     try:
         case = [Run(args.out, n) for n in args.runs]
-        long_runs = [Run(args.out, n) for n in args.long_runs]
+        published = [Run(args.out, n) for n in args.published_runs]
         cone = Run(args.out, args.cone_run)
         CASE_TRAVEL = case[0].prescribed_travel()
-        LONG_TRAVEL = long_runs[0].prescribed_travel()
+        PUBLISHED_TRAVEL = published[0].prescribed_travel()
         CASE_THICKNESS = float(case[0].scene["thickness"])
         case_checks, case_failures = check_lines(args.out, args.runs)
-        long_checks, long_failures = check_lines(args.out, args.long_runs)
+        published_checks, published_failures = check_lines(args.out, args.published_runs)
     except (RunOutputError, KeyError, ValueError) as e:
         print(f"report_case: cannot read the outputs: {e}", file=sys.stderr)
         return 2
@@ -298,16 +299,17 @@ def main():
     os.makedirs(args.figures, exist_ok=True)
     results_dir = os.path.dirname(os.path.abspath(args.results))
     rel = lambda p: os.path.relpath(p, results_dir)  # noqa: E731
-    figures = {k: os.path.join(args.figures, f"{k}.png") for k in ("load_curves", "contours_case", "contours_long",
-                                                                    "cone_match")}
-    plot_load_curves(case, long_runs, figures["load_curves"])
-    plot_contours(case, figures["contours_case"], f"The case as given ({mm(CASE_TRAVEL)} per platen)")
-    plot_contours(long_runs, figures["contours_long"], f"Long runs ({mm(LONG_TRAVEL)} per platen)")
+    figures = {k: os.path.join(args.figures, f"{k}.png") for k in ("load_curves", "contours_case",
+                                                                    "contours_published", "cone_match")}
+    plot_load_curves(case, published, figures["load_curves"])
+    plot_contours(case, figures["contours_case"], f"The case ({mm(CASE_TRAVEL)} per platen)")
+    plot_contours(published, figures["contours_published"], f"As published ({mm(PUBLISHED_TRAVEL)} per platen)")
     plot_cone_match(reference, cone, figures["cone_match"])
 
     vp = case[0].material["viscoplasticity"]
     width, height = case[0].specimen_size()
-    long_stop, long_end = long_runs[0].loading_times()
+    stop, end = case[0].loading_times()
+    published_stop, published_end = published[0].loading_times()
     total = case_wall_time(args.out, case)
     if total is None:
         wall = ("not measured: the points and the five runs did not all come from one `make` invocation "
@@ -317,7 +319,7 @@ def main():
                 "postprocessing, from the first stage's start to the last one's end)"
                 + ("" if total[1] == "2" else "; this is not the 2-core figure: run `make -j2`"))
     homog_case = [homogeneous(r) for r in case]
-    beyond = [r.name for r, (_, at, _) in zip(case, homog_case) if at is None or at > CASE_TRAVEL]
+    beyond = [r.name for r, (_, at, _) in zip(case, homog_case) if at is None or at > PUBLISHED_TRAVEL]
     lines = [
         "# Shear-band case (workflows/shear-band/README.md): results",
         "",
@@ -329,42 +331,44 @@ def main():
         f"{case[0].confinement() / 1e6:g} MPa. Band angles are acute angles to the x axis (the direction of the "
         "minor compressive principal stress, the confinement). How the columns are measured: README.md.",
         "",
-        f"## The case as given: {1e3 * CASE_TRAVEL:.1f} mm per platen",
+        f"## The case: {mm(CASE_TRAVEL)} per platen ({stop:g} s, hold until {end:g} s)",
         "",
     ] + run_table(case) + [
         "",
-        f"Wall time of the whole case on this 2-core machine (shared with other work): {wall}.",
+        f"Wall time of the whole case on this 2-core machine: {wall}.",
         "",
-        f"Homogeneous peak: the peak of the homogeneous plane-strain response of the run's material under the "
-        f"same confinement (`homogeneous_response.py`, no specimen, no rate), as a load on the platen. "
-        f"It lies beyond the case's {1e3 * CASE_TRAVEL:.1f} mm for "
-        f"{', '.join(beyond) if beyond else 'no run'}: there the material is still hardening when the "
-        "platens stop (README.md, \"Why the case as given hardly localizes\").",
+        "Homogeneous peak: the peak of the homogeneous plane-strain response of the run's material under the "
+        "same confinement (`homogeneous_response.py`, no specimen, no rate), as a load on the platen.",
         "",
         f"`make check` ({case_failures} failed):",
         "",
     ] + case_checks + [
         "",
-        f"## Long runs: the same runs with {mm(LONG_TRAVEL)} per platen ({long_stop:g} s, hold until {long_end:g} s)",
+        f"## As published: {mm(PUBLISHED_TRAVEL)} per platen ({published_stop:g} s, hold until {published_end:g} s)",
         "",
-    ] + run_table(long_runs, with_homogeneous=False) + [
+        f"`make as-published`: the same runs, stopped where the published case stops them (bitwise the case's runs "
+        f"up to {mm(PUBLISHED_TRAVEL)}). The homogeneous peak lies beyond {mm(PUBLISHED_TRAVEL)} for "
+        f"{', '.join(beyond) if beyond else 'no run'}: there the material is still hardening when these platens "
+        "stop, which is why the case's default travel is doubled (README.md, \"Why the default travel is 9 mm\").",
         "",
-        f"`make check-long` ({long_failures} failed):",
+    ] + run_table(published, with_homogeneous=False) + [
         "",
-    ] + long_checks + [
+        f"`make check-published` ({published_failures} failed):",
+        "",
+    ] + published_checks + [
         "",
         "Textbook band angles (formulas, not run outputs): Roscoe 45 + psi/2, Arthur 45 + (phi + psi)/4, "
         "Coulomb 45 + phi/2 [deg], against the measured mean angle:",
         "",
-        f"| run | Roscoe | Arthur | Coulomb | case ({mm(CASE_TRAVEL)}) | long ({mm(LONG_TRAVEL)}) |",
+        f"| run | Roscoe | Arthur | Coulomb | case ({mm(CASE_TRAVEL)}) | as published ({mm(PUBLISHED_TRAVEL)}) |",
         "|---|---|---|---|---|---|",
     ]
-    long_by_angles = {(r.phi, r.psi): r for r in long_runs}
+    published_by_angles = {(r.phi, r.psi): r for r in published}
     for r in case:
-        longer = long_by_angles.get((r.phi, r.psi))
+        shorter = published_by_angles.get((r.phi, r.psi))
         lines.append(f"| phi{r.phi:g}-psi{r.psi:g} | {45 + r.psi / 2:.1f} | {45 + (r.phi + r.psi) / 4:.1f} | "
                      f"{45 + r.phi / 2:.1f} | {fmt(r.summary.get('shear_band_angle_deg'), '.1f')} | "
-                     f"{fmt(longer and longer.summary.get('shear_band_angle_deg'), '.1f')} |")
+                     f"{fmt(shorter and shorter.summary.get('shear_band_angle_deg'), '.1f')} |")
     hp, hp_at, hp_travel = homogeneous(reference)
     ht, ht_at, ht_travel = homogeneous(cone)
     lines += [
@@ -373,14 +377,14 @@ def main():
         "",
         f"![load curves]({rel(figures['load_curves'])})",
         "",
-        "Solid: the case (the drop at the end is the relaxation during the hold); dashed: the long runs, "
-        f"which are the same runs up to {mm(CASE_TRAVEL)} (dotted line).",
+        "Solid: the case; dashed: the published form, which is the same runs up to "
+        f"{mm(PUBLISHED_TRAVEL)} (dotted line); the drops at the ends are the relaxation during the holds.",
         "",
         "## Plastic shear strain and micro-rotation on the deformed configuration",
         "",
         f"![contours, case]({rel(figures['contours_case'])})",
         "",
-        f"![contours, long runs]({rel(figures['contours_long'])})",
+        f"![contours, as published]({rel(figures['contours_published'])})",
         "",
         f"ParaView: `{args.out}/<run>/post/results.pvd` (Warp By Vector on `displacement`).",
         "",

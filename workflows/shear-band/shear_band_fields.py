@@ -16,11 +16,11 @@ from mppm_outputs import RunOutputError, frames  # noqa: E402
 
 
 def parse_run_name(name):
-    """'phi35-psi15' or 'phi35-psi15-long' -> (35.0, 15.0): the angles the Makefile sets for
-    that run (the optional last word names the variant: long, quick, triaxial)."""
-    m = re.fullmatch(r"phi([\d.]+)-psi([\d.]+)(-(long|quick|triaxial))?", name)
+    """'phi35-psi15' or 'phi35-psi15-published' -> (35.0, 15.0): the angles the Makefile sets for
+    that run (the optional last word names the variant: published, quick, triaxial)."""
+    m = re.fullmatch(r"phi([\d.]+)-psi([\d.]+)(-(published|quick|triaxial))?", name)
     if not m:
-        raise RunOutputError(f"run name '{name}': expected phi<deg>-psi<deg>[-long|-quick|-triaxial]")
+        raise RunOutputError(f"run name '{name}': expected phi<deg>-psi<deg>[-published|-quick|-triaxial]")
     return float(m.group(1)), float(m.group(2))
 
 
