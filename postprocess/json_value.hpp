@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/json_quote.hpp"
+
 namespace mppm::post {
 
 class JsonValue {
@@ -61,7 +63,7 @@ class JsonValue {
   std::vector<std::pair<std::string, JsonValue>> members_;
 };
 
-// JSON string literal with escapes.
-std::string json_quote(const std::string& text);
+// JSON string literal with escapes (common/json_quote.hpp).
+using mppm::json_quote;
 
 }  // namespace mppm::post

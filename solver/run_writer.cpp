@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/json_quote.hpp"
 #include "common/output_directory.hpp"
 #include "common/run_directory.hpp"
 
@@ -22,35 +23,6 @@ std::string format_number(double v) {
 }
 
 namespace {
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 std::string csv_row(const std::vector<double>& values) {
   std::string row;
@@ -148,8 +120,8 @@ void RunWriter::flush(const RunInfo& info) {
   write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
   write_file_atomically(path(run_layout::log), [&](std::ostream& out) { out << log_; });
   std::string j = "{\n";
-  j += "  \"status\": " + json_string(info.status) + ",\n";
-  j += "  \"message\": " + json_string(info.message) + ",\n";
+  j += "  \"status\": " + json_quote(info.status) + ",\n";
+  j += "  \"message\": " + json_quote(info.message) + ",\n";
   j += "  \"points\": " + std::to_string(info.points) + ",\n";
   j += "  \"bonds\": " + std::to_string(info.bonds) + ",\n";
   j += "  \"steps\": " + std::to_string(info.steps) + ",\n";
@@ -158,16 +130,16 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"loop_wall_seconds\": " + format_number(info.loop_wall_seconds) + ",\n";
   j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
   j += "  \"effects\": [";
-  for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_string(info.effects[k]);
+  for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_quote(info.effects[k]);
   j += "],\n";
   j += "  \"dimension\": " + std::to_string(info.dimension) + ",\n";
   j += "  \"time_step_s\": " + format_number(info.time_step) + ",\n";
   j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
   j += "  \"largest_time_step_s\": " + format_number(info.largest_time_step) + ",\n";
-  j += "  \"limiting_mode\": " + json_string(info.limiting_mode) + ",\n";
+  j += "  \"limiting_mode\": " + json_quote(info.limiting_mode) + ",\n";
   j += "  \"snapshots\": [";
   for (std::size_t k = 0; k < snapshots_.size(); ++k)
-    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_string(snapshots_[k].file) +
+    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_quote(snapshots_[k].file) +
          ", \"step\": " + std::to_string(snapshots_[k].step) + ", \"time_s\": " + format_number(snapshots_[k].time) +
          "}";
   j += snapshots_.empty() ? "],\n" : "\n  ],\n";

@@ -5,4 +5,5 @@ mppm_add_gtest(test_common unit
   unit/test_scene.cpp
   unit/test_scene_reference.cpp
   unit/test_snapshot_file.cpp
+  unit/test_json_quote.cpp
 )
