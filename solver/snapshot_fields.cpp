@@ -56,14 +56,13 @@ double point_plastic_shear_strain(const Model& m, const plasticity::EquivalentSt
   const Eigen::Matrix3d eps_vp =
       Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&p.plastic_strain[i * 9]);
   Wryness kap_vp = Wryness::Zero();
-  if (!p.plastic_wryness.empty())
-    for (int k = 0; k < kap_vp.size(); ++k) {
-      const double value = p.plastic_wryness[i * kap_vp.size() + k];  // row-major R x D
-      if constexpr (D == 2)
-        kap_vp(k) = value;
-      else
-        kap_vp(k / 3, k % 3) = value;
-    }
+  if (!p.plastic_wryness.empty()) {  // stored row-major, R x D
+    const double* stored = &p.plastic_wryness[i * kap_vp.size()];
+    if constexpr (D == 2)
+      kap_vp = Eigen::Map<const Eigen::Vector2d>(stored);
+    else
+      kap_vp = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(stored);
+  }
   return plasticity::equivalent_plastic_shear_strain(eps_vp, kap_vp, weights, m.constants.length_scale);
 }
 

@@ -69,11 +69,10 @@ int exit_code(const SolveResult& result, const SolveOptions& options) {
 // --fail-checkpoint-write.
 int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, const TestHooks& hooks) {
   if (!cl.positional.empty() || cl.option("-o") || !cl.overrides.empty() || cl.has_flag("--force"))
-    throw mppm::InputError("mppm-solve: --restart " + run_directory +
+    throw mppm::InputError("--restart " + run_directory +
                            " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
                            "or --force with it (see --help)");
-  if (cl.option("--inject-nan")) throw mppm::InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-  if (cl.option("--inject-kick")) throw mppm::InputError("mppm-solve: --inject-kick cannot be combined with --restart");
+  hooks.refuse_with_restart();  // before the checkpoint is read: the option is the user's mistake
   const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(checkpoint_path(run_directory));
   SolveOptions options;
   options.run_directory = run_directory;
@@ -85,14 +84,12 @@ int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, 
 }
 
 // mppm-solve SCENE.yaml --points POINTS -o RUN_DIR: a new run.
-int start_run(const mppm::CommandLine& cl, TestHooks hooks) {
-  if (cl.positional.size() != 1) throw mppm::InputError("mppm-solve: expected exactly one scene file (see --help)");
+int start_run(const mppm::CommandLine& cl, const TestHooks& hooks) {
+  if (cl.positional.size() != 1) throw mppm::InputError("expected exactly one scene file (see --help)");
   const auto points = cl.option("--points");
   const auto out = cl.option("-o");
-  if (!points) throw mppm::InputError("mppm-solve: --points POINTS.vtp is required (see --help)");
-  if (!out) throw mppm::InputError("mppm-solve: -o RUN_DIR is required (see --help)");
-  if (const auto hook = cl.option("--inject-nan")) hooks.inject_nan = parse_nan_injection(*hook);
-  if (const auto hook = cl.option("--inject-kick")) hooks.inject_kick = parse_velocity_kick(*hook);
+  if (!points) throw mppm::InputError("--points POINTS.vtp is required (see --help)");
+  if (!out) throw mppm::InputError("-o RUN_DIR is required (see --help)");
   const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
   mppm::PointCloud cloud = mppm::read_point_cloud(*points);
   SolveOptions options;
@@ -108,9 +105,12 @@ int start_run(const mppm::CommandLine& cl, TestHooks hooks) {
 
 int solve_command(int argc, char** argv) {
   return mppm::run_stage(argc, argv, solve_command_spec(), [](const mppm::CommandLine& cl) {
+    // The test hooks of both forms; continue_run refuses the two that a restart cannot take.
     TestHooks hooks;
     if (const auto k = cl.option("--fail-checkpoint-write"))
       hooks.fail_checkpoint_write = parse_checkpoint_write_failure(*k);
+    if (const auto hook = cl.option("--inject-nan")) hooks.inject_nan = parse_nan_injection(*hook);
+    if (const auto hook = cl.option("--inject-kick")) hooks.inject_kick = parse_velocity_kick(*hook);
     if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
     return start_run(cl, hooks);
   });

@@ -37,8 +37,7 @@ std::int64_t hook_integer(const std::string& hook, const std::string& value, con
     used = 0;
   }
   if (used != part.size() || part.empty() || v < 0)
-    throw InputError("mppm-solve: " + hook + " " + value + ": " + what + " '" + part +
-                     "' is not a non-negative integer" + form);
+    throw InputError("" + hook + " " + value + ": " + what + " '" + part + "' is not a non-negative integer" + form);
   return v;
 }
 
@@ -46,70 +45,65 @@ std::int64_t hook_integer(const std::string& hook, const std::string& value, con
 std::int64_t hook_step(const std::string& hook, const std::string& value, const std::string& part,
                        const std::string& form) {
   const std::int64_t step = hook_integer(hook, value, part, "STEP", form);
-  if (step < 1) throw InputError("mppm-solve: " + hook + " " + value + ": STEP counts from 1 (the first step)");
+  if (step < 1) throw InputError("" + hook + " " + value + ": STEP counts from 1 (the first step)");
   return step;
 }
 
+// The fields --inject-nan can write: name, array and whether it holds rotations (R per point)
+// rather than vectors (D per point). The one list the name, the parser and the checks use.
+struct NanField {
+  NanInjection::Field field;
+  const char* name;
+  std::vector<double> PointData::*array;
+  bool rotational;
+};
+constexpr NanField kNanFields[] = {
+    {NanInjection::Field::displacement, "displacement", &PointData::displacement, false},
+    {NanInjection::Field::velocity, "velocity", &PointData::velocity, false},
+    {NanInjection::Field::rotation, "rotation", &PointData::rotation, true},
+    {NanInjection::Field::rotation_rate, "rotation_rate", &PointData::spin, true},
+    {NanInjection::Field::force, "force", &PointData::force, false},
+};
+
+const NanField& nan_field(NanInjection::Field f) {
+  for (const NanField& entry : kNanFields)
+    if (entry.field == f) return entry;
+  throw std::logic_error("NanInjection: a field missing from kNanFields");
+}
+
+// Components per point of a field in this run (0: a rotation without micropolar).
+int nan_field_components(const PointData& p, NanInjection::Field f) {
+  return nan_field(f).rotational ? p.rotation_components : p.dimension;
+}
+
 void write_nan(PointData& p, const NanInjection& k) {
-  const std::size_t D = static_cast<std::size_t>(p.dimension), R = static_cast<std::size_t>(p.rotation_components);
-  const auto c = static_cast<std::size_t>(k.component);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  switch (k.field) {
-    case NanInjection::Field::displacement:
-      p.displacement[k.point * D + c] = nan;
-      break;
-    case NanInjection::Field::velocity:
-      p.velocity[k.point * D + c] = nan;
-      break;
-    case NanInjection::Field::force:
-      p.force[k.point * D + c] = nan;
-      break;
-    case NanInjection::Field::rotation:
-      p.rotation[k.point * R + c] = nan;
-      break;
-    case NanInjection::Field::rotation_rate:
-      p.spin[k.point * R + c] = nan;
-      break;
-  }
+  const auto width = static_cast<std::size_t>(nan_field_components(p, k.field));
+  (p.*nan_field(k.field).array)[k.point * width + static_cast<std::size_t>(k.component)] =
+      std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
 
-const char* NanInjection::name(Field f) {
-  switch (f) {
-    case Field::displacement:
-      return "displacement";
-    case Field::velocity:
-      return "velocity";
-    case Field::rotation:
-      return "rotation";
-    case Field::rotation_rate:
-      return "rotation_rate";
-    case Field::force:
-      return "force";
-  }
-  return "?";
-}
+const char* NanInjection::name(Field f) { return nan_field(f).name; }
 
 NanInjection parse_nan_injection(const std::string& value) {
   const std::vector<std::string> parts = hook_parts(value);
   const std::string hook = "--inject-nan";
   const std::string form = " (expected STEP:POINT[:FIELD[:COMPONENT]], e.g. 200:17:velocity)";
-  if (parts.size() < 2 || parts.size() > 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
+  if (parts.size() < 2 || parts.size() > 4) throw InputError("" + hook + " " + value + ":" + form);
   NanInjection k;
   k.step = hook_step(hook, value, parts[0], form);
   k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
   if (parts.size() > 2) {
-    using F = NanInjection::Field;
-    bool known = false;
-    for (F f : {F::displacement, F::velocity, F::rotation, F::rotation_rate, F::force})
-      if (parts[2] == NanInjection::name(f)) {
-        k.field = f;
-        known = true;
-      }
+    const NanField* known = nullptr;
+    std::string names;
+    for (const NanField& entry : kNanFields) {
+      if (parts[2] == entry.name) known = &entry;
+      names += (names.empty() ? "" : ", ") + std::string(entry.name);
+    }
     if (!known)
-      throw InputError("mppm-solve: --inject-nan " + value + ": unknown FIELD '" + parts[2] +
-                       "' (expected displacement, velocity, rotation, rotation_rate or force)");
+      throw InputError("--inject-nan " + value + ": unknown FIELD '" + parts[2] + "' (expected one of " + names + ")");
+    k.field = known->field;
   }
   if (parts.size() > 3) k.component = static_cast<int>(hook_integer(hook, value, parts[3], "COMPONENT", form));
   return k;
@@ -119,7 +113,7 @@ VelocityKick parse_velocity_kick(const std::string& value) {
   const std::vector<std::string> parts = hook_parts(value);
   const std::string hook = "--inject-kick";
   const std::string form = " (expected STEP:POINT:COMPONENT:VELOCITY, e.g. 60:17:0:50)";
-  if (parts.size() != 4) throw InputError("mppm-solve: " + hook + " " + value + ":" + form);
+  if (parts.size() != 4) throw InputError("" + hook + " " + value + ":" + form);
   VelocityKick k;
   k.step = hook_step(hook, value, parts[0], form);
   k.point = static_cast<std::size_t>(hook_integer(hook, value, parts[1], "POINT", form));
@@ -127,10 +121,9 @@ VelocityKick parse_velocity_kick(const std::string& value) {
   try {
     k.velocity = parse_quantity_as(parts[3], dim::velocity);
   } catch (const std::invalid_argument& e) {
-    throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY: " + e.what() + form);
+    throw InputError("--inject-kick " + value + ": VELOCITY: " + e.what() + form);
   }
-  if (!std::isfinite(k.velocity))
-    throw InputError("mppm-solve: --inject-kick " + value + ": VELOCITY must be finite" + form);
+  if (!std::isfinite(k.velocity)) throw InputError("--inject-kick " + value + ": VELOCITY must be finite" + form);
   return k;
 }
 
@@ -141,39 +134,37 @@ int parse_checkpoint_write_failure(const std::string& value) {
     if (used != value.size() || k < 1) throw std::invalid_argument(value);
     return k;
   } catch (const std::exception&) {
-    throw InputError("mppm-solve: --fail-checkpoint-write " + value +
-                     ": expected K >= 1 (the K-th checkpoint write fails)");
+    throw InputError("--fail-checkpoint-write " + value + ": expected K >= 1 (the K-th checkpoint write fails)");
   }
 }
 
 void TestHooks::check_against_model(const Model& model, const std::string& points_file) const {
   const std::size_t owned = model.points.owned;
   if (const auto& k = inject_nan) {
-    const bool rotational = k->field == NanInjection::Field::rotation || k->field == NanInjection::Field::rotation_rate;
-    const int components = rotational ? model.points.rotation_components : model.dimension();
+    const int components = nan_field_components(model.points, k->field);
     if (k->point >= owned)
-      throw InputError("mppm-solve: --inject-nan: POINT " + std::to_string(k->point) + " is not a point of " +
-                       points_file + " (expected 0 to " + std::to_string(owned - 1) + ")");
+      throw InputError("--inject-nan: POINT " + std::to_string(k->point) + " is not a point of " + points_file +
+                       " (expected 0 to " + std::to_string(owned - 1) + ")");
     if (components == 0)
-      throw InputError(std::string("mppm-solve: --inject-nan: FIELD ") + NanInjection::name(k->field) +
+      throw InputError(std::string("--inject-nan: FIELD ") + NanInjection::name(k->field) +
                        " needs the micropolar effect (this run has no micro-rotation)");
     if (k->component >= components)
-      throw InputError("mppm-solve: --inject-nan: COMPONENT " + std::to_string(k->component) + " of " +
+      throw InputError("--inject-nan: COMPONENT " + std::to_string(k->component) + " of " +
                        NanInjection::name(k->field) + " (expected 0 to " + std::to_string(components - 1) + ")");
   }
   if (const auto& k = inject_kick) {
     if (k->point >= owned)
-      throw InputError("mppm-solve: --inject-kick: POINT " + std::to_string(k->point) + " is not a point of " +
-                       points_file + " (expected 0 to " + std::to_string(owned - 1) + ")");
+      throw InputError("--inject-kick: POINT " + std::to_string(k->point) + " is not a point of " + points_file +
+                       " (expected 0 to " + std::to_string(owned - 1) + ")");
     if (k->component >= model.dimension())
-      throw InputError("mppm-solve: --inject-kick: COMPONENT " + std::to_string(k->component) +
-                       " of the velocity (expected 0 to " + std::to_string(model.dimension() - 1) + ")");
+      throw InputError("--inject-kick: COMPONENT " + std::to_string(k->component) + " of the velocity (expected 0 to " +
+                       std::to_string(model.dimension() - 1) + ")");
   }
 }
 
 void TestHooks::check_against_steps(std::int64_t steps) const {
   auto beyond = [&](const char* hook, std::int64_t step) {
-    return InputError(std::string("mppm-solve: ") + hook + ": STEP " + std::to_string(step) + " is beyond the run's " +
+    return InputError(std::string(hook) + ": STEP " + std::to_string(step) + " is beyond the run's " +
                       std::to_string(steps) + " steps (expected 1 to " + std::to_string(steps) + ")");
   };
   if (inject_nan && inject_nan->step > steps) throw beyond("--inject-nan", inject_nan->step);
@@ -181,8 +172,8 @@ void TestHooks::check_against_steps(std::int64_t steps) const {
 }
 
 void TestHooks::refuse_with_restart() const {
-  if (inject_nan) throw InputError("mppm-solve: --inject-nan cannot be combined with --restart");
-  if (inject_kick) throw InputError("mppm-solve: --inject-kick cannot be combined with --restart");
+  if (inject_nan) throw InputError("--inject-nan cannot be combined with --restart");
+  if (inject_kick) throw InputError("--inject-kick cannot be combined with --restart");
 }
 
 std::vector<std::string> TestHooks::armed() const {

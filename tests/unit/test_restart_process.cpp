@@ -230,6 +230,13 @@ TEST_F(RestartProcess, BadRestartsAreExitTwoWithAMessage) {
   r = run_stage_process({binary("mppm-solve"), "--restart", run, "-o", run + "_x"});
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--restart"), std::string::npos) << r.err;
+  // The test hooks a restart cannot take.
+  for (const std::vector<std::string>& hook :
+       {std::vector<std::string>{"--inject-nan", "3:1"}, std::vector<std::string>{"--inject-kick", "3:1:0:5"}}) {
+    r = run_stage_process({binary("mppm-solve"), "--restart", run, hook[0], hook[1]});
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find(hook[0] + " cannot be combined with --restart"), std::string::npos) << r.err;
+  }
   // What is left is still a good checkpoint: the run continues.
   r = restart(run);
   EXPECT_EQ(r.code, 0) << r.err;
