@@ -4,6 +4,7 @@
 // with the corrected a3 = 83.3 N it is accepted.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "common/input_error.hpp"
@@ -138,6 +139,38 @@ TEST(SolverEnergyGuard, StopsUnexplainedGrowthOnly) {
   tiny.kinetic = 1e-20;
   tiny.external_work = -1e-3;  // damped away: all but round-off is gone
   EXPECT_FALSE(decayed.check(2, tiny, 0.0));
+}
+
+// A mode beyond the step (omega dt > 2) keeps the balance closed with a negative kinetic energy of
+// the scheme; the check stops it, and a non-finite energy, which compares false with everything.
+TEST(SolverEnergyGuard, StopsAnUnstableModeTheBalanceHides) {
+  EnergyGuard guard(0.05, 0);
+  EnergyState e;
+  e.kinetic = 100.0;
+  e.external_work = 100.0;
+  EXPECT_FALSE(guard.check(1, e, 0.0));
+  // The rotations of a few points blow up: -454 J of rotational kinetic energy, booked against
+  // elastic energy, with the balance still closed to round-off (measured in a run that blew up).
+  e.rotational_kinetic = -454.0;
+  e.elastic = 454.0;
+  const auto reason = guard.check(2, e, 0.0);
+  ASSERT_TRUE(reason);
+  EXPECT_NE(reason->find("unstable"), std::string::npos) << *reason;
+  EXPECT_NE(reason->find("rotational"), std::string::npos) << *reason;
+  // Round-off of a stable scheme: 1e-3 of the scale negative, far inside the tolerance.
+  EnergyGuard roundoff(0.05, 0);
+  EnergyState r;
+  r.kinetic = -0.1;
+  r.elastic = 100.1;
+  r.external_work = 100.0;
+  EXPECT_FALSE(roundoff.check(1, r, 0.0));
+  // Overflowed energies.
+  EnergyGuard overflow(0.05, 0);
+  EnergyState n;
+  n.kinetic = std::numeric_limits<double>::quiet_NaN();
+  const auto nan_reason = overflow.check(1, n, 0.0);
+  ASSERT_TRUE(nan_reason);
+  EXPECT_NE(nan_reason->find("no longer finite"), std::string::npos) << *nan_reason;
 }
 
 }  // namespace
