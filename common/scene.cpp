@@ -54,7 +54,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
     {"material",
      {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli", "length_scale", "damage",
       "viscoplasticity"}},
-    {"material.damage", {"critical_energy_release_rate", "no_fail_depth", "calibration", "region"}},
+    {"material.damage", {"critical_energy_release_rate", "no_fail_depth", "calibration", "compressed_bonds", "region"}},
     {"material.damage.region", kRegionKeys},
     {"material.viscoplasticity",
      {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity", "residual_cohesion",
@@ -625,6 +625,9 @@ class SceneReader {
     if (node["calibration"].IsDefined()) {
       dp.calibration = enum_value(node["calibration"], p + ".calibration", kDamageCalibrationNames, "calibration");
     }
+    if (node["compressed_bonds"].IsDefined())
+      dp.compressed_bonds =
+          enum_value(node["compressed_bonds"], p + ".compressed_bonds", kCompressedBondsNames, "compressed_bonds");
     if (node["region"].IsDefined()) dp.region = read_region(node["region"], p + ".region");
     scene_.material.damage = dp;
   }

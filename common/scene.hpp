@@ -74,6 +74,11 @@ struct BoundaryCondition {
 // then dissipates G_cr per unit area; solver/damage_calibration.hpp).
 enum class DamageCalibration { lattice, continuum, dissipation };
 
+// Whether a bond whose work reached w_cr breaks while it is compressed (docs/theory.md section 7):
+// `break` (default: the work criterion alone) or `hold` (it breaks only once stretched,
+// |xi + U| > |xi|; compressive impacts then crush nothing).
+enum class CompressedBonds { break_, hold };
+
 // How the Drucker-Prager cone is fitted to Mohr-Coulomb (solver/plasticity/drucker_prager_cone.hpp).
 enum class ConeMatch {
   triaxial_compression,  // outer cone: DP = MC on the compression meridian (default)
@@ -92,6 +97,10 @@ inline constexpr std::array<EnumName<DamageCalibration>, 3> kDamageCalibrationNa
     {DamageCalibration::continuum, "continuum"},
     {DamageCalibration::dissipation, "dissipation"},
 }};
+inline constexpr std::array<EnumName<CompressedBonds>, 2> kCompressedBondsNames{{
+    {CompressedBonds::break_, "break"},
+    {CompressedBonds::hold, "hold"},
+}};
 inline constexpr std::array<EnumName<ConeMatch>, 2> kConeMatchNames{{
     {ConeMatch::triaxial_compression, "triaxial-compression"},
     {ConeMatch::plane_strain, "plane-strain"},
@@ -106,6 +115,7 @@ constexpr const char* enum_name(const std::array<EnumName<E>, N>& table, E value
 // Inline, so that libraries which only see the scene's types (solver/plasticity) need not link it.
 inline const char* to_string(DamageCalibration calibration) { return enum_name(kDamageCalibrationNames, calibration); }
 inline const char* to_string(ConeMatch match) { return enum_name(kConeMatchNames, match); }
+inline const char* to_string(CompressedBonds bonds) { return enum_name(kCompressedBondsNames, bonds); }
 
 struct DamageParameters {
   double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
@@ -114,6 +124,7 @@ struct DamageParameters {
   // Damage only inside this box (scene units of length, a 2-D box spans every z): bonds with an
   // end outside never break and cost no bond-work bookkeeping. Empty: the whole body.
   std::optional<Selector> region;
+  CompressedBonds compressed_bonds = CompressedBonds::break_;
 };
 
 struct ViscoplasticParameters {

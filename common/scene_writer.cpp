@@ -96,6 +96,7 @@ void emit_damage(YAML::Emitter& out, const DamageParameters& damage) {
   out << YAML::Key << "critical_energy_release_rate" << YAML::Value << Num{damage.critical_energy_release_rate};
   out << YAML::Key << "no_fail_depth" << YAML::Value << Num{damage.no_fail_depth};
   out << YAML::Key << "calibration" << YAML::Value << to_string(damage.calibration);
+  out << YAML::Key << "compressed_bonds" << YAML::Value << to_string(damage.compressed_bonds);
   if (damage.region) emit_region(out, *damage.region);
   out << YAML::EndMap;
 }

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/bond_kinematics.hpp"
 #include "solver/damage_calibration.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/point_stability.hpp"
@@ -228,35 +229,61 @@ BreakageUpdate BreakageUpdater::run() {
   return u;
 }
 
-// The candidates: the kernel counts a break at the lower end of the bond, which holds the pair's
-// work: the bonds of a counting point whose work reached the critical work are the breaking ones
-// (the kernel books no work on a bond with a no-fail end, so those stay at zero), and their two
-// ends the points whose families change (w.changed, sorted). They still act until they are broken.
-// False when no bond breaks.
+template <int D, int R, bool Polar>
+bool stretched(const PointData& p, const BondFamilies& f, std::size_t i, std::int64_t b, std::size_t j) {
+  double xi[D], U[D];
+  bond_vector<D>(f, p.position.data(), i, b, xi);
+  const double* wi = Polar ? p.rotation.data() + i * R : nullptr;
+  const double* wj = Polar ? p.rotation.data() + j * R : nullptr;
+  kernel::composite_state<D, R, Polar>(p.displacement.data() + i * D, p.displacement.data() + j * D, wi, wj, xi, U);
+  double change = 0.0;  // |xi + U|^2 - |xi|^2
+  for (int a = 0; a < D; ++a) change += (2.0 * xi[a] + U[a]) * U[a];
+  return change > 0.0;
+}
+
+// Whether bond b of point i (to j) is stretched, |xi + U| > |xi|, with the composite state U of
+// docs/theory.md section 2 (the micro-rotations included with micropolar), in the state of the
+// force evaluation that counted it.
+bool bond_stretched(const PointData& p, const BondFamilies& f, std::size_t i, std::int64_t b, std::size_t j) {
+  const bool polar = p.rotation_components > 0;
+  if (p.dimension == 2) return polar ? stretched<2, 1, true>(p, f, i, b, j) : stretched<2, 1, false>(p, f, i, b, j);
+  return polar ? stretched<3, 3, true>(p, f, i, b, j) : stretched<3, 3, false>(p, f, i, b, j);
+}
+
+// The candidates: the kernel counts a bond at the lower end, which holds the pair's work, when its
+// work reaches the critical work (the kernel books no work on a bond with a no-fail end, so those
+// stay at zero). They break, except compressed ones with material.damage.compressed_bonds: hold
+// (decided here only, once per candidate); their two ends are the points whose families change
+// (w.changed, sorted). They still act until they are broken. False when no bond breaks.
 bool BreakageUpdater::collect_breaking_bonds() {
   std::vector<std::size_t>& changed = w.changed;
   changed.clear();
   std::vector<std::int64_t>& breaking = w.breaking;  // both entries of every breaking bond
   breaking.clear();
-  std::size_t counted = 0;
+  std::size_t counted = 0, held = 0;
   for (std::size_t i = 0; i < p.owned; ++i) {
     if (p.bonds_broken[i] == 0) continue;
     counted += static_cast<std::size_t>(p.bonds_broken[i]);
-    changed.push_back(i);
+    const std::size_t breaking_before = breaking.size();
     const std::int64_t split = f.first_pair_bond(i);
     for (std::int64_t b = split; b < f.offset[i + 1]; ++b) {
       if (!f.acting(b)) continue;
       const std::size_t j = f.neighbor_of(b);
       const double work = f.work[static_cast<std::size_t>(f.pair_offset[i] + (b - split))];
       if (!(work >= c.critical_bond_work)) continue;
+      if (c.hold_compressed_bonds && !bond_stretched(p, f, i, b, j)) {
+        ++held;
+        continue;
+      }
       breaking.push_back(b);
       breaking.push_back(mirror_bond(f, i, j));
       changed.push_back(j);
     }
+    if (breaking.size() > breaking_before) changed.push_back(i);
   }
-  if (changed.empty()) return false;
-  if (breaking.size() != 2 * counted)
+  if (breaking.size() + 2 * held != 2 * counted)
     throw std::logic_error("update_after_breakage: the bonds at their critical work are not those the kernel counted");
+  if (changed.empty()) return false;
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
   broken_ends = breaking.size();

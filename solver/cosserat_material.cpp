@@ -29,6 +29,7 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.overload_factor = scene.numerics.overload_factor;
   c.damaged_frequency_ratio = scene.numerics.damaged_frequency_ratio;
   if (scene.effects.damage && m.damage) {
+    c.hold_compressed_bonds = m.damage->compressed_bonds == CompressedBonds::hold;
     try {
       c.critical_bond_work =
           critical_bond_work(*m.damage, scene.dimension, scene.geometry.spacing, scene.geometry.horizon_factor,

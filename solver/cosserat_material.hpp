@@ -25,6 +25,8 @@ struct CosseratConstants {
   double solid_fraction = 1.0;      // phi0 (porosity output n = 1 - phi0 / J)
   double length_scale = 0.0;        // l [m]
   double critical_bond_work = 0.0;  // w_cr [J/m^6] from G_cr (damage effect; 0 otherwise)
+  // material.damage.compressed_bonds: hold: a bond at its critical work breaks only once stretched.
+  bool hold_compressed_bonds = false;
   // Damage thresholds from the scene's numerics block (docs/scene.md), defaults as there.
   double detach_energy_rise = Numerics{}.detach_energy_rise;            // bond_breakage.cpp
   double overload_factor = Numerics{}.overload_factor;                  // bond_breakage.cpp

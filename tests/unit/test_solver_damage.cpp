@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -406,6 +407,66 @@ TEST(SolverDamage, DamagedFrequencyRatioSetsTheDamageTimeStep) {
   standard.set_breakage_time_step(1e-7);
   relaxed.set_breakage_time_step(1e-7);
   EXPECT_NEAR(relaxed.block_eigenvalue_limit / standard.block_eigenvalue_limit, 3.5 / 2.0, 1e-12);
+}
+
+// A lattice under the homogeneous displacement u = strain x, every bond given twice the critical
+// work and counted as the kernel counts it; then the breakage update decides.
+BreakageUpdate break_at_critical_work(double strain, CompressedBonds compressed, Model& m) {
+  Scene scene = damage_scene(2, 0.5);
+  scene.material.damage->compressed_bonds = compressed;
+  m = testing::make_model(testing::make_lattice(2, {12, 12, 1}, kDx), scene);
+  for (std::size_t i = 0; i < m.points.owned * 2; ++i) m.points.displacement[i] = strain * m.points.position[i];
+  m.kernel.forces(m.points, m.bonds, m.constants, nullptr);
+  for (double& w : m.bonds.work) w = 2.0 * m.constants.critical_bond_work;
+  for (std::size_t i = 0; i < m.points.owned; ++i)
+    m.points.bonds_broken[i] = static_cast<std::int32_t>(m.bonds.offset[i + 1] - m.bonds.first_pair_bond(i));
+  return update_after_breakage(m.points, m.bonds, m.constants, m.kernel, 0.0, m.breakage_workspace);
+}
+
+// material.damage.compressed_bonds: hold: bonds at their critical work break only when stretched,
+// |xi + U| > |xi|. Squeezed (every bond shorter) none breaks; pulled every one does; with `break`
+// all break either way.
+TEST(SolverDamage, CompressedBondsHoldUntilStretched) {
+  Model m;
+  const std::size_t pairs = [] {
+    Model probe;
+    break_at_critical_work(0.0, CompressedBonds::break_, probe);
+    return probe.bonds.bond_count() / 2;
+  }();
+  EXPECT_EQ(break_at_critical_work(-1e-3, CompressedBonds::hold, m).broken_pairs, 0u);
+  for (std::size_t i = 0; i < m.points.owned; ++i) EXPECT_EQ(m.points.detached[i], 0) << i;
+  EXPECT_EQ(break_at_critical_work(-1e-3, CompressedBonds::break_, m).broken_pairs, pairs);
+  EXPECT_EQ(break_at_critical_work(1e-3, CompressedBonds::hold, m).broken_pairs, pairs);
+  EXPECT_EQ(break_at_critical_work(1e-3, CompressedBonds::break_, m).broken_pairs, pairs);
+}
+
+// In a run: a free body set expanding breaks its first bonds in the same step and the same bits
+// with `hold` as with `break` (the candidates of a homogeneous expansion are all stretched).
+ShatterRun expand_until_first_break(CompressedBonds compressed) {
+  Scene scene = damage_scene(2, 0.5);
+  scene.material.damage->compressed_bonds = compressed;
+  ShatterRun r{testing::make_model(testing::make_lattice(2, {24, 24, 1}, kDx), scene), 0.0, {}, {}, 0.0, {}, true};
+  Model& m = r.model;
+  constexpr double kRate = 2500.0;  // 1/s: the edges move out at 30 m/s
+  for (std::size_t i = 0; i < m.points.owned; ++i)
+    for (int c = 0; c < 2; ++c) m.points.velocity[i * 2 + c] = kRate * (m.points.position[i * 2 + c] - 11.5e-3);
+  const double dt = 0.8 * m.damage_critical_step(critical_time_step(m).step);
+  m.set_breakage_time_step(dt);
+  BoundaryConditions free_body(m.points);
+  ExplicitDynamics dynamics(m, free_body, dt);
+  dynamics.initialize();
+  for (int k = 0; k < 200 && m.broken_bonds == 0; ++k) dynamics.step(true);
+  r.finite = dynamics.finite();
+  return r;
+}
+
+TEST(SolverDamage, CompressedBondsHoldChangesNoTensileBreak) {
+  const ShatterRun pulled = expand_until_first_break(CompressedBonds::break_);
+  const ShatterRun held = expand_until_first_break(CompressedBonds::hold);
+  ASSERT_GT(pulled.model.broken_bonds, 0u);
+  EXPECT_EQ(held.model.broken_bonds, pulled.model.broken_bonds);
+  EXPECT_EQ(held.model.bonds.neighbor, pulled.model.bonds.neighbor);
+  EXPECT_TRUE(same_bits(held.model.points.displacement, pulled.model.points.displacement));
 }
 
 }  // namespace
