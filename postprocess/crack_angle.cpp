@@ -284,14 +284,16 @@ CrackAngleResult measure_crack_angles(const CrackAngleLattice& l, const std::vec
     result.tips = tips_of_precrack(l, precrack, settings, result.notes);
   }
   if (result.tips.empty()) {
-    result.notes.push_back("the pre-crack has no tip (every part reaches the free surface at both ends)");
+    result.notes.push_back(
+        "the pre-crack has no tip (each part reaches the free surface at both ends or is too short): give "
+        "the tips with --crack-tip and --crack-direction");
     return result;
   }
 
   // The crack of the last snapshot, the pre-crack included, and its connected parts.
   std::vector<char> in_precrack(l.x.size(), 0);
   for (std::size_t i : precrack) in_precrack[i] = 1;
-  std::vector<std::size_t> crack = crack_points(l.include, last_damage, settings.damage_threshold);
+  const std::vector<std::size_t> crack = crack_points(l.include, last_damage, settings.damage_threshold);
   std::vector<std::size_t> all_crack;  // damage never heals; the union is for safety
   std::set_union(crack.begin(), crack.end(), precrack.begin(), precrack.end(), std::back_inserter(all_crack));
   const auto parts = connected_parts(l, all_crack, kLinkRadiusInSpacings * settings.spacing);

@@ -1,8 +1,9 @@
 // The crack angle on synthetic 2-D damage fields with known angles: a crack leaving a straight
 // pre-crack at +30, -70 and 90 degrees; the Kalthoff-Winkler layout (two notches, one crack
 // each); a crack branched at the tip; damage along the notch flanks only (no crack), next to a
-// real crack and next to a crack running back at 150 degrees; a notch cut out of the body with
-// the tip and direction given; the parsing of the options.
+// real crack and next to a crack running back at 150 degrees; an interior pre-crack (two tips)
+// and one through the body (none); a notch cut out of the body with the tip and direction
+// given; the parsing of the options.
 //
 // Tolerance of an angle: the points of a crack band are the lattice points within dx of the
 // crack line, so either end of the fitted stretch may sit up to about one dx off the line:
@@ -161,6 +162,37 @@ TEST(PostCrackAngle, KalthoffWinklerTwoNotchesOneCrackEach) {
   EXPECT_EQ(result.cracks[1].tip_index, 1u);
   EXPECT_NEAR(result.cracks[1].signed_angle_deg, 65.0, tolerance);
   for (const auto& crack : result.cracks) EXPECT_NEAR(crack.angle_deg, 65.0, tolerance);
+}
+
+TEST(PostCrackAngle, InteriorPrecrackHasTwoTipsAndACrackThroughTheBodyNone) {
+  // A pre-crack from x = 30 to 60 mm inside the plate: a tip at each end, pointing outward, in
+  // the order of x (same y); a crack leaves each at 140 degrees from +x on the left end (-40 to
+  // that tip's direction, -x) and at 40 degrees on the right end.
+  const Plate plate(0.1, 0.04, kDx, 4.05);
+  const Segment interior{0.03, 0.02, 0.06, 0.02};
+  const auto first = plate.damage({interior}, kDx);
+  auto result = measure_crack_angles(
+      plate.lattice(), first, plate.damage({interior, ray(0.03, 0.02, 140, 0.025), ray(0.06, 0.02, 40, 0.025)}, kDx),
+      plate.settings());
+  ASSERT_EQ(result.tips.size(), 2u);
+  EXPECT_NEAR(result.tips[0].position[0], 0.03, kDx);
+  EXPECT_NEAR(result.tips[0].direction[0], -1.0, 1e-12);
+  EXPECT_NEAR(result.tips[1].position[0], 0.06, kDx);
+  EXPECT_NEAR(result.tips[1].direction[0], 1.0, 1e-12);
+  ASSERT_EQ(result.cracks.size(), 2u);
+  const double tolerance = tolerance_deg(kTo - kFrom);
+  EXPECT_EQ(result.cracks[0].tip_index, 0u);
+  EXPECT_NEAR(result.cracks[0].signed_angle_deg, -40.0, tolerance);
+  EXPECT_EQ(result.cracks[1].tip_index, 1u);
+  EXPECT_NEAR(result.cracks[1].signed_angle_deg, 40.0, tolerance);
+
+  // A pre-crack from edge to edge has no tip; a note says so.
+  const Segment through{0.0, 0.02, 0.1, 0.02};
+  result = measure_crack_angles(plate.lattice(), plate.damage({through}, kDx), plate.damage({through}, kDx),
+                                plate.settings());
+  EXPECT_TRUE(result.tips.empty());
+  ASSERT_EQ(result.notes.size(), 1u);
+  EXPECT_NE(result.notes[0].find("the pre-crack has no tip"), std::string::npos) << result.notes[0];
 }
 
 TEST(PostCrackAngle, CrackBranchedAtTheTipGivesTwoAngles) {
