@@ -20,6 +20,13 @@ std::optional<std::string> CommandLine::option(const std::string& name) const {
   return std::nullopt;
 }
 
+std::vector<std::string> CommandLine::all_values(const std::string& name) const {
+  std::vector<std::string> values;
+  for (const auto& [option_name, value] : option_values)
+    if (option_name == name) values.push_back(value);
+  return values;
+}
+
 CommandLine parse_command_line(int argc, char** argv, const CommandLineSpec& spec) {
   CommandLine cl;
   const auto takes_value = [&](const std::string& a) {
@@ -62,6 +69,7 @@ CommandLine parse_command_line(int argc, char** argv, const CommandLineSpec& spe
       cl.threads = static_cast<int>(n);
     } else if (takes_value(arg)) {
       cl.options[arg] = next_value();
+      cl.option_values.emplace_back(arg, cl.options[arg]);
     } else if (is_flag(arg)) {
       cl.flags.push_back(arg);
     } else if (arg.size() > 1 && arg[0] == '-') {

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mppm {
@@ -15,6 +16,9 @@ struct CommandLine {
   std::map<std::string, std::string> options;  // "--points" -> "pts.vtp", "-o" -> "run"
   std::vector<std::string> overrides;          // the --set values, in order
   std::vector<std::string> flags;              // "--force", "--figures" (no value)
+  // Every value of every value option, in command-line order (for repeatable options; `options`
+  // keeps the last value of each).
+  std::vector<std::pair<std::string, std::string>> option_values;
   std::optional<int> threads;
   bool quiet = false;
   bool help = false;
@@ -22,6 +26,8 @@ struct CommandLine {
 
   bool has_flag(const std::string& flag) const;
   std::optional<std::string> option(const std::string& name) const;
+  // All values of a repeatable option, in command-line order.
+  std::vector<std::string> all_values(const std::string& name) const;
 };
 
 struct CommandLineSpec {

@@ -60,6 +60,8 @@ class CrackTracker {
   CrackMetrics finish() const;
   // The damage at and above which a body point belongs to the crack path.
   double damage_threshold() const { return settings_.damage_threshold; }
+  // Per point: a body point within 2 dx of the body's free surface (the crack angle's tips).
+  const std::vector<char>& near_boundary() const { return near_boundary_; }
 
  private:
   std::vector<double> x_, y_, z_;

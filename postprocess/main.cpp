@@ -42,6 +42,14 @@ const char* kUsage =
     "                       snapshot is used (default: the last one)\n"
     "  --warp-scale S       displacement scale of the deformed configuration in figures (default 1)\n"
     "  --compression KIND   .vtu compression: zlib (default), lz4 or none\n"
+    "  --crack-tip X,Y[,Z]  a pre-crack tip (lengths: '50mm,20mm'; plain numbers are metres),\n"
+    "                       repeatable; for notches cut out of the body (default: the tips of\n"
+    "                       the damaged pre-crack of the first snapshot)\n"
+    "  --crack-direction D  the pre-crack direction at the tip, pointing into the body: an angle\n"
+    "                       from +x with its unit ('0deg') or a vector DX,DY; once for all tips\n"
+    "                       or once per --crack-tip\n"
+    "  --crack-angle-range FROM,TO  distances from the tip where a crack's angle is fitted\n"
+    "                       (default: 2 and 12 horizons)\n"
     "  --no-plot            skip load_curve.png (no matplotlib needed)\n"
     "  --partial            postprocess a run that did not finish (status 'running': it crashed\n"
     "                       or is still running), up to its last snapshot\n"
@@ -57,7 +65,8 @@ const char* kUsage =
 int main(int argc, char** argv) {
   const mppm::CommandLineSpec spec{"mppm-postprocess",
                                    kUsage,
-                                   {"-o", "--fields", "--times", "--warp-scale", "--compression"},
+                                   {"-o", "--fields", "--times", "--warp-scale", "--compression", "--crack-tip",
+                                    "--crack-direction", "--crack-angle-range"},
                                    {"--figures", "--partial", "--no-plot", "--force"}};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) -> int {
     using mppm::InputError;
@@ -98,6 +107,9 @@ int main(int argc, char** argv) {
       else
         throw InputError("--compression: '" + *kind + "' (expected zlib, lz4 or none)");
     }
+    mppm::post::parse_crack_angle_options(
+        {cl.all_values("--crack-tip"), cl.all_values("--crack-direction"), cl.option("--crack-angle-range")},
+        options.crack_angle);
     try {
       const auto result = mppm::post::postprocess_run(options);
       for (const auto& note : result.notes) std::cerr << "mppm-postprocess: note: " << note << "\n";

@@ -22,6 +22,7 @@
 #include "common/snapshot_file.hpp"
 #include "common/units.hpp"
 #include "postprocess/boundary_layer_mask.hpp"
+#include "postprocess/crack_angle.hpp"
 #include "postprocess/crack_metrics.hpp"
 #include "postprocess/derived_fields.hpp"
 #include "postprocess/load_curve.hpp"
@@ -443,6 +444,63 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
   }
 }
 
+// Given crack tips need a 2-D run with damage and must lie in the body: checked before anything
+// is written.
+void check_crack_angle_options(const CrackAngleSettings& settings, const RunDirectory& run, const PointGeometry& points,
+                               bool has_damage) {
+  if (settings.tips.empty() && !settings.range_from) return;
+  if (!has_damage || run.info.dimension != 2)
+    throw InputError(
+        "--crack-tip, --crack-direction and --crack-angle-range need a 2-D run with a damage field (crack "
+        "angles are measured in 2-D runs only)");
+  check_crack_tips_in_body(settings.tips, points.x, points.y, points.z, points.body, run.horizon);
+}
+
+JsonValue json_vector(const Vector3& v) {
+  auto array = JsonValue::array();
+  for (double c : v) array.push(c);
+  return array;
+}
+
+void set_crack_angle_entries(JsonValue& summary, const CrackAngleResult& result) {
+  auto angles = JsonValue::array(), details = JsonValue::array();
+  for (const auto& c : result.cracks) {
+    angles.push(c.angle_deg);
+    auto crack = JsonValue::object();
+    crack.set("tip_index", static_cast<std::uint64_t>(c.tip_index));
+    crack.set("crack_index", static_cast<std::uint64_t>(c.crack_index));
+    crack.set("tip_m", json_vector(c.tip.position));
+    crack.set("precrack_direction", json_vector(c.tip.direction));
+    crack.set("signed_angle_deg", c.signed_angle_deg);
+    crack.set("angle_deg", c.angle_deg);
+    crack.set("fit_point_m", json_vector(c.fit_point));
+    crack.set("fit_direction", json_vector(c.fit_direction));
+    crack.set("points", static_cast<std::uint64_t>(c.points));
+    crack.set("range_from_m", result.range_from);
+    crack.set("range_to_m", result.range_to);
+    details.push(crack);
+  }
+  summary.set("crack_angle_deg", angles);
+  summary.set("crack_angles", details);
+}
+
+// Crack angles at the pre-crack tips (crack_angle.hpp) between the first and the last snapshot,
+// with the crack tracker's threshold and free-surface points.
+void add_crack_angle_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
+                             const PointGeometry& points, const std::optional<CrackTracker>& crack,
+                             CrackAngleSettings settings) {
+  if (!crack) return;
+  settings.spacing = run.spacing;
+  settings.horizon = run.horizon;
+  settings.damage_threshold = crack->damage_threshold();
+  const auto damage_of = [](const SnapshotEntry& entry) { return read_snapshot(entry.path).find("damage")->data; };
+  const CrackAngleResult result =
+      measure_crack_angles({points.x, points.y, points.z, points.body, crack->near_boundary()},
+                           damage_of(run.info.snapshots.front()), damage_of(run.info.snapshots.back()), settings);
+  for (const auto& note : result.notes) notes.push_back("crack angle: " + note);
+  if (!result.tips.empty()) set_crack_angle_entries(summary, result);
+}
+
 }  // namespace
 
 PostprocessResult postprocess_run(const PostprocessOptions& options) {
@@ -455,11 +513,12 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   FirstSnapshot first = read_first_snapshot(run);
   const std::vector<std::string> figure_fields = choose_figure_fields(options.figure_fields, first);
   const std::vector<std::size_t> frames_for_figures = figure_frames(options.figure_times, run.info.snapshots);
+  const PointGeometry points = point_geometry(run.reference);
+  const bool has_damage = first.snapshot.find("damage") != nullptr;
+  check_crack_angle_options(options.crack_angle, run, points, has_damage);
   prepare_post_directory(options);
   const fs::path post(options.output_directory);
 
-  const PointGeometry points = point_geometry(run.reference);
-  const bool has_damage = first.snapshot.find("damage") != nullptr;
   std::optional<CrackTracker> crack = crack_tracker(run, points, has_damage && run.info.dimension == 2);
   const SeriesResult series = write_series(run, first, options, crack, notes);
   result.frames = series.entries.size();
@@ -468,6 +527,7 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   JsonValue summary = run_summary(run, series.entries.size(), first.array_names, peak);
   add_shear_band_metrics(summary, notes, run, points, series);
   add_crack_metrics(summary, notes, run, crack, has_damage);
+  add_crack_angle_metrics(summary, notes, run, points, crack, options.crack_angle);
   auto note_array = JsonValue::array();
   for (const auto& note : notes) note_array.push(note);
   summary.set("notes", note_array);

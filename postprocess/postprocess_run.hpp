@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "postprocess/crack_angle.hpp"
 #include "postprocess/json_value.hpp"
 #include "postprocess/vtu_series_writer.hpp"
 
@@ -24,6 +25,9 @@ struct PostprocessOptions {
   std::vector<std::string> figure_fields;  // empty = damage, plastic_shear_strain, rotation (those present)
   std::vector<std::string> figure_times;   // texts with units ("20 us"); {"all"}; empty = last snapshot
   double warp_scale = 1.0;
+  // Crack angle (--crack-tip, --crack-direction, --crack-angle-range): the tips and the range;
+  // spacing and horizon come from the run.
+  CrackAngleSettings crack_angle;
 };
 
 struct PostprocessResult {

@@ -4,11 +4,13 @@ set(MPPM_TEST_LIBS mppm_postprocess)
 mppm_add_gtest(test_post_metrics unit
   unit/test_post_shear_band.cpp
   unit/test_post_crack.cpp
+  unit/test_post_crack_angle.cpp
   unit/test_post_fields.cpp
 )
 mppm_add_gtest(test_post_stage unit
   unit/test_post_output.cpp
   unit/test_post_bad_input.cpp
+  unit/test_post_crack_angle_stage.cpp
   unit/test_post_run_fixture.cpp
 )
 add_dependencies(test_post_stage mppm-postprocess)

@@ -1,0 +1,91 @@
+// The crack angle of docs/stages.md "Metrics": the angle between each crack that leaves a
+// pre-crack tip and the pre-crack direction (Kalthoff-Winkler: ~60-70 degrees; the crack
+// branching plate: ~0 before it branches). The method is postprocess/README.md "Crack angle":
+// - tips and directions: from the pre-crack (the crack path of the first snapshot: damage >=
+//   the threshold), one principal axis per connected part, an end of the axis away from the free
+//   surface is a tip; or given (--crack-tip, --crack-direction) for notches cut out of the body;
+// - per tip, the crack points of the last snapshot that are new, connected to the tip, in a
+//   ring of distances [from, to] around it and not on the notch flanks; each connected part of
+//   them long enough is one crack, fitted by a straight line (total least squares).
+// 2-D runs only (like the other crack metrics).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mppm::post {
+
+using Vector3 = std::array<double, 3>;
+
+// A pre-crack tip: its position [m] and the unit direction of the pre-crack past it (from the
+// pre-crack into the body).
+struct CrackTipSpec {
+  Vector3 position{};
+  Vector3 direction{};
+};
+
+struct CrackAngleSettings {
+  double spacing = 0.0;            // dx [m]
+  double horizon = 0.0;            // delta [m]
+  double damage_threshold = 0.35;  // crack path: damage >= this (as the crack tracker)
+  // Ring of distances from the tip [m]; unset: 2 delta and 12 delta.
+  std::optional<double> range_from, range_to;
+  std::vector<CrackTipSpec> tips;  // given tips; empty: found on the pre-crack
+};
+
+// The lattice the angles are measured on: positions [m] (z zero in 2-D), the body points
+// (nonzero; layers excluded) and the body points within 2 dx of the free surface
+// (CrackTracker::near_boundary()).
+struct CrackAngleLattice {
+  const std::vector<double>& x;
+  const std::vector<double>& y;
+  const std::vector<double>& z;
+  const std::vector<char>& include;
+  const std::vector<char>& near_boundary;
+};
+
+// One crack leaving one tip.
+struct CrackAngle {
+  std::size_t tip_index = 0;    // into CrackAngleResult::tips
+  std::size_t crack_index = 0;  // among the cracks of this tip (by increasing signed angle)
+  CrackTipSpec tip;
+  double signed_angle_deg = 0;  // from the pre-crack direction to the crack, counter-clockwise positive, (-180, 180]
+  double angle_deg = 0;         // |signed_angle_deg|
+  Vector3 fit_point{};          // the centroid of the points fitted [m]
+  Vector3 fit_direction{};      // unit, pointing away from the tip
+  std::size_t points = 0;       // crack points fitted
+};
+
+struct CrackAngleResult {
+  std::vector<CrackTipSpec> tips;  // in the order of the output (see measure_crack_angles)
+  std::vector<CrackAngle> cracks;  // by tip, then by increasing signed angle
+  double range_from = 0, range_to = 0;
+  std::vector<std::string> notes;  // tips without a crack, pre-crack parts without a tip, ...
+};
+
+// Crack angles between the first snapshot's damage (the pre-crack) and the last one's.
+// Tips found on the pre-crack are ordered by y, then x (bottom to top); given tips keep their
+// order. Throws std::invalid_argument on arrays of different lengths or a bad setting.
+CrackAngleResult measure_crack_angles(const CrackAngleLattice& lattice, const std::vector<double>& first_damage,
+                                      const std::vector<double>& last_damage, const CrackAngleSettings& settings);
+
+// The command-line options of the crack angle, as typed.
+struct CrackAngleOptionTexts {
+  std::vector<std::string> tips;        // --crack-tip X,Y[,Z] (repeatable)
+  std::vector<std::string> directions;  // --crack-direction ANGLE | DX,DY[,DZ] (once, or once per tip)
+  std::optional<std::string> range;     // --crack-angle-range FROM,TO
+};
+
+// Parses them into `settings` (tips, range). Throws InputError naming the option, the value and
+// what was expected.
+void parse_crack_angle_options(const CrackAngleOptionTexts& texts, CrackAngleSettings& settings);
+
+// Given tips must lie within the bounding box of the body points (`include` nonzero), grown by
+// `margin`, and in the x-y plane in a 2-D run. Throws InputError naming the tip and the box.
+void check_crack_tips_in_body(const std::vector<CrackTipSpec>& tips, const std::vector<double>& x,
+                              const std::vector<double>& y, const std::vector<double>& z,
+                              const std::vector<char>& include, double margin);
+
+}  // namespace mppm::post
