@@ -11,3 +11,7 @@ target_link_libraries(mppm-damage-calibration PRIVATE mppm_verification_problems
 # mppm-bench-checkpoint: bytes and seconds of one checkpoint of a 1-million-point 3-D model.
 add_executable(mppm-bench-checkpoint ${CMAKE_CURRENT_LIST_DIR}/bench_checkpoint.cpp)
 target_link_libraries(mppm-bench-checkpoint PRIVATE mppm_solver mppm_warnings)
+# mppm-crack-initiation: crack start under a stress wave against Freund's prediction, per horizon and
+# calibration (workflows/crack-initiation). Uses the verification problems' stress-wave plate.
+add_executable(mppm-crack-initiation ${CMAKE_CURRENT_LIST_DIR}/crack_initiation.cpp)
+target_link_libraries(mppm-crack-initiation PRIVATE mppm_verification_problems mppm_solver mppm_warnings)

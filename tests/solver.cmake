@@ -19,6 +19,7 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_solver_layer_shear.cpp
   verification/test_solver_energy_balance.cpp
   verification/test_solver_crack_energy.cpp
+  verification/test_solver_crack_initiation.cpp
 )
 # The energies are computed without the force kernel's fused multiply-adds only if the two files
 # share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).

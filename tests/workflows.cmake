@@ -17,3 +17,12 @@ set_tests_properties(workflows.quickstart_end_to_end PROPERTIES LABELS "regressi
 add_test(NAME workflows.shear_band_quick
   COMMAND sh -c "make -s -C '${PROJECT_SOURCE_DIR}/workflows/shear-band' clean OUT='${CMAKE_BINARY_DIR}/workflow-runs/shear-band-quick' && make -j2 -C '${PROJECT_SOURCE_DIR}/workflows/shear-band' quick MPPM_BIN='${CMAKE_BINARY_DIR}/bin' OUT='${CMAKE_BINARY_DIR}/workflow-runs/shear-band-quick'")
 set_tests_properties(workflows.shear_band_quick PROPERTIES LABELS "regression" TIMEOUT 600)
+
+# The crack-initiation case (workflows/crack-initiation/README.md) in its quick form: the coarse level
+# (dx = 1 mm) with each calibration through mppm-crack-initiation, then check_case.py --quick: the
+# wave's arrival, the first break at the tip within the horizon band of Freund's start time, the order
+# of the calibrations, the energy balance. Three runs of about 140-160 steps: 17-35 s measured with the
+# 2 cores shared (most of it the model build).
+add_test(NAME workflows.crack_initiation_quick
+  COMMAND sh -c "make -s -C '${PROJECT_SOURCE_DIR}/workflows/crack-initiation' clean OUT='${CMAKE_BINARY_DIR}/workflow-runs/crack-initiation-quick' && make -C '${PROJECT_SOURCE_DIR}/workflows/crack-initiation' quick MPPM_BIN='${CMAKE_BINARY_DIR}/bin' OUT='${CMAKE_BINARY_DIR}/workflow-runs/crack-initiation-quick' THREADS=2")
+set_tests_properties(workflows.crack_initiation_quick PROPERTIES LABELS "regression" TIMEOUT 300)
