@@ -81,21 +81,26 @@ std::optional<std::vector<CrackArrival>> read_crack_path_table(const std::string
   return arrivals;
 }
 
-std::vector<double> crack_frame_times(const std::vector<CrackArrival>& arrivals, double first, double last,
-                                      double bin) {
-  std::vector<double> times{first};
+std::vector<double> crack_frame_times(const std::vector<CrackArrival>& arrivals, double first, double last, double bin,
+                                      double hold) {
+  std::vector<double> changes{first};
   auto bin_of = [&](double t) { return bin > 0.0 ? std::ceil((t - first) / bin) : 0.0; };
   for (std::size_t k = 0; k < arrivals.size(); ++k) {
     const double t = arrivals[k].time;
     if (!(t > first) || t > last) continue;
     if (k + 1 < arrivals.size() && arrivals[k + 1].time == t) continue;  // the last row of this time
     // With bins, a change replaces the frame of an earlier change in its bin.
-    if (bin > 0.0 && times.size() > 1 && bin_of(times.back()) == bin_of(t))
-      times.back() = t;
+    if (bin > 0.0 && changes.size() > 1 && bin_of(changes.back()) == bin_of(t))
+      changes.back() = t;
     else
-      times.push_back(t);
+      changes.push_back(t);
   }
-  if (last > times.back()) times.push_back(last);
+  if (last > changes.back()) changes.push_back(last);
+  std::vector<double> times{first};
+  for (std::size_t k = 1; k < changes.size(); ++k) {
+    if (hold > 0.0 && changes[k] - hold > times.back()) times.push_back(changes[k] - hold);
+    times.push_back(changes[k]);
+  }
   return times;
 }
 
@@ -112,10 +117,11 @@ void add_table_frames(CrackTracker& tracker, const std::vector<CrackArrival>& ar
 CrackFrameSource add_crack_path_frames(CrackTracker& tracker, const std::vector<CrackArrival>& arrivals, double first,
                                        double last, double time_step) {
   CrackFrameSource source{"crack_path table", time_step, 0};
-  std::vector<double> times = crack_frame_times(arrivals, first, last);
+  std::vector<double> times = crack_frame_times(arrivals, first, last, 0.0, time_step);
   if (times.size() > kMaxCrackTableFrames) {
-    source.resolution_s = (last - first) / static_cast<double>(kMaxCrackTableFrames);
-    times = crack_frame_times(arrivals, first, last, source.resolution_s);
+    // Half as many bins as frames: each change may bring a frame of the path before it.
+    source.resolution_s = (last - first) / static_cast<double>(kMaxCrackTableFrames / 2);
+    times = crack_frame_times(arrivals, first, last, source.resolution_s, time_step);
   }
   add_table_frames(tracker, arrivals, times);
   source.frames = times.size();

@@ -29,9 +29,13 @@ std::optional<std::vector<CrackArrival>> read_crack_path_table(const std::string
 // pre-crack), then the times in (first, last] at which the crack path changed, and `last` (the
 // last snapshot's time) if the path did not change then. With `bin` > 0 the changes are taken in
 // bins (first + (k-1) bin, first + k bin] and only the last change of each bin gets a frame (it
-// holds every arrival of its bin), so that an event is dated at most `bin` late.
+// holds every arrival of its bin), so that an event is dated at most `bin` late. With `hold` > 0
+// (the time step) a change at t also gets a frame at t - hold, the last time the path was still
+// the one before: a path that stayed put for a while is then seen at both ends of that while
+// (the tip speed measures advances from the latest time a length was reached, as snapshots
+// taken at that time would).
 std::vector<double> crack_frame_times(const std::vector<CrackArrival>& arrivals, double first, double last,
-                                      double bin = 0.0);
+                                      double bin = 0.0, double hold = 0.0);
 
 // Feeds `tracker` the crack path at each of `times` (increasing): the points that arrived at or
 // before that time.
@@ -45,13 +49,14 @@ struct CrackFrameSource {
   std::size_t frames = 0;
 };
 
-// A table of more changes than this is taken in bins of (last - first) / kMaxCrackTableFrames
-// (crack_frame_times): each frame costs a shortest-path search over the crack path.
-inline constexpr std::size_t kMaxCrackTableFrames = 2000;
+// Frames beyond this are too many: the changes are then taken in bins of (last - first) /
+// (kMaxCrackTableFrames / 2) (crack_frame_times): each frame costs a shortest-path search over the
+// crack path (about 0.7 ms for the 900 crack points of the crack-branching case).
+inline constexpr std::size_t kMaxCrackTableFrames = 4000;
 
 // The tracker's frames from the table between the first and the last snapshot (first, last): at
-// every time the crack path changed, which dates events to the run's time step `time_step`, or in
-// bins when there are more than kMaxCrackTableFrames such times.
+// every time the crack path changed and the step before it (`time_step`, the run's), which dates
+// events to the time step, or in bins when that would be more than kMaxCrackTableFrames frames.
 CrackFrameSource add_crack_path_frames(CrackTracker& tracker, const std::vector<CrackArrival>& arrivals, double first,
                                        double last, double time_step);
 
