@@ -78,8 +78,9 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   p += 4 + 1;
   // no-fail, broken count, the previous evaluation's displacement and rotation and the sums of its
   // force / moment tensors with this one's (the bond work's trapezoid rule), the offsets of the bond pairs (the family
-  // volumes of the few points next to a pre-crack are left out)
-  if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8;
+  // volumes of the few points next to a pre-crack are left out), the crack-arrival flag (the
+  // arrivals themselves, 16 B per point on the crack path, are left out too)
+  if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8 + 1;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 2 * 8 + 1;  // plastic strain and wryness, ebar, dissipation, active
   e.bytes_per_point = p;
 

@@ -70,6 +70,7 @@ inline constexpr const char* resolved_scene = "scene.resolved.yaml";
 inline constexpr const char* log = "log.txt";
 inline constexpr const char* load = "load.csv";
 inline constexpr const char* energy = "energy.csv";
+inline constexpr const char* crack_path = "crack_path.csv";  // damage runs (common/crack_path.hpp)
 inline constexpr const char* run_info = "run_info.json";
 inline constexpr const char* reference = "reference.snap";
 inline constexpr const char* snapshot_dir = "snapshots";

@@ -210,13 +210,29 @@ CrackTracker::CrackTracker(std::vector<double> x, std::vector<double> y, std::ve
 }
 
 void CrackTracker::add_frame(double time, const std::vector<double>& damage) {
-  const std::size_t n = x_.size();
-  if (damage.size() != n) throw std::invalid_argument("CrackTracker: damage of wrong length");
+  if (damage.size() != x_.size()) throw std::invalid_argument("CrackTracker: damage of wrong length");
+  add_frame_of_nodes(time, cracked_points(include_, damage, settings_.damage_threshold, precrack_));
+}
+
+void CrackTracker::add_cracked_frame(double time, const std::vector<std::size_t>& cracked) {
+  std::vector<std::size_t> nodes;
+  nodes.reserve(cracked.size() + precrack_.size());
+  for (const std::size_t i : cracked) {
+    if (i >= x_.size()) throw std::invalid_argument("CrackTracker: cracked point out of range");
+    if (include_[i]) nodes.push_back(i);
+  }
+  nodes.insert(nodes.end(), precrack_.begin(), precrack_.end());  // as cracked_points does
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  add_frame_of_nodes(time, nodes);
+}
+
+// One frame of the crack path `nodes` (body points, in index order).
+void CrackTracker::add_frame_of_nodes(double time, const std::vector<std::size_t>& nodes) {
   if (!frames_.empty() && !(time > frames_.back().time))
     throw std::invalid_argument("CrackTracker: frames must be in increasing time");
   CrackFrame frame;
   frame.time = time;
-  const std::vector<std::size_t> nodes = cracked_points(include_, damage, settings_.damage_threshold, precrack_);
   frame.cracked_points = nodes.size();
 
   if (!have_reference_) {

@@ -1,7 +1,9 @@
 // Crack metrics of docs/stages.md "Metrics": crack start, branching and end times, the largest tip
 // speed and the grown crack length, from the damage field of a snapshot series.
-// Crack path = points with damage >= 0.35 (docs/theory.md section 7). The pre-crack is the cracked set
-// of the first snapshot (a run directory does not carry the notch geometry).
+// Crack path = points with damage >= 0.35 (kCrackDamageThreshold, docs/theory.md section 7). The
+// pre-crack is the cracked set of the first frame (a run directory does not carry the notch
+// geometry). Frames come from the snapshots' damage fields (add_frame) or from the solver's
+// crack-arrival table (add_cracked_frame, crack_path_table.hpp).
 // Tips: cracked points connected to the pre-crack whose path length along the crack (shortest
 // path through cracked points) is a local maximum within one horizon, clustered so that tips
 // closer than 2 horizons are one tip. Streaming (one frame at a time) so a million-point series
@@ -12,13 +14,15 @@
 #include <string>
 #include <vector>
 
+#include "common/crack_path.hpp"
+
 namespace mppm::post {
 
 struct CrackSettings {
-  double spacing = 0.0;            // dx [m]
-  double horizon = 0.0;            // delta [m]
-  double damage_threshold = 0.35;  // crack path: damage >= this
-  double stop_duration_s = 5e-6;   // "every tip stops for 5 us"
+  double spacing = 0.0;                             // dx [m]
+  double horizon = 0.0;                             // delta [m]
+  double damage_threshold = kCrackDamageThreshold;  // crack path: damage >= this
+  double stop_duration_s = 5e-6;                    // "every tip stops for 5 us"
   // Derived lengths (docs/stages.md): start when the leading tip advanced 2 dx; branching needs two
   // tips more than 2 delta apart; a tip "reaches a boundary" within 2 dx of it.
 };
@@ -56,6 +60,9 @@ class CrackTracker {
 
   // Frames in increasing time. The first frame's cracked set is the pre-crack.
   void add_frame(double time, const std::vector<double>& damage);
+  // The same with the crack path given as its points (any order; points that are not body points
+  // are left out, as add_frame leaves them out): the frames of the crack-arrival table.
+  void add_cracked_frame(double time, const std::vector<std::size_t>& cracked);
 
   CrackMetrics finish() const;
   // The damage at and above which a body point belongs to the crack path.
@@ -67,6 +74,7 @@ class CrackTracker {
   std::vector<double> x_, y_, z_;
   std::vector<char> include_;
   std::vector<char> near_boundary_;  // within 2 dx of the body's free surface
+  void add_frame_of_nodes(double time, const std::vector<std::size_t>& nodes);
   CrackSettings settings_;
   std::vector<std::size_t> precrack_;
   bool have_reference_ = false;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -24,6 +25,7 @@
 #include "postprocess/boundary_layer_mask.hpp"
 #include "postprocess/crack_angle.hpp"
 #include "postprocess/crack_metrics.hpp"
+#include "postprocess/crack_path_table.hpp"
 #include "postprocess/derived_fields.hpp"
 #include "postprocess/load_curve.hpp"
 #include "postprocess/pictures.hpp"
@@ -268,7 +270,7 @@ PointGeometry point_geometry(const Snapshot& reference) {
   return points;
 }
 
-// Crack tracking on the body points, if `track` (a 2-D run with a damage field).
+// Crack tracking on the body points, if `track` (a 2-D run with a damage field or a crack-arrival table).
 std::optional<CrackTracker> crack_tracker(const RunDirectory& run, const PointGeometry& points, bool track) {
   std::optional<CrackTracker> crack;
   if (track) {
@@ -426,10 +428,31 @@ void add_shear_band_metrics(JsonValue& summary, std::vector<std::string>& notes,
   }
 }
 
+// The frames of the crack tracker: from the crack-arrival table when the run has one, at the times
+// the crack path changed (the snapshots then fed it none); else from the snapshots' damage fields.
+CrackFrameSource crack_frame_source(std::optional<CrackTracker>& crack,
+                                    const std::optional<std::vector<CrackArrival>>& table, const RunDirectory& run) {
+  const auto& snapshots = run.info.snapshots;
+  if (crack && table)
+    return add_crack_path_frames(*crack, *table, snapshots.front().time, snapshots.back().time, run.info.time_step_s);
+  CrackFrameSource source{"snapshots", 0.0, snapshots.size()};
+  for (std::size_t k = 1; k < snapshots.size(); ++k)
+    source.resolution_s = std::max(source.resolution_s, snapshots[k].time - snapshots[k - 1].time);
+  // The difference of two snapshot times carries their rounding (2.500000000000061e-07 for a
+  // 0.25 us interval): 12 digits are the interval.
+  char digits[32];
+  std::snprintf(digits, sizeof digits, "%.12g", source.resolution_s);
+  source.resolution_s = std::strtod(digits, nullptr);
+  return source;
+}
+
 void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
-                       const std::optional<CrackTracker>& crack, bool has_damage) {
+                       const std::optional<CrackTracker>& crack, bool has_damage, const CrackFrameSource& source) {
   if (crack) {
     const CrackMetrics m = crack->finish();
+    summary.set("crack_metrics_source", source.name);
+    summary.set("crack_metrics_resolution_s", source.resolution_s);
+    summary.set("crack_metrics_frames", static_cast<std::uint64_t>(source.frames));
     summary.set("crack_start_time_s", m.start_time_s);
     summary.set("crack_branch_time_s", m.branch_time_s);
     summary.set("crack_end_time_s", m.end_time_s);
@@ -511,6 +534,7 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
 
   // Everything the options name is checked before anything is written.
   FirstSnapshot first = read_first_snapshot(run);
+  const auto crack_table = read_crack_path_table(run.path, run.reference.point_count);
   const std::vector<std::string> figure_fields = choose_figure_fields(options.figure_fields, first);
   const std::vector<std::size_t> frames_for_figures = figure_frames(options.figure_times, run.info.snapshots);
   const PointGeometry points = point_geometry(run.reference);
@@ -519,14 +543,17 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   prepare_post_directory(options);
   const fs::path post(options.output_directory);
 
-  std::optional<CrackTracker> crack = crack_tracker(run, points, has_damage && run.info.dimension == 2);
-  const SeriesResult series = write_series(run, first, options, crack, notes);
+  const bool crack_data = has_damage || crack_table.has_value();  // damage snapshots or the table
+  std::optional<CrackTracker> crack = crack_tracker(run, points, crack_data && run.info.dimension == 2);
+  std::optional<CrackTracker> no_tracker;  // the table gives the frames
+  const SeriesResult series = write_series(run, first, options, crack_table ? no_tracker : crack, notes);
+  const CrackFrameSource crack_source = crack_frame_source(crack, crack_table, run);
   result.frames = series.entries.size();
 
   const PeakLoad peak = write_load_curve(run, post, notes);
   JsonValue summary = run_summary(run, series.entries.size(), first.array_names, peak);
   add_shear_band_metrics(summary, notes, run, points, series);
-  add_crack_metrics(summary, notes, run, crack, has_damage);
+  add_crack_metrics(summary, notes, run, crack, crack_data, crack_source);
   add_crack_angle_metrics(summary, notes, run, points, crack, options.crack_angle);
   auto note_array = JsonValue::array();
   for (const auto& note : notes) note_array.push(note);

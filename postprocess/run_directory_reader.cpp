@@ -70,6 +70,7 @@ RunInfo read_run_info(const std::string& path) {
   info.bonds = optional_value<std::int64_t>(root, "bonds", 0);
   info.steps = optional_value<std::int64_t>(root, "steps", 0);
   info.time_s = optional_value<double>(root, "time_s", 0.0);
+  info.time_step_s = optional_value<double>(root, "time_step_s", 0.0);
   info.wall_seconds = optional_value<double>(root, "wall_seconds", 0.0);
   info.threads = optional_value<int>(root, "threads", 0);
   info.dimension = required<int>(root, "dimension", path);

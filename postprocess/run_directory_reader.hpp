@@ -23,6 +23,7 @@ struct RunInfo {
   std::string message;
   std::int64_t points = 0, bonds = 0, steps = 0, detached_points = 0;
   double time_s = 0.0, wall_seconds = 0.0;
+  double time_step_s = 0.0;
   int threads = 0;
   int dimension = 0;
   std::vector<std::string> effects;

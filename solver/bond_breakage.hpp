@@ -82,7 +82,10 @@ double family_breaking_energy(const PointData& points, const BondFamilies& bonds
 struct BreakageWorkspace {
   std::vector<std::int64_t> affected_index;  // per point: index into affected, -1 if not met
   std::vector<std::int64_t> breaking;        // bond entries breaking in this update
-  std::vector<std::size_t> affected, changed, next, detach, candidates, sorted;
+  std::vector<std::size_t> affected, changed, next, detach, candidates;
+  // After an update that broke bonds: the points whose lists lost bonds in it, sorted (the only
+  // points whose damage changed). Stale after an update that broke none.
+  std::vector<std::size_t> sorted;
   std::vector<double> energy_before;
   std::vector<double> candidate_eigenvalue;  // the stability check's blocks, evaluated in parallel
   std::vector<std::uint8_t> was_detached;

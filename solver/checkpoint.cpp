@@ -102,6 +102,19 @@ void restore_broken_bonds(const CheckpointFile& file, BondFamilies& f) {
   f.neighbor.swap(saved);
 }
 
+constexpr const char* kArrivalPoints = "crack_arrival_points";
+constexpr const char* kArrivalTimes = "crack_arrival_times";
+
+void restore_crack_arrivals(const CheckpointFile& file, Model& model) {
+  if (!file.has(kArrivalPoints) || !file.has(kArrivalTimes))
+    throw InputError(file.path +
+                     ": the checkpoint of this damage run has no crack-arrival table (it was written by an "
+                     "mppm-solve without crack_path.csv); it cannot be continued bit for bit: run it again from "
+                     "the start");
+  model.crack_arrivals.restore(file.array<std::uint64_t>(kArrivalPoints), file.array<double>(kArrivalTimes),
+                               model.points.owned, file.path);
+}
+
 template <class T>
 void add_vector(Fnv1a& h, const std::vector<T>& v) {
   const std::uint64_t n = v.size();
@@ -150,6 +163,10 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   const std::vector<std::uint64_t> model_counters{model.broken_bonds, model.detached_points,
                                                   model.unstable_detached_points, model.energy_detached_points};
   const std::vector<double> model_scalars{model.last_fracture_dissipation};
+  if (model.effects.damage) {
+    arrays.push_back(checkpoint_array(kArrivalPoints, model.crack_arrivals.points()));
+    arrays.push_back(checkpoint_array(kArrivalTimes, model.crack_arrivals.times()));
+  }
   const std::vector<double> schedule{loop.next_row, loop.next_snapshot, loop.next_checkpoint, loop.worst_balance};
   const std::vector<double> guard{loop.guard.scale, loop.guard.last_plastic, loop.guard.last_fracture,
                                   loop.guard.created_plastic, loop.guard.created_fracture};
@@ -215,6 +232,7 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
   model.unstable_detached_points = counters[2];
   model.energy_detached_points = counters[3];
   model.last_fracture_dissipation = scalars<double>(file, "model_scalars", 1)[0];
+  if (model.effects.damage) restore_crack_arrivals(file, model);
 
   RunLoopState loop;
   loop.time_step = integrator[2];

@@ -15,7 +15,10 @@
 //  - damage: bond flags and bond work, the shape tensors and stabilization factors (breaks change
 //    them), detached and no-fail flags, the last evaluation's displacement, rotation and force /
 //    moment tensors (the bond-work increment starts from them), the broken-bond and detachment
-//    counters.
+//    counters, and the crack arrivals (the points on the crack path and when each got there: a
+//    restart writes crack_path.csv from them). A damage checkpoint without them (written before
+//    the table existed) is refused with a message: the times of the points already on the path
+//    cannot be recovered.
 // Not stored: what the points file and the scene rebuild identically (positions, volumes, regions,
 // families, pre-crack cuts, the start-up shape tensors without damage) and scratch that every step
 // rewrites before reading it (the per-point energies, the start-of-step copies of the integrator).

@@ -99,7 +99,7 @@ void ExplicitDynamics::compute_loads_and_forces(bool with_energy, bool advance) 
   PointData& p = model_.points;
   const int D = p.dimension;
   if (advance) {
-    model_.advance_internal_forces(dt_, with_energy);
+    model_.advance_internal_forces(dt_, time_, with_energy);
   } else {
     model_.compute_internal_forces(with_energy);
   }
@@ -171,6 +171,8 @@ void ExplicitDynamics::initialize() {
   steps_ = 0;
   conditions_.prescribe(model_.points, time_);
   compute_loads_and_forces(true, false);
+  // The points the pre-crack cuts put on the crack path are on it from the start.
+  if (model_.effects.damage) model_.crack_arrivals.start(model_.points, model_.bonds, time_);
   energy_.external_work = 0.0;
   energy_.plastic_dissipation = 0.0;
   energy_.fracture_dissipation = 0.0;

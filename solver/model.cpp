@@ -125,7 +125,7 @@ Model build_model(PointCloud&& cloud, const ModelOptions& o) {
   return complete_model(std::move(points), cloud, o);
 }
 
-void Model::advance_internal_forces(double dt, bool with_energy) {
+void Model::advance_internal_forces(double dt, double end_time, bool with_energy) {
   const StepAdvance step{viscoplastic_model.get(), dt};
   (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, &step);
   if (effects.damage) {
@@ -136,6 +136,7 @@ void Model::advance_internal_forces(double dt, bool with_energy) {
     unstable_detached_points += u.unstable_detached;
     energy_detached_points += u.energy_detached;
     last_fracture_dissipation = u.released_energy;
+    if (u.broken_pairs > 0) crack_arrivals.update(points, bonds, breakage_workspace.sorted, end_time);
   }
 }
 

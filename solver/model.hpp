@@ -10,6 +10,7 @@
 #include "solver/bond_breakage.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
+#include "solver/crack_arrivals.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
@@ -45,6 +46,9 @@ struct Model {
   std::size_t unstable_detached_points = 0;  // of detached_points: detached for the time step's sake
   std::size_t energy_detached_points = 0;    // of detached_points: losing bonds raised their energy
   BreakageWorkspace breakage_workspace;
+  // Damage: when each point reached the crack path (crack_path.csv); started by
+  // ExplicitDynamics::initialize, advanced by advance_internal_forces.
+  CrackArrivals crack_arrivals;
   // Damage: a body point whose stiffness block exceeds this is detached (point_stability.hpp);
   // 0 = no such check. Set by set_breakage_time_step.
   double block_eigenvalue_limit = 0.0;
@@ -60,10 +64,11 @@ struct Model {
   // The same at the end of a time step of length dt, with the history advanced from the start of
   // the step: the viscoplastic state by the return map (points.plastic_dissipation set), and with
   // damage the bond work, the bonds that reach the critical work broken (points.bonds_broken and
-  // last_fracture_dissipation set) and the shape tensors of their points refreshed for the next step.
+  // last_fracture_dissipation set) and the shape tensors of their points refreshed for the next step;
+  // the points the breaks put on the crack path arrive at `end_time`, the step's end (crack_arrivals).
   // Call it once per step, after the previous evaluation (the step's start); without these
   // effects it is compute_internal_forces.
-  void advance_internal_forces(double dt, bool with_energy);
+  void advance_internal_forces(double dt, double end_time, bool with_energy);
   // Damage: the largest time step a damage run may use, given the start-up critical step: lopsided
   // families left by breaks raise the highest frequency (point_stability.hpp), so it is
   // min(critical, 2 / sqrt(damaged_frequency_ratio x largest point block)); without damage, critical.

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/atomic_file.hpp"
+#include "common/crack_path.hpp"
 #include "common/input_error.hpp"
 #include "common/json_quote.hpp"
 #include "common/output_directory.hpp"
@@ -114,11 +115,28 @@ void RunWriter::add_load_row(const std::vector<double>& values) { load_csv_ += c
 void RunWriter::add_energy_row(const std::vector<double>& values) { energy_csv_ += csv_row(values); }
 void RunWriter::log(const std::string& line) { log_ += line + '\n'; }
 
+void RunWriter::start_crack_path_table() {
+  std::string header;
+  for (const std::string& c : run_files::crack_path_columns()) header += (header.empty() ? "" : ",") + c;
+  crack_path_csv_ = header + '\n';
+  crack_path_rows_ = 0;
+}
+
+void RunWriter::add_crack_path_row(std::uint64_t point, const std::array<double, 3>& position, double time) {
+  std::string& table = crack_path_csv_.value();
+  table += std::to_string(point);
+  for (const double x : position) table += ',' + format_number(x);
+  table += ',' + format_number(time) + '\n';
+  ++crack_path_rows_;
+}
+
 void RunWriter::flush(const RunInfo& info) {
   make_snapshots_durable();
   write_file_atomically(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
   write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
   write_file_atomically(path(run_layout::log), [&](std::ostream& out) { out << log_; });
+  if (crack_path_csv_)
+    write_file_atomically(path(run_layout::crack_path), [&](std::ostream& out) { out << *crack_path_csv_; });
   std::string j = "{\n";
   j += "  \"status\": " + json_quote(info.status) + ",\n";
   j += "  \"message\": " + json_quote(info.message) + ",\n";

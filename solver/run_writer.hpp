@@ -1,11 +1,14 @@
 // The run directory of mppm-solve (docs/stages.md, common/run_directory.hpp, common/snapshot_file.hpp):
-// resolved scene, reference points, snapshots, load.csv, energy.csv, log.txt, run_info.json.
+// resolved scene, reference points, snapshots, load.csv, energy.csv, log.txt, run_info.json, and
+// with damage crack_path.csv (common/crack_path.hpp).
 // Tables and the log are kept in memory and rewritten atomically (flush) after snapshots, at most
 // once a second of wall time, and at checkpoints, stops and the end (solve_run.cpp), so no file is
 // ever half-written under its final name. A snapshot is renamed to its name as soon as it is
 // written, and made durable (fsync) in a batch by the next flush, before run_info.json lists it.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +69,11 @@ class RunWriter {
   void add_load_row(const std::vector<double>& values);
   void add_energy_row(const std::vector<double>& values);
   void log(const std::string& line);  // also kept for log.txt
+  // Damage runs: crack_path.csv, rewritten by every flush (before run_info.json, so that it covers
+  // at least the time run_info.json gives). Rows are only added: a point's row never changes.
+  void start_crack_path_table();
+  void add_crack_path_row(std::uint64_t point, const std::array<double, 3>& position, double time);
+  std::size_t crack_path_rows() const { return crack_path_rows_; }
 
   // Makes the snapshots written since the last flush durable, then rewrites load.csv, energy.csv,
   // log.txt and run_info.json (each atomically). Throws InputError naming a file that fails.
@@ -91,6 +99,8 @@ class RunWriter {
  private:
   std::string directory_;
   std::string load_csv_, energy_csv_, log_;
+  std::optional<std::string> crack_path_csv_;  // damage runs only
+  std::size_t crack_path_rows_ = 0;
   std::vector<SnapshotRecord> snapshots_;
   // Snapshots complete under their names but not yet fsynced (listed after the next flush).
   std::vector<SnapshotRecord> not_yet_durable_;

@@ -315,6 +315,7 @@ class RunDriver {
   void update_info(const std::string& status, const std::string& message);
   void snapshot();
   void write_snapshot();
+  void flush_files();
   [[noreturn]] void fail(const std::string& reason);
   void checkpoint();
   RunLoopState loop_state() const;
@@ -406,6 +407,7 @@ void RunDriver::open_run_directory() {
     if (checkpointing_) identity_.scene_fingerprint = fnv1a(resolved);
     writer().write_reference(model().points);
   }
+  if (scene_.effects.damage) writer().start_crack_path_table();
   fill_run_info();
 }
 
@@ -528,7 +530,7 @@ void RunDriver::restore_from_checkpoint() {
   first_step_ = dynamics().steps() + 1;
   last_checkpoint_step_ = step;
   update_info("running", "");
-  writer().flush(info_);
+  flush_files();
 }
 
 // A new run: the rows and the snapshot of t = 0.
@@ -585,7 +587,7 @@ void RunDriver::stop_on_interruption(std::int64_t s, bool snapshot_written) {
                                               : std::string());
   writer().log(message);
   update_info("interrupted", message);
-  writer().flush(info_);
+  flush_files();
   result_.interrupted = true;
   result_.message = message;
 }
@@ -613,7 +615,7 @@ void RunDriver::finish_completed() {
   writer().log("completed " + std::to_string(plan_.steps) + " steps in " + log_number(info_.wall_seconds) +
                " s, final balance error " + log_number(dynamics().balance_error()) +
                (scene_.effects.damage ? ", " + damage_summary() : std::string()));
-  writer().flush(info_);
+  flush_files();
 }
 
 SolveResult RunDriver::result() const {
@@ -650,6 +652,23 @@ void RunDriver::update_info(const std::string& status, const std::string& messag
   info_.detached_points = model().detached_points;
 }
 
+// The tables, the log and run_info.json rewritten (RunWriter::flush), with the crack arrivals since
+// the last rewrite added to crack_path.csv first.
+void RunDriver::flush_files() {
+  if (scene_.effects.damage) {
+    const CrackArrivals& arrivals = model().crack_arrivals;
+    const PointData& p = model().points;
+    const auto D = static_cast<std::size_t>(p.dimension);
+    for (std::size_t k = writer().crack_path_rows(); k < arrivals.size(); ++k) {
+      const std::uint64_t i = arrivals.points()[k];
+      std::array<double, 3> x{0.0, 0.0, 0.0};
+      for (std::size_t c = 0; c < D; ++c) x[c] = p.position[i * D + c];
+      writer().add_crack_path_row(i, x, arrivals.times()[k]);
+    }
+  }
+  writer().flush(info_);
+}
+
 void RunDriver::write_snapshot() {
   writer().write_snapshot(model().dimension(), dynamics().steps(), dynamics().time(), model().points.owned,
                           snapshot_sources(model(), scene_.output.fields));
@@ -661,7 +680,7 @@ void RunDriver::snapshot() {
   const auto now = std::chrono::steady_clock::now();
   if (last_flush_ && now - *last_flush_ < kTableFlushInterval) return;
   update_info("running", "");
-  writer().flush(info_);
+  flush_files();
   last_flush_ = now;
 }
 
@@ -673,7 +692,7 @@ void RunDriver::fail(const std::string& reason) {
   if (scene_.effects.damage) writer().log("at the failure: " + damage_summary());
   writer().log(message);
   update_info("numerical_failure", message);
-  writer().flush(info_);
+  flush_files();
   throw NumericalFailure(options_.run_directory + ": " + message);
 }
 
@@ -701,7 +720,7 @@ RunLoopState RunDriver::loop_state() const {
 // previous checkpoint intact.
 void RunDriver::checkpoint() {
   update_info("running", "");
-  writer().flush(info_);
+  flush_files();
   last_flush_ = std::chrono::steady_clock::now();
   const RunLoopState loop = loop_state();
   ++checkpoints_written_;
@@ -724,7 +743,7 @@ void RunDriver::stop_on_checkpoint_write_error(const InputError& e) {
   writer().log(message);
   update_info("write_error", message);
   try {
-    writer().flush(info_);
+    flush_files();
   } catch (const InputError&) {
     // The disk that refused the checkpoint may refuse the tables too: the message above is
     // what matters, and the tables of the last flush are intact.

@@ -20,3 +20,7 @@ mppm_add_gtest(test_post_paraview unit
   unit/test_post_run_fixture.cpp
 )
 add_dependencies(test_post_paraview mppm-postprocess)
+# The crack-arrival table from the solver (in-process runs of a notched bar) to the crack metrics
+# and the summary of mppm-postprocess's library call.
+set(MPPM_TEST_LIBS mppm_solver mppm_postprocess)
+mppm_add_gtest(test_crack_path_table unit unit/test_crack_path_table.cpp)

@@ -103,10 +103,12 @@ SolveOptions options_for(const std::string& dir) {
   return o;
 }
 
-// Same snapshot files (names and bytes), load.csv and energy.csv.
+// Same snapshot files (names and bytes), load.csv, energy.csv and, with damage, crack_path.csv.
 void expect_same_results(const std::string& reference, const std::string& run) {
   EXPECT_EQ(read_text(reference + "/" + run_layout::load), read_text(run + "/" + run_layout::load));
   EXPECT_EQ(read_text(reference + "/" + run_layout::energy), read_text(run + "/" + run_layout::energy));
+  EXPECT_EQ(fs::exists(reference + "/" + run_layout::crack_path), fs::exists(run + "/" + run_layout::crack_path));
+  EXPECT_EQ(read_text(reference + "/" + run_layout::crack_path), read_text(run + "/" + run_layout::crack_path));
   auto names = [](const std::string& dir) {
     std::set<std::string> out;
     for (const auto& e : fs::directory_iterator(fs::path(dir) / run_layout::snapshot_dir))
@@ -181,10 +183,16 @@ TEST(CheckpointRestart, ElasticMicropolarRunContinuesBitForBit) {
 TEST(CheckpointRestart, DamageRunContinuesBitForBit) {
   const Case c = damage_bar();
   check_restart_is_bit_for_bit(c, "damage");
-  // The comparison is on a run that did break bonds.
+  // The comparison is on a run that did break bonds, and put points on the crack path before and
+  // after the interruption near the middle (crack_path.csv: point, x, y, z, time).
   const auto energy = read_csv_rows(directory_of("damage_reference") + "/" + run_layout::energy);
   ASSERT_FALSE(energy.empty());
   EXPECT_GT(energy.back()[6], 0.0);  // fracture_dissipation_J
+  const auto arrivals = read_csv_rows(directory_of("damage_reference") + "/" + run_layout::crack_path);
+  ASSERT_FALSE(arrivals.empty());
+  const double end = c.scene.time.end;
+  EXPECT_LT(arrivals.front()[4], 0.5 * end);
+  EXPECT_GT(arrivals.back()[4], 0.6 * end);
 }
 
 TEST(CheckpointRestart, ViscoplasticRunContinuesBitForBit) {

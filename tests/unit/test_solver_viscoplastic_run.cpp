@@ -92,7 +92,7 @@ void check_kernel_update_matches_material_point(int dimension) {
       for (int b = 0; b < D; ++b) m.points.rotation[i * R + a] += grad_w[a][b] * x[b];
   }
   const double dt = 1e-7;
-  m.advance_internal_forces(dt, true);
+  m.advance_internal_forces(dt, dt, true);
   const Snapshot s = make_snapshot(m, {"stress", "plastic_strain", "equivalent_plastic_strain"}, 1, dt);
   const auto& stress = s.find("stress")->data;
   const auto* model = m.viscoplastic_model.get();

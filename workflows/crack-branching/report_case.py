@@ -25,11 +25,16 @@ def us(value):
     return "-" if value is None else f"{value * 1e6:.4g}"
 
 
-def snapshot_interval(summary):
-    """Mean spacing of the run's snapshots [us] (the resolution of the crack event times)."""
-    if summary["snapshots"] < 2:
-        return "-"
-    return f"{(summary['last_time_s'] - summary['first_time_s']) / (summary['snapshots'] - 1) * 1e6:.3g}"
+def event_resolution(summary):
+    """The resolution of the crack event times [us] and where they come from: the time step with
+    the solver's crack-arrival table (crack_path.csv), the snapshot interval without it."""
+    resolution = summary.get("crack_metrics_resolution_s")
+    if resolution is None:  # a summary written before the postprocessor said it
+        if summary["snapshots"] < 2:
+            return "-"
+        resolution = (summary["last_time_s"] - summary["first_time_s"]) / (summary["snapshots"] - 1)
+    source = summary.get("crack_metrics_source", "snapshots")
+    return f"{resolution * 1e6:.3g} ({'table' if source == 'crack_path table' else source})"
 
 
 def main():
@@ -89,7 +94,7 @@ def main():
              f"{crack_case.traction(args.out, args.base) / 1e6:.4g} MPa on top and bottom ramped over t0; see README.md "
              "for the set-up and the methods.", "",
              "| run | solid fraction | t0 [us] | crack start [us] | branching [us] | end [us] | end reason | "
-             "largest tip speed [m/s] | Rayleigh speed [m/s] | crack length [mm] | max balance error | snapshot interval [us] | steps | threads | wall time [s] |",
+             "largest tip speed [m/s] | Rayleigh speed [m/s] | crack length [mm] | max balance error | event time resolution [us] | steps | threads | wall time [s] |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for run, s, info, ramp, balance, c_r in rows:
         speed = s.get("crack_tip_speed_max_m_per_s")
@@ -97,7 +102,7 @@ def main():
         lines.append(f"| {run} | {s['material']['solid_fraction']:g} | {ramp * 1e6:.4g} | {us(s.get('crack_start_time_s'))} | "
                      f"{us(s.get('crack_branch_time_s'))} | {us(s.get('crack_end_time_s'))} | {s.get('crack_end_reason') or '-'} | "
                      f"{'-' if speed is None else f'{speed:.0f}'} | {c_r:.0f} | {'-' if length is None else f'{length * 1e3:.1f}'} | "
-                     f"{balance:.2g} | {snapshot_interval(s)} | {info['steps']} | {info['threads']} | {info['wall_seconds']:.1f} |")
+                     f"{balance:.2g} | {event_resolution(s)} | {info['steps']} | {info['threads']} | {info['wall_seconds']:.1f} |")
     lines += ["", f"Wall time of the base run: **{base[2]['wall_seconds']:.1f} s** with {base[2]['threads']} threads "
               f"({base[2]['steps']} steps, {base[2]['points']} points, {base[2]['bonds']} bonds), on the machine that ran "
               "`make`.", "",
