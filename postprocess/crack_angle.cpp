@@ -199,11 +199,17 @@ std::vector<std::size_t> tips_reached(const CrackAngleLattice& l, const std::vec
   return reached;
 }
 
+// Damage spreading along the notch faces, not a crack leaving the tip: behind the tip and within
+// the flank width of the pre-crack line.
+bool on_flank(const TipRing& ring, const Vector2& p) {
+  const Vector2 r = p - ring.tip;
+  const double across = std::fabs(ring.direction.x() * r.y() - ring.direction.y() * r.x());
+  return r.dot(ring.direction) < 0 && across <= ring.flank_width;
+}
+
 // The ring points of the tip `t`: new crack points (not pre-crack) of the connected parts that
 // reach within the attach radius of the tip, at distances [from, to] from it, nearer to it than
-// to any other tip the same part reaches, and not flank damage (behind the tip and within the
-// flank width of the pre-crack line: damage spreading along the notch faces, not a crack
-// leaving the tip).
+// to any other tip the same part reaches, and not flank damage.
 std::vector<std::size_t> ring_points(const CrackAngleLattice& l, const std::vector<std::vector<std::size_t>>& parts,
                                      const std::vector<char>& in_precrack, const std::vector<Vector2>& tips,
                                      std::size_t t, const TipRing& ring, double attach) {
@@ -212,20 +218,39 @@ std::vector<std::size_t> ring_points(const CrackAngleLattice& l, const std::vect
     const std::vector<std::size_t> reached = tips_reached(l, part, tips, attach);
     if (std::find(reached.begin(), reached.end(), t) == reached.end()) continue;
     for (std::size_t i : part) {
-      const Vector2 r = position_of(l, i) - ring.tip;
-      const double distance = r.norm();
+      const double distance = (position_of(l, i) - ring.tip).norm();
       if (in_precrack[i] || distance < ring.from || distance > ring.to) continue;
       const bool nearest = std::none_of(reached.begin(), reached.end(), [&](std::size_t o) {
         return o != t && (position_of(l, i) - tips[o]).norm() < distance;
       });
-      const double along = r.dot(ring.direction);
-      const double across = std::fabs(ring.direction.x() * r.y() - ring.direction.y() * r.x());
-      const bool flank = along < 0 && across <= ring.flank_width;
-      if (nearest && !flank) ring_members.push_back(i);
+      if (nearest && !on_flank(ring, position_of(l, i))) ring_members.push_back(i);
     }
   }
   std::sort(ring_members.begin(), ring_members.end());
   return ring_members;
+}
+
+// Whether the crack leaving the tip reaches the outer radius: a connected part of the new crack
+// points (not pre-crack, not flank damage, nearer to this tip than to any other) that comes
+// within the attach radius of the tip and has a point at `to` or beyond. Linked through new
+// points only: damage that spreads from elsewhere along the pre-crack (at a notch mouth, say)
+// is not the crack leaving the tip.
+bool crack_reaches_outer_radius(const CrackAngleLattice& l, const std::vector<std::size_t>& new_crack,
+                                const std::vector<Vector2>& tips, const TipRing& ring, double attach, double link) {
+  std::vector<std::size_t> members;
+  for (std::size_t i : new_crack) {
+    const Vector2 p = position_of(l, i);
+    const double distance = (p - ring.tip).norm();
+    const bool nearest =
+        std::none_of(tips.begin(), tips.end(), [&](const Vector2& other) { return (p - other).norm() < distance; });
+    if (nearest && !on_flank(ring, p)) members.push_back(i);
+  }
+  const auto distance = [&](std::size_t i) { return (position_of(l, i) - ring.tip).norm(); };
+  for (const auto& part : connected_parts(l, members, link))
+    if (std::any_of(part.begin(), part.end(), [&](std::size_t i) { return distance(i) <= attach; }) &&
+        std::any_of(part.begin(), part.end(), [&](std::size_t i) { return distance(i) >= ring.to; }))
+      return true;
+  return false;
 }
 
 // The cracks of one tip: each connected part of its ring points at least 3 dx long along its
@@ -253,69 +278,139 @@ std::vector<CrackAngle> cracks_of_ring(const CrackAngleLattice& l, const std::ve
   return cracks;
 }
 
-void check_settings(const CrackAngleLattice& l, const std::vector<double>& first, const std::vector<double>& last,
-                    const CrackAngleSettings& s, double from, double to) {
+void check_lattice(const CrackAngleLattice& l, const std::vector<double>& first, const CrackAngleSettings& s,
+                   double from, double to) {
   const std::size_t n = l.x.size();
-  if (l.y.size() != n || l.z.size() != n || l.include.size() != n || l.near_boundary.size() != n || first.size() != n ||
-      last.size() != n)
+  if (l.y.size() != n || l.z.size() != n || l.include.size() != n || l.near_boundary.size() != n || first.size() != n)
     throw std::invalid_argument("measure_crack_angles: arrays of different lengths");
   if (!(s.spacing > 0) || !(s.horizon > 0))
     throw std::invalid_argument("measure_crack_angles: spacing and horizon must be positive");
   if (!(from >= 0) || !(to > from)) throw std::invalid_argument("measure_crack_angles: bad range");
 }
 
-}  // namespace
-
-CrackAngleResult measure_crack_angles(const CrackAngleLattice& l, const std::vector<double>& first_damage,
-                                      const std::vector<double>& last_damage, const CrackAngleSettings& settings) {
-  CrackAngleResult result;
-  const double delta = settings.horizon;
-  result.range_from = settings.range_from.value_or(kDefaultRangeFromInHorizons * delta);
-  result.range_to = settings.range_to.value_or(kDefaultRangeToInHorizons * delta);
-  check_settings(l, first_damage, last_damage, settings, result.range_from, result.range_to);
-
-  const std::vector<std::size_t> precrack = crack_points(l.include, first_damage, settings.damage_threshold);
-  if (!settings.tips.empty()) {
-    result.tips = settings.tips;
-  } else if (precrack.empty()) {
-    result.notes.push_back("no pre-crack in the first snapshot: give the tips with --crack-tip and --crack-direction");
-    return result;
-  } else {
-    result.tips = tips_of_precrack(l, precrack, settings, result.notes);
+// The tips of the result: given, or found on the pre-crack (with notes when there are none).
+std::vector<CrackTipSpec> choose_tips(const CrackAngleLattice& l, const std::vector<std::size_t>& precrack,
+                                      const CrackAngleSettings& settings, std::vector<std::string>& notes) {
+  if (!settings.tips.empty()) return settings.tips;
+  if (precrack.empty()) {
+    notes.push_back("no pre-crack in the first snapshot: give the tips with --crack-tip and --crack-direction");
+    return {};
   }
-  if (result.tips.empty()) {
-    result.notes.push_back(
+  std::vector<CrackTipSpec> tips = tips_of_precrack(l, precrack, settings, notes);
+  if (tips.empty())
+    notes.push_back(
         "the pre-crack has no tip (each part reaches the free surface at both ends or is too short): give "
         "the tips with --crack-tip and --crack-direction");
-    return result;
-  }
+  return tips;
+}
 
-  // The crack of the last snapshot, the pre-crack included, and its connected parts.
-  std::vector<char> in_precrack(l.x.size(), 0);
-  for (std::size_t i : precrack) in_precrack[i] = 1;
-  const std::vector<std::size_t> crack = crack_points(l.include, last_damage, settings.damage_threshold);
-  std::vector<std::size_t> all_crack;  // damage never heals; the union is for safety
-  std::set_union(crack.begin(), crack.end(), precrack.begin(), precrack.end(), std::back_inserter(all_crack));
-  const auto parts = connected_parts(l, all_crack, kLinkRadiusInSpacings * settings.spacing);
+std::string time_in_us(double seconds) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", seconds * 1e6);
+  return buffer;
+}
 
+// The measurement of one tip on the snapshot it is (so far) taken from.
+struct TipMeasurement {
+  bool measured = false;
+  double time = 0;
+  bool reached_outer_radius = false;
+  std::vector<CrackAngle> cracks;
+};
+
+}  // namespace
+
+struct CrackAngleTracker::State {
+  const CrackAngleLattice lattice;
+  CrackAngleSettings settings;
+  CrackAngleResult base;  // tips, range, notes about the tips
+  std::vector<std::size_t> precrack;
+  std::vector<char> in_precrack;
   std::vector<Vector2> tip_positions;
-  for (const auto& tip : result.tips) tip_positions.push_back(planar(tip.position));
-  for (std::size_t t = 0; t < result.tips.size(); ++t) {
-    TipRing ring{tip_positions[t], planar(result.tips[t].direction).normalized(), result.range_from, result.range_to};
-    ring.flank_width = notch_half_gap(l, ring.tip, ring.direction, delta, result.range_to) + delta;
-    const auto members = ring_points(l, parts, in_precrack, tip_positions, t, ring, kAttachRadiusInHorizons * delta);
-    std::vector<CrackAngle> cracks = cracks_of_ring(l, members, ring, settings.spacing);
-    if (cracks.empty())
-      result.notes.push_back("no crack leaves the tip at " + point_in_mm(ring.tip) + " between " +
-                             millimetres(ring.from) + " and " + millimetres(ring.to) + " mm from it");
-    for (std::size_t c = 0; c < cracks.size(); ++c) {
-      cracks[c].tip_index = t;
-      cracks[c].crack_index = c;
-      cracks[c].tip = result.tips[t];
-      result.cracks.push_back(cracks[c]);
+  std::vector<TipRing> rings;
+  std::vector<TipMeasurement> measurements;
+};
+
+CrackAngleTracker::CrackAngleTracker(const CrackAngleLattice& l, const std::vector<double>& first_damage,
+                                     const CrackAngleSettings& settings)
+    : state_(std::make_unique<State>(State{l, settings, {}, {}, {}, {}, {}, {}})) {
+  State& s = *state_;
+  const double delta = settings.horizon;
+  s.base.range_from = settings.range_from.value_or(kDefaultRangeFromInHorizons * delta);
+  s.base.range_to = settings.range_to.value_or(kDefaultRangeToInHorizons * delta);
+  check_lattice(l, first_damage, settings, s.base.range_from, s.base.range_to);
+  s.precrack = crack_points(l.include, first_damage, settings.damage_threshold);
+  s.in_precrack.assign(l.x.size(), 0);
+  for (std::size_t i : s.precrack) s.in_precrack[i] = 1;
+  s.base.tips = choose_tips(l, s.precrack, settings, s.base.notes);
+  for (const auto& tip : s.base.tips) {
+    TipRing ring{planar(tip.position), planar(tip.direction).normalized(), s.base.range_from, s.base.range_to};
+    ring.flank_width = notch_half_gap(l, ring.tip, ring.direction, delta, ring.to) + delta;
+    s.tip_positions.push_back(ring.tip);
+    s.rings.push_back(ring);
+  }
+  s.measurements.resize(s.base.tips.size());
+}
+
+CrackAngleTracker::~CrackAngleTracker() = default;
+
+bool CrackAngleTracker::settled() const {
+  return std::all_of(state_->measurements.begin(), state_->measurements.end(),
+                     [](const TipMeasurement& m) { return m.reached_outer_radius; });
+}
+
+void CrackAngleTracker::add_frame(double time, const std::vector<double>& damage) {
+  State& s = *state_;
+  const CrackAngleLattice& l = s.lattice;
+  if (damage.size() != l.x.size()) throw std::invalid_argument("measure_crack_angles: arrays of different lengths");
+  if (settled()) return;
+  // The crack of this snapshot, the pre-crack included, and its connected parts.
+  const std::vector<std::size_t> crack = crack_points(l.include, damage, s.settings.damage_threshold);
+  std::vector<std::size_t> all_crack;  // damage never heals; the union is for safety
+  std::set_union(crack.begin(), crack.end(), s.precrack.begin(), s.precrack.end(), std::back_inserter(all_crack));
+  const double link = kLinkRadiusInSpacings * s.settings.spacing;
+  const auto parts = connected_parts(l, all_crack, link);
+  std::vector<std::size_t> new_crack;
+  std::set_difference(crack.begin(), crack.end(), s.precrack.begin(), s.precrack.end(), std::back_inserter(new_crack));
+  const double attach = kAttachRadiusInHorizons * s.settings.horizon;
+  for (std::size_t t = 0; t < s.rings.size(); ++t) {
+    TipMeasurement& m = s.measurements[t];
+    if (m.reached_outer_radius) continue;
+    const auto members = ring_points(l, parts, s.in_precrack, s.tip_positions, t, s.rings[t], attach);
+    const bool reached = crack_reaches_outer_radius(l, new_crack, s.tip_positions, s.rings[t], attach, link);
+    m = {true, time, reached, cracks_of_ring(l, members, s.rings[t], s.settings.spacing)};
+  }
+}
+
+CrackAngleResult CrackAngleTracker::result() const {
+  const State& s = *state_;
+  CrackAngleResult result = s.base;
+  for (std::size_t t = 0; t < s.rings.size(); ++t) {
+    const TipMeasurement& m = s.measurements[t];
+    if (!m.measured) continue;
+    if (m.cracks.empty())
+      result.notes.push_back("no crack leaves the tip at " + point_in_mm(s.rings[t].tip) + " between " +
+                             millimetres(s.rings[t].from) + " and " + millimetres(s.rings[t].to) +
+                             " mm from it (at t = " + time_in_us(m.time) + " us)");
+    for (std::size_t c = 0; c < m.cracks.size(); ++c) {
+      CrackAngle crack = m.cracks[c];
+      crack.tip_index = t;
+      crack.crack_index = c;
+      crack.tip = result.tips[t];
+      crack.measured_at_s = m.time;
+      crack.reached_outer_radius = m.reached_outer_radius;
+      result.cracks.push_back(crack);
     }
   }
   return result;
+}
+
+CrackAngleResult measure_crack_angles(const CrackAngleLattice& lattice, const std::vector<double>& first_damage,
+                                      const std::vector<double>& damage, const CrackAngleSettings& settings,
+                                      double time) {
+  CrackAngleTracker tracker(lattice, first_damage, settings);
+  tracker.add_frame(time, damage);
+  return tracker.result();
 }
 
 namespace {
@@ -389,10 +484,26 @@ void parse_range(const std::string& text, CrackAngleSettings& settings) {
   settings.range_to = to;
 }
 
+void parse_measure_time(const std::string& text, CrackAngleSettings& settings) {
+  const std::string expected =
+      " (expected a time with its unit, such as 40us; the angle is measured on the last "
+      "snapshot at or before it)";
+  double time = 0;
+  try {
+    time = parse_quantity_as(text, dim::time);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--crack-angle-time '" + text + "': " + e.what() + expected);
+  }
+  if (!std::isfinite(time) || time < 0)
+    throw InputError("--crack-angle-time '" + text + "': a negative time" + expected);
+  settings.measure_time = time;
+}
+
 }  // namespace
 
 void parse_crack_angle_options(const CrackAngleOptionTexts& texts, CrackAngleSettings& settings) {
   if (texts.range) parse_range(*texts.range, settings);
+  if (texts.time) parse_measure_time(*texts.time, settings);
   if (texts.tips.empty() && texts.directions.empty()) return;
   if (texts.tips.empty()) throw InputError("--crack-direction needs --crack-tip (the tip it starts from)");
   if (texts.directions.empty())

@@ -4,13 +4,17 @@
 // - tips and directions: from the pre-crack (the crack path of the first snapshot: damage >=
 //   the threshold), one principal axis per connected part, an end of the axis away from the free
 //   surface is a tip; or given (--crack-tip, --crack-direction) for notches cut out of the body;
-// - per tip, the crack points of the last snapshot that are new, connected to the tip, in a
-//   ring of distances [from, to] around it and not on the notch flanks; each connected part of
-//   them long enough is one crack, fitted by a straight line (total least squares).
+// - per tip, the crack points of one snapshot that are new, connected to the tip, in a ring of
+//   distances [from, to] around it and not on the notch flanks; each connected part of them long
+//   enough is one crack, fitted by a straight line (total least squares);
+// - the snapshot: per tip, the first in which its crack reaches the outer radius `to` (later,
+//   damage spreading around the tip would swamp the crack path), else the last one; or the last
+//   one at or before a given time.
 // 2-D runs only (like the other crack metrics).
 #pragma once
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +37,9 @@ struct CrackAngleSettings {
   // Ring of distances from the tip [m]; unset: 2 delta and 12 delta.
   std::optional<double> range_from, range_to;
   std::vector<CrackTipSpec> tips;  // given tips; empty: found on the pre-crack
+  // Measure on the last snapshot at or before this time [s] instead of the first where the
+  // crack reaches `to` (the driver picks that snapshot; see CrackAngleTracker).
+  std::optional<double> measure_time;
 };
 
 // The lattice the angles are measured on: positions [m] (z zero in 2-D), the body points
@@ -56,6 +63,8 @@ struct CrackAngle {
   Vector3 fit_point{};          // the centroid of the points fitted [m]
   Vector3 fit_direction{};      // unit, pointing away from the tip
   std::size_t points = 0;       // crack points fitted
+  double measured_at_s = 0;     // time of the snapshot measured [s]
+  bool reached_outer_radius = false;  // the tip's crack reached `to` on that snapshot
 };
 
 struct CrackAngleResult {
@@ -65,20 +74,48 @@ struct CrackAngleResult {
   std::vector<std::string> notes;  // tips without a crack, pre-crack parts without a tip, ...
 };
 
-// Crack angles between the first snapshot's damage (the pre-crack) and the last one's.
-// Tips found on the pre-crack are ordered by y, then x (bottom to top); given tips keep their
-// order. Throws std::invalid_argument on arrays of different lengths or a bad setting.
+// The crack angles of a snapshot series, fed one snapshot at a time (in time order). The tips
+// come from the first snapshot's damage (the pre-crack) or the settings. Each added snapshot is
+// measured for the tips whose crack has not yet reached the outer radius: a tip keeps the first
+// measurement in which it did, else the last one added. Tips found on the pre-crack are ordered
+// by y, then x (bottom to top); given tips keep their order. Throws std::invalid_argument on
+// arrays of different lengths or a bad setting. `lattice`'s arrays must outlive the tracker.
+class CrackAngleTracker {
+ public:
+  CrackAngleTracker(const CrackAngleLattice& lattice, const std::vector<double>& first_damage,
+                    const CrackAngleSettings& settings);
+  ~CrackAngleTracker();
+  CrackAngleTracker(const CrackAngleTracker&) = delete;
+  CrackAngleTracker& operator=(const CrackAngleTracker&) = delete;
+
+  // Measures the unsettled tips on the damage of the snapshot at `time` [s].
+  void add_frame(double time, const std::vector<double>& damage);
+  // Every tip's crack has reached the outer radius (or there is no tip): later snapshots change
+  // nothing.
+  bool settled() const;
+  // The cracks of every tip on its snapshot (none before the first add_frame).
+  CrackAngleResult result() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// Crack angles between the first snapshot's damage (the pre-crack) and one later snapshot's,
+// taken at `time` (a CrackAngleTracker fed that snapshot only).
 CrackAngleResult measure_crack_angles(const CrackAngleLattice& lattice, const std::vector<double>& first_damage,
-                                      const std::vector<double>& last_damage, const CrackAngleSettings& settings);
+                                      const std::vector<double>& damage, const CrackAngleSettings& settings,
+                                      double time = 0.0);
 
 // The command-line options of the crack angle, as typed.
 struct CrackAngleOptionTexts {
-  std::vector<std::string> tips;        // --crack-tip X,Y[,Z] (repeatable)
-  std::vector<std::string> directions;  // --crack-direction ANGLE | DX,DY[,DZ] (once, or once per tip)
-  std::optional<std::string> range;     // --crack-angle-range FROM,TO
+  std::vector<std::string> tips;                   // --crack-tip X,Y[,Z] (repeatable)
+  std::vector<std::string> directions;             // --crack-direction ANGLE | DX,DY[,DZ] (once, or once per tip)
+  std::optional<std::string> range;                // --crack-angle-range FROM,TO
+  std::optional<std::string> time = std::nullopt;  // --crack-angle-time T
 };
 
-// Parses them into `settings` (tips, range). Throws InputError naming the option, the value and
+// Parses them into `settings` (tips, range, measure time). Throws InputError naming the option, the value and
 // what was expected.
 void parse_crack_angle_options(const CrackAngleOptionTexts& texts, CrackAngleSettings& settings);
 

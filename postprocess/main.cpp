@@ -49,7 +49,10 @@ const char* kUsage =
     "                       from +x with its unit ('0deg') or a vector DX,DY; once for all tips\n"
     "                       or once per --crack-tip\n"
     "  --crack-angle-range FROM,TO  distances from the tip where a crack's angle is fitted\n"
-    "                       (default: 2 and 12 horizons)\n"
+    "                       (default: 2 and 12 horizons); measured per tip on the first\n"
+    "                       snapshot where the crack reaches TO, else on the last one\n"
+    "  --crack-angle-time T measure the crack angles on the last snapshot at or before T\n"
+    "                       (a time with its unit: '40us'; plain numbers are seconds)\n"
     "  --no-plot            skip load_curve.png (no matplotlib needed)\n"
     "  --partial            postprocess a run that did not finish (status 'running': it crashed\n"
     "                       or is still running), up to its last snapshot\n"
@@ -66,7 +69,7 @@ int main(int argc, char** argv) {
   const mppm::CommandLineSpec spec{"mppm-postprocess",
                                    kUsage,
                                    {"-o", "--fields", "--times", "--warp-scale", "--compression", "--crack-tip",
-                                    "--crack-direction", "--crack-angle-range"},
+                                    "--crack-direction", "--crack-angle-range", "--crack-angle-time"},
                                    {"--figures", "--partial", "--no-plot", "--force"}};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) -> int {
     using mppm::InputError;
@@ -107,9 +110,9 @@ int main(int argc, char** argv) {
       else
         throw InputError("--compression: '" + *kind + "' (expected zlib, lz4 or none)");
     }
-    mppm::post::parse_crack_angle_options(
-        {cl.all_values("--crack-tip"), cl.all_values("--crack-direction"), cl.option("--crack-angle-range")},
-        options.crack_angle);
+    mppm::post::parse_crack_angle_options({cl.all_values("--crack-tip"), cl.all_values("--crack-direction"),
+                                           cl.option("--crack-angle-range"), cl.option("--crack-angle-time")},
+                                          options.crack_angle);
     try {
       const auto result = mppm::post::postprocess_run(options);
       for (const auto& note : result.notes) std::cerr << "mppm-postprocess: note: " << note << "\n";

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 
@@ -282,6 +283,45 @@ std::optional<CrackTracker> crack_tracker(const RunDirectory& run, const PointGe
   return crack;
 }
 
+// The snapshot of --crack-angle-time: the last at or before it (to the tolerance of snapshot
+// times, check_snapshot), if any.
+std::optional<std::size_t> snapshot_at_or_before(const std::vector<SnapshotEntry>& snapshots, double time) {
+  std::optional<std::size_t> chosen;
+  for (std::size_t k = 0; k < snapshots.size(); ++k)
+    if (snapshots[k].time <= time + 1e-9 * std::max(std::fabs(time), std::fabs(snapshots[k].time))) chosen = k;
+  return chosen;
+}
+
+// The crack angles, measured as the snapshots stream (crack_angle.hpp): on every snapshot until
+// each tip's crack has reached the ring's outer radius, or with --crack-angle-time on the one
+// snapshot it picks.
+struct CrackAngleStream {
+  std::unique_ptr<CrackAngleTracker> tracker;
+  std::optional<std::size_t> only_snapshot;
+
+  void add(std::size_t k, const Snapshot& snapshot) {
+    if (!tracker || (only_snapshot && k != *only_snapshot) || tracker->settled()) return;
+    tracker->add_frame(snapshot.time, snapshot.find("damage")->data);
+  }
+};
+
+// With crack tracking, the tips and rings of the crack angles, from the first snapshot, with the
+// crack tracker's threshold and free-surface points.
+CrackAngleStream crack_angle_stream(const RunDirectory& run, const PointGeometry& points, const FirstSnapshot& first,
+                                    const std::optional<CrackTracker>& crack, CrackAngleSettings settings) {
+  CrackAngleStream stream;
+  // The angles need the damage fields (a run with the crack table alone has none in its snapshots).
+  if (!crack || !first.snapshot.find("damage")) return stream;
+  settings.spacing = run.spacing;
+  settings.horizon = run.horizon;
+  settings.damage_threshold = crack->damage_threshold();
+  stream.tracker = std::make_unique<CrackAngleTracker>(
+      CrackAngleLattice{points.x, points.y, points.z, points.body, crack->near_boundary()},
+      first.snapshot.find("damage")->data, settings);
+  if (settings.measure_time) stream.only_snapshot = snapshot_at_or_before(run.info.snapshots, *settings.measure_time);
+  return stream;
+}
+
 // The frames written, and the last plastic shear strain field (for the shear-band metrics).
 struct SeriesResult {
   std::vector<PvdEntry> entries;
@@ -290,9 +330,11 @@ struct SeriesResult {
 };
 
 // Streams the snapshots one at a time into results/*.vtu and results.pvd, feeding the crack
-// tracker. The first snapshot is taken over from `first` (and its memory released).
+// tracker and the crack angles. The first snapshot is taken over from `first` (and its memory
+// released).
 SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const PostprocessOptions& options,
-                          std::optional<CrackTracker>& crack, std::vector<std::string>& notes) {
+                          std::optional<CrackTracker>& crack, CrackAngleStream& angles,
+                          std::vector<std::string>& notes) {
   const auto& snapshots = run.info.snapshots;
   const fs::path post(options.output_directory);
   VtuSeriesWriter writer(run.reference, options.compression);
@@ -313,6 +355,7 @@ SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const P
     if (k < 64 || (k + 1) % every == 0 || k + 1 == snapshots.size())
       write_text((post / "results.pvd").string(), pvd_text(entries));
     if (crack) crack->add_frame(snapshot.time, snapshot.find("damage")->data);
+    angles.add(k, snapshot);
     if (const SnapshotField* e = snapshot.find("plastic_shear_strain"); e && e->components == 1) {
       series.last_plastic_shear = e->data;
       series.last_plastic_time = snapshot.time;
@@ -467,16 +510,20 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
   }
 }
 
-// Given crack tips need a 2-D run with damage and must lie in the body: checked before anything
-// is written.
+// Given crack tips need a 2-D run with damage and must lie in the body, and a measure time must
+// have a snapshot at or before it: checked before anything is written.
 void check_crack_angle_options(const CrackAngleSettings& settings, const RunDirectory& run, const PointGeometry& points,
                                bool has_damage) {
-  if (settings.tips.empty() && !settings.range_from) return;
+  if (settings.tips.empty() && !settings.range_from && !settings.measure_time) return;
   if (!has_damage || run.info.dimension != 2)
     throw InputError(
-        "--crack-tip, --crack-direction and --crack-angle-range need a 2-D run with a damage field (crack "
-        "angles are measured in 2-D runs only)");
+        "--crack-tip, --crack-direction, --crack-angle-range and --crack-angle-time need a 2-D run with a damage "
+        "field (crack angles are measured in 2-D runs only)");
   check_crack_tips_in_body(settings.tips, points.x, points.y, points.z, points.body, run.horizon);
+  if (settings.measure_time && !snapshot_at_or_before(run.info.snapshots, *settings.measure_time))
+    throw InputError("--crack-angle-time: " + format_time(*settings.measure_time).substr(4) +
+                     " is before the first snapshot (" + format_time(run.info.snapshots.front().time) +
+                     "): the angle is measured on the last snapshot at or before it");
 }
 
 JsonValue json_vector(const Vector3& v) {
@@ -501,25 +548,17 @@ void set_crack_angle_entries(JsonValue& summary, const CrackAngleResult& result)
     crack.set("points", static_cast<std::uint64_t>(c.points));
     crack.set("range_from_m", result.range_from);
     crack.set("range_to_m", result.range_to);
+    crack.set("measured_at_s", c.measured_at_s);
+    crack.set("reached_outer_radius", c.reached_outer_radius);
     details.push(crack);
   }
   summary.set("crack_angle_deg", angles);
   summary.set("crack_angles", details);
 }
 
-// Crack angles at the pre-crack tips (crack_angle.hpp) between the first and the last snapshot,
-// with the crack tracker's threshold and free-surface points.
-void add_crack_angle_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
-                             const PointGeometry& points, const std::optional<CrackTracker>& crack,
-                             CrackAngleSettings settings) {
-  if (!crack) return;
-  settings.spacing = run.spacing;
-  settings.horizon = run.horizon;
-  settings.damage_threshold = crack->damage_threshold();
-  const auto damage_of = [](const SnapshotEntry& entry) { return read_snapshot(entry.path).find("damage")->data; };
-  const CrackAngleResult result =
-      measure_crack_angles({points.x, points.y, points.z, points.body, crack->near_boundary()},
-                           damage_of(run.info.snapshots.front()), damage_of(run.info.snapshots.back()), settings);
+void add_crack_angle_metrics(JsonValue& summary, std::vector<std::string>& notes, const CrackAngleStream& angles) {
+  if (!angles.tracker) return;
+  const CrackAngleResult result = angles.tracker->result();
   for (const auto& note : result.notes) notes.push_back("crack angle: " + note);
   if (!result.tips.empty()) set_crack_angle_entries(summary, result);
 }
@@ -545,8 +584,9 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
 
   const bool crack_data = has_damage || crack_table.has_value();  // damage snapshots or the table
   std::optional<CrackTracker> crack = crack_tracker(run, points, crack_data && run.info.dimension == 2);
+  CrackAngleStream angles = crack_angle_stream(run, points, first, crack, options.crack_angle);
   std::optional<CrackTracker> no_tracker;  // the table gives the frames
-  const SeriesResult series = write_series(run, first, options, crack_table ? no_tracker : crack, notes);
+  const SeriesResult series = write_series(run, first, options, crack_table ? no_tracker : crack, angles, notes);
   const CrackFrameSource crack_source = crack_frame_source(crack, crack_table, run);
   result.frames = series.entries.size();
 
@@ -554,7 +594,7 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   JsonValue summary = run_summary(run, series.entries.size(), first.array_names, peak);
   add_shear_band_metrics(summary, notes, run, points, series);
   add_crack_metrics(summary, notes, run, crack, crack_data, crack_source);
-  add_crack_angle_metrics(summary, notes, run, points, crack, options.crack_angle);
+  add_crack_angle_metrics(summary, notes, angles);
   auto note_array = JsonValue::array();
   for (const auto& note : notes) note_array.push(note);
   summary.set("notes", note_array);

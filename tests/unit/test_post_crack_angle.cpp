@@ -3,7 +3,8 @@
 // each); a crack branched at the tip; damage along the notch flanks only (no crack), next to a
 // real crack and next to a crack running back at 150 degrees; an interior pre-crack (two tips)
 // and one through the body (none); a notch cut out of the body with the tip and direction
-// given; the parsing of the options.
+// given; a series in which the angle is taken on the snapshot where the crack crosses the ring;
+// the parsing of the options.
 //
 // Tolerance of an angle: the points of a crack band are the lattice points within dx of the
 // crack line, so either end of the fitted stretch may sit up to about one dx off the line:
@@ -26,6 +27,7 @@ using mppm::post::CrackAngleLattice;
 using mppm::post::CrackAngleOptionTexts;
 using mppm::post::CrackAngleResult;
 using mppm::post::CrackAngleSettings;
+using mppm::post::CrackAngleTracker;
 using mppm::post::measure_crack_angles;
 
 constexpr double kDegree = std::numbers::pi / 180.0;
@@ -41,6 +43,7 @@ Segment ray(double x0, double y0, double angle_deg, double length) {
 
 double distance_to(const Segment& s, double px, double py) {
   const double ux = s.x1 - s.x0, uy = s.y1 - s.y0;
+  if (ux == 0 && uy == 0) return std::hypot(px - s.x0, py - s.y0);  // a point: the centre of a disc
   const double t = std::clamp(((px - s.x0) * ux + (py - s.y0) * uy) / (ux * ux + uy * uy), 0.0, 1.0);
   return std::hypot(px - s.x0 - t * ux, py - s.y0 - t * uy);
 }
@@ -274,9 +277,79 @@ TEST(PostCrackAngle, NotchCutOutOfTheBodyWithTheTipGiven) {
   EXPECT_DOUBLE_EQ(result.range_from, 5e-3);
 }
 
+// A series on the crack-branching plate with a ring of 4 to 15 mm: a crack grows from the tip at
+// 60 degrees, 8 mm long at 1 us, 16 mm (past the ring) at 2 us; at 3 us a disc of damage 13 mm
+// around the tip (the crushing of a struck block, say) swamps the ring.
+struct GrowingCrackSeries {
+  const Plate plate{0.1, 0.04, kDx, 4.05};
+  CrackAngleSettings settings = plate.settings();
+  std::vector<double> precrack = plate.damage({kPrecrack}, kDx);
+  GrowingCrackSeries() {
+    settings.range_from = 4e-3;
+    settings.range_to = 15e-3;
+  }
+  std::vector<double> crack(double length) const { return plate.damage({kPrecrack, ray(0.05, 0.02, 60, length)}, kDx); }
+  std::vector<double> crack_and_disc() const {
+    auto d = crack(0.016);
+    const auto disc = plate.damage({{0.05, 0.02, 0.05, 0.02}}, 13e-3);
+    for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::max(d[i], disc[i]);
+    return d;
+  }
+};
+
+TEST(PostCrackAngle, MeasuredWhenTheCrackCrossesTheRing) {
+  const GrowingCrackSeries series;
+  CrackAngleTracker tracker(series.plate.lattice(), series.precrack, series.settings);
+  tracker.add_frame(0.0, series.precrack);
+  tracker.add_frame(1e-6, series.crack(0.008));
+  EXPECT_FALSE(tracker.settled());
+  tracker.add_frame(2e-6, series.crack(0.016));
+  EXPECT_TRUE(tracker.settled());
+  tracker.add_frame(3e-6, series.crack_and_disc());
+  const auto result = tracker.result();
+  ASSERT_EQ(result.cracks.size(), 1u);
+  const auto& crack = result.cracks[0];
+  EXPECT_NEAR(crack.signed_angle_deg, 60.0, tolerance_deg(15e-3 - 4e-3));
+  EXPECT_DOUBLE_EQ(crack.measured_at_s, 2e-6);
+  EXPECT_TRUE(crack.reached_outer_radius);
+  EXPECT_TRUE(result.notes.empty()) << result.notes.front();
+
+  // On the last snapshot the disc fills the ring: one part, far from 60 degrees (what the
+  // series rule avoids).
+  const auto last =
+      measure_crack_angles(series.plate.lattice(), series.precrack, series.crack_and_disc(), series.settings, 3e-6);
+  ASSERT_FALSE(last.cracks.empty());
+  EXPECT_GT(std::fabs(last.cracks[0].signed_angle_deg - 60.0), 10.0) << last.cracks[0].signed_angle_deg;
+  EXPECT_TRUE(last.cracks[0].reached_outer_radius);  // the crack past 15 mm is in it
+}
+
+TEST(PostCrackAngle, CrackShortOfTheRingIsMeasuredOnTheLastSnapshot) {
+  // The crack stops at 12 mm, short of the 15 mm outer radius: the last snapshot, not reached.
+  const GrowingCrackSeries series;
+  CrackAngleTracker tracker(series.plate.lattice(), series.precrack, series.settings);
+  for (const auto& [time, length] : {std::pair{1e-6, 0.006}, std::pair{2e-6, 0.012}, std::pair{3e-6, 0.012}})
+    tracker.add_frame(time, series.crack(length));
+  EXPECT_FALSE(tracker.settled());
+  const auto result = tracker.result();
+  ASSERT_EQ(result.cracks.size(), 1u);
+  EXPECT_NEAR(result.cracks[0].signed_angle_deg, 60.0, tolerance_deg(12e-3 - 4e-3));
+  EXPECT_DOUBLE_EQ(result.cracks[0].measured_at_s, 3e-6);
+  EXPECT_FALSE(result.cracks[0].reached_outer_radius);
+
+  // Damage spreading along the notch from its mouth, 50 mm behind the tip and linked to the tip
+  // only through the pre-crack, is not the crack leaving the tip: still not reached.
+  auto with_mouth = series.crack(0.012);
+  const auto mouth = series.plate.damage({{0.0, 0.02, 0.0, 0.02}}, 8e-3);
+  for (std::size_t i = 0; i < with_mouth.size(); ++i) with_mouth[i] = std::max(with_mouth[i], mouth[i]);
+  tracker.add_frame(4e-6, with_mouth);
+  EXPECT_FALSE(tracker.settled());
+  EXPECT_DOUBLE_EQ(tracker.result().cracks.at(0).measured_at_s, 4e-6);
+}
+
 TEST(PostCrackAngle, OptionsParse) {
   CrackAngleSettings settings;
-  mppm::post::parse_crack_angle_options({{"50mm,20mm", "0.1,0.02,0"}, {"90deg", "-1,1"}, "2mm, 3 cm"}, settings);
+  mppm::post::parse_crack_angle_options({{"50mm,20mm", "0.1,0.02,0"}, {"90deg", "-1,1"}, "2mm, 3 cm", "40us"},
+                                        settings);
   ASSERT_EQ(settings.tips.size(), 2u);
   EXPECT_DOUBLE_EQ(settings.tips[0].position[0], 0.05);
   EXPECT_DOUBLE_EQ(settings.tips[0].position[1], 0.02);
@@ -286,6 +359,7 @@ TEST(PostCrackAngle, OptionsParse) {
   EXPECT_DOUBLE_EQ(settings.tips[1].direction[0], -std::sqrt(0.5));
   EXPECT_DOUBLE_EQ(*settings.range_from, 2e-3);
   EXPECT_DOUBLE_EQ(*settings.range_to, 3e-2);
+  EXPECT_DOUBLE_EQ(*settings.measure_time, 40e-6);
   // One direction for every tip.
   mppm::post::parse_crack_angle_options({{"1mm,2mm", "3mm,4mm"}, {"180deg"}, std::nullopt}, settings);
   ASSERT_EQ(settings.tips.size(), 2u);
@@ -320,6 +394,10 @@ TEST(PostCrackAngle, BadOptionsAreRefusedWithTheReason) {
   expect_error({{}, {}, "30mm,5mm"}, "FROM must be at least 0 and below TO");
   expect_error({{}, {}, "-1mm,5mm"}, "FROM must be at least 0 and below TO");
   expect_error({{}, {}, "5mm,30 us"}, "expected a length");
+  expect_error({{}, {}, std::nullopt, "40mm"},
+               "--crack-angle-time '40mm': \"40mm\" is a length (e.g. m, mm), expected a time");
+  expect_error({{}, {}, std::nullopt, "soon"}, "--crack-angle-time 'soon': \"soon\" is not a number");
+  expect_error({{}, {}, std::nullopt, "-5us"}, "--crack-angle-time '-5us': a negative time (expected a time");
 }
 
 }  // namespace

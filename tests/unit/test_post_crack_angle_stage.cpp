@@ -1,7 +1,8 @@
 // The crack angle through mppm-postprocess: the summary keys on the fixture run (a straight
 // crack growing along +x from a damaged pre-crack, tests/unit/test_post_run_fixture.cpp), the
-// --crack-tip / --crack-direction / --crack-angle-range options, and their bad values (exit
-// code 2, a message naming the option, nothing written).
+// --crack-tip / --crack-direction / --crack-angle-range / --crack-angle-time options, the
+// snapshot the angle is measured on, and bad option values (exit code 2, a message naming the
+// option, nothing written).
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -18,7 +19,8 @@ namespace fs = std::filesystem;
 using namespace mppm::post::testing;
 
 // The fixture: 40 x 30 mm, dx 1 mm, delta 3.015 mm; the pre-crack is the band |y - 15 mm| < dx
-// for x < 8 mm, the crack reaches x = 28 mm at the last snapshot.
+// for x < 8 mm (tip at x = 7.5 mm); snapshots at 0, 1, 2 and 3 us, where the crack's last
+// column is x = 7.5, 14.5, 20.5 and 27.5 mm: 0, 7, 13 and 20 mm from the tip.
 constexpr double kHorizon = 3.015e-3;
 
 YAML::Node postprocess(const std::string& name, const std::vector<std::string>& extra) {
@@ -50,6 +52,29 @@ TEST(PostCrackAngleStage, SummaryOfAStraightCrack) {
   EXPECT_GT(crack["points"].as<int>(), 10);
   EXPECT_DOUBLE_EQ(crack["range_from_m"].as<double>(), 2 * kHorizon);
   EXPECT_DOUBLE_EQ(crack["range_to_m"].as<double>(), 12 * kHorizon);
+  // The crack never reaches 12 horizons (36 mm) from the tip: measured on the last snapshot.
+  EXPECT_DOUBLE_EQ(crack["measured_at_s"].as<double>(), 3e-6);
+  EXPECT_FALSE(crack["reached_outer_radius"].as<bool>());
+}
+
+TEST(PostCrackAngleStage, MeasuredWhereTheCrackCrossesTheRingOrAtAGivenTime) {
+  // A ring of 2 to 10 mm: the crack is 13 mm from the tip at 2 us, the first snapshot past it.
+  YAML::Node summary = postprocess("crack_angle_crossing", {"--crack-angle-range", "2mm,10mm"});
+  ASSERT_EQ(summary["crack_angles"].size(), 1u);
+  EXPECT_NEAR(summary["crack_angles"][0]["signed_angle_deg"].as<double>(), 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(summary["crack_angles"][0]["measured_at_s"].as<double>(), 2e-6);
+  EXPECT_TRUE(summary["crack_angles"][0]["reached_outer_radius"].as<bool>());
+  // --crack-angle-time 1.5us: the snapshot at 1 us (the crack 7 mm from the tip, inside the ring).
+  summary = postprocess("crack_angle_time", {"--crack-angle-range", "2mm,10mm", "--crack-angle-time", "1.5us"});
+  ASSERT_EQ(summary["crack_angles"].size(), 1u);
+  EXPECT_NEAR(summary["crack_angles"][0]["signed_angle_deg"].as<double>(), 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(summary["crack_angles"][0]["measured_at_s"].as<double>(), 1e-6);
+  EXPECT_FALSE(summary["crack_angles"][0]["reached_outer_radius"].as<bool>());
+  // A time past the run: the last snapshot; exactly a snapshot's time: that snapshot.
+  summary = postprocess("crack_angle_time_late", {"--crack-angle-time", "1 ms"});
+  EXPECT_DOUBLE_EQ(summary["crack_angles"][0]["measured_at_s"].as<double>(), 3e-6);
+  summary = postprocess("crack_angle_time_exact", {"--crack-angle-range", "2mm,10mm", "--crack-angle-time", "2us"});
+  EXPECT_DOUBLE_EQ(summary["crack_angles"][0]["measured_at_s"].as<double>(), 2e-6);
 }
 
 TEST(PostCrackAngleStage, GivenTipsDirectionAndRange) {
@@ -93,6 +118,11 @@ TEST(PostCrackAngleStage, BadOptionValues) {
                  "--crack-direction '45': \"45\" is not an angle with a unit");
   expect_refused("crack_angle_bad_range", {"--crack-angle-range", "20mm,5mm"},
                  "--crack-angle-range '20mm,5mm': FROM must be at least 0 and below TO");
+  expect_refused(
+      "crack_angle_time_unit", {"--crack-angle-time", "40mm"},
+      "mppm-postprocess: error: --crack-angle-time '40mm': \"40mm\" is a length (e.g. m, mm), expected a time");
+  expect_refused("crack_angle_time_text", {"--crack-angle-time", "later"},
+                 "--crack-angle-time 'later': \"later\" is not a number");
   expect_refused("crack_angle_no_direction", {"--crack-tip", "8mm,15mm"}, "--crack-tip needs --crack-direction");
   // Plain numbers are metres: 8,15 is far outside the 40 x 30 mm body.
   expect_refused("crack_angle_outside", {"--crack-tip", "8,15", "--crack-direction", "0deg"},
