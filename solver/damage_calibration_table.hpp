@@ -6,12 +6,12 @@
 // smallest and largest value measured across them and the largest deviation from the entry: the
 // calibration's accuracy at that G_s (the check requires every measured value within 4 %).
 // A commit marked +modified: the work tree differed from it when the matrix ran.
-//  2-D, measured 2026-12-03 (commit 6997bae+modified), horizon factors 2.55, 3.05, 3.55, 4.05, 5.05:
+//  2-D, measured 2026-12-03 (commit 07603cd), horizon factors 2.55, 3.05, 3.55, 4.05, 5.05:
 //    G_s 0.1: 0.702 (0.684-0.748, 6.6 %)
 //    G_s 0.2: 0.750 (0.718-0.798, 6.4 %)
 //    G_s 0.3: 0.779 (0.768-0.785, 1.5 %)
 //    G_s 0.5: 0.823 (0.817-0.826, 0.7 %)
-//  3-D, measured 2026-12-03 (commit 6997bae+modified), horizon factors 2.55, 3.05:
+//  3-D, measured 2026-12-03 (commit 07603cd), horizon factors 2.55, 3.05:
 //    G_s 0.1: 0.706 (0.703-0.710, 0.5 %)
 //    G_s 0.2: 0.751 (0.738-0.765, 1.9 %)
 //    G_s 0.3: 0.778 (0.766-0.790, 1.6 %)
