@@ -2,8 +2,10 @@
 // crack remove from the model (the "released fraction" rho), per dimension, horizon factor and
 // stabilization coefficient, with Rice's strip under fixed grips
 // (tests/verification/problems/crack_energy.hpp), for the `dissipation` calibration of the damage
-// effect (solver/damage_calibration.cpp holds the table it produced; workflows/damage-calibration
-// regenerates and checks it). Not a test: it prints one CSV row per setting.
+// effect. Not a test: it prints one CSV row per setting. `make -C workflows/damage-calibration`
+// runs the calibration matrix with it, `make -C workflows/damage-calibration table` writes the
+// solver's table (solver/damage_calibration_table.hpp) from the rows, `... check` compares them
+// (workflows/damage-calibration/README.md).
 //
 // rho depends on the discretization only: measured within +-4 % across the material (Poisson
 // ratio 0 and 0.25, mu_c = mu / 3 and mu, a3 / 10, non-polar), the spacing (0.5 and 0.25 mm) and
@@ -33,6 +35,8 @@ periodic through z) by fixed grips (W H = 1.5 G_cr) and prints, per setting, the
 removed and the work the broken bonds across the crack absorbed, both per unit new crack area and
 relative to G_cr (lattice calibration of w_cr):
   dimension,horizon_factor,stabilization,released_fraction,absorbed_fraction,separated,other_pairs,seconds
+The solver's table is the mean of released_fraction over the horizon factors of the matrix that
+`make -C workflows/damage-calibration` runs (`make -C workflows/damage-calibration table` writes it).
 )";
 
 std::vector<double> numbers(const std::string& list, const std::string& option) {

@@ -7,9 +7,10 @@
 // strain of its remaining family, so it keeps part of the energy the broken bonds carried; that
 // part later leaves the crack faces as waves. rho is a property of the discretization (horizon
 // factor, G_s, dimension), not of the material, the spacing or G_cr (measured within +-4 %; see
-// benchmarks/damage_calibration.cpp, which produced the table: `build/bin/mppm-damage-calibration
-// --dimension 2 --horizon-factors 2.55,3.05,3.55,4.05,5.05 --stabilizations 0.1,0.2,0.3,0.5`
-// regenerates the 2-D part).
+// benchmarks/damage_calibration.cpp). The table is generated: `make -C workflows/damage-calibration`
+// measures the matrix with build/bin/mppm-damage-calibration, `make -C workflows/damage-calibration
+// table` writes solver/damage_calibration_table.hpp from it, `... check` compares the two
+// (workflows/damage-calibration/README.md).
 #pragma once
 #include <optional>
 #include <string>
