@@ -6,8 +6,9 @@
 // Why rho < 1: a correspondence point that loses bonds renormalizes its shape tensor and keeps the
 // strain of its remaining family, so it keeps part of the energy the broken bonds carried; that
 // part later leaves the crack faces as waves. rho is a property of the discretization (horizon
-// factor, G_s, dimension), not of the material, the spacing or G_cr (measured within +-4 %; see
-// benchmarks/damage_calibration.cpp). The table is generated: `make -C workflows/damage-calibration`
+// factor, G_s, dimension), and less of the material, the spacing or G_cr (within +-4 % over the
+// variations benchmarks/damage_calibration.cpp lists; not everywhere: workflows/damage-calibration/
+// README.md). The table holds the mean over the horizon factors, within 6.6 % of each measured one. The table is generated: `make -C workflows/damage-calibration`
 // measures the matrix with build/bin/mppm-damage-calibration, `make -C workflows/damage-calibration
 // table` writes solver/damage_calibration_table.hpp from it, `... check` compares the two
 // (workflows/damage-calibration/README.md).
