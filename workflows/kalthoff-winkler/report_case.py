@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""results.md of the Kalthoff-Winkler case from its outputs (nothing typed in).
+
+usage: report_case.py --out OUT --runs RUN... --results results.md --figures figures
+
+Writes the table of crack angles (each notch's main crack against the notch direction), crack
+start time, largest tip speed and wall time per run; the crack paths of every run with their
+straight-line fits (figures/crack_paths.png); and copies the damage pictures that
+mppm-postprocess --figures rendered for the runs.
+"""
+import argparse
+import glob
+import os
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import kw_case  # noqa: E402
+from mppm_outputs import copy_file, save_figure, write_text  # noqa: E402  (kw_case puts tools/ on the path)
+
+
+def crack_frame(out, run, cracks):
+    """The snapshot the angles were measured on: their `measured_at_s` (the latest of the tips),
+    else the last one."""
+    series = kw_case.frames(out, run)
+    when = max((c.get("measured_at_s", series[-1][0]) for c in cracks.values()), default=series[-1][0])
+    return min(series, key=lambda frame: abs(frame[0] - when))
+
+
+def plot_crack_paths(out, runs, summaries, target):
+    import meshio  # Debian python3-meshio, under /usr/bin/python3
+    fig, axes = plt.subplots(1, len(runs), figsize=(4.2 * len(runs), 3.4), squeeze=False)
+    for ax, run in zip(axes[0], runs):
+        s = summaries[run]
+        cracks = kw_case.main_cracks(s)
+        time, path = crack_frame(out, run, cracks)
+        mesh = meshio.read(path)
+        threshold = s["crack_damage_threshold"]
+        body = [(p[0] * 1e3, p[1] * 1e3) for p, r, d in
+                zip(mesh.points, mesh.point_data["region"], mesh.point_data["damage"]) if r == 0 and d >= threshold]
+        ax.scatter([p[0] for p in body], [p[1] for p in body], s=1, color="0.55", label=f"damage >= {threshold:g}")
+        for entry in s.get("crack_angles") or []:
+            tip, point, direction = entry["tip_m"], entry["fit_point_m"], entry["fit_direction"]
+            offset = sum((t - p) * d for t, p, d in zip(tip, point, direction))
+            ends = [[(p + (offset + r) * d) * 1e3 for p, d in zip(point, direction)]
+                    for r in (entry["range_from_m"], entry["range_to_m"])]
+            ax.plot([e[0] for e in ends], [e[1] for e in ends], color="C3", lw=1.6)
+            ax.annotate(f"{entry['signed_angle_deg']:+.1f}°", ends[1][:2], fontsize=8, color="C3")
+        ax.set_title(f"{run} (t = {time * 1e6:.3g} us)", fontsize=9)
+        ax.set_xlim(0, 200)
+        ax.set_ylim(0, 100)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [mm]")
+    axes[0][0].set_ylabel("y [mm]")
+    fig.tight_layout()
+    save_figure(fig, target, dpi=110)
+
+
+def table_row(out, run, s, info, energy):
+    cracks = kw_case.main_cracks(s)
+    every = kw_case.cracks_by_tip(s)
+    fronts = {side: kw_case.front_metrics(kw_case.crack_front(out, run, c, s["spacing_m"], s["horizon_m"]),
+                                          s["spacing_m"]) for side, c in cracks.items()}
+
+    def per_side(text):
+        return " / ".join(text(side) for side in ("upper", "lower"))
+
+    def angle(side):
+        c = cracks.get(side)
+        inward = [e for e in every[side] if not kw_case.outward(e)]
+        return (("-" if c is None else f"**{c['signed_angle_deg']:+.1f}**")
+                + "".join(f" ({e['signed_angle_deg']:+.1f})" for e in inward))
+
+    def start(side):
+        t = fronts.get(side, (None, None))[0]
+        return "-" if t is None else f"{t * 1e6:.3g}"
+
+    def speed(side):
+        v = fronts.get(side, (None, None))[1]
+        return "-" if v is None else f"{v:.0f}"
+    when = max((c.get("measured_at_s", s["last_time_s"]) for c in cracks.values()), default=None)
+    balance = max(abs(float(r["balance_error"])) for r in energy)
+    return (f"| {run} | {kw_case.model(s)} | {kw_case.spacing_mm(s):g} | {info['points']} | {info['steps']} | "
+            f"{per_side(angle)} | {'-' if when is None else f'{when * 1e6:.3g}'} | {per_side(start)} | "
+            f"{per_side(speed)} | {kw_case.rayleigh_speed(s['material']):.0f} | {balance:.2g} | "
+            f"{s['detached_points']} | {info['threads']} | {info['wall_seconds']:.1f} |")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--runs", nargs="+", required=True)
+    ap.add_argument("--results", required=True)
+    ap.add_argument("--figures", required=True)
+    args = ap.parse_args()
+    os.makedirs(args.figures, exist_ok=True)
+    summaries = {r: kw_case.summary(args.out, r) for r in args.runs}
+    plot_crack_paths(args.out, args.runs, summaries, os.path.join(args.figures, "crack_paths.png"))
+    first = summaries[args.runs[0]]
+    lines = ["# Kalthoff-Winkler (workflows/kalthoff-winkler/README.md): results", "",
+             "Written by `make report` from the run outputs under `out/` (nothing typed in). Crack angles: "
+             "each notch's main crack (the fit through the most points) against the notch direction, "
+             "counter-clockwise positive, measured on the crack path between "
+             f"{first['crack_angles'][0]['range_from_m'] * 1e3:.3g} and {first['crack_angles'][0]['range_to_m'] * 1e3:.3g} mm "
+             "from the notch tip (postprocess/README.md, crack angle).", "",
+             "In bold the crack toward the unstruck side (the experiment's crack), in brackets damage the tip "
+             "sheds toward the struck block, where it is sheared off. "
+             "Crack start and largest tip speed per notch (upper / lower), from the run's crack-arrival table: "
+             "the arrivals within two horizons of the fitted line, the start when one lies more than 2 dx "
+             "along it, the speed over advances of at least 3 dx (kw_case.py).", "",
+             "| run | model | dx [mm] | points | steps | crack angle, upper / lower [deg] | measured at [us] | "
+             "crack start [us] | largest tip speed [m/s] | Rayleigh speed [m/s] | max balance error | detached points | "
+             "threads | wall time [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for run in args.runs:
+        lines.append(table_row(args.out, run, summaries[run], kw_case.run_info(args.out, run),
+                               kw_case.energy_rows(args.out, run)))
+    lines += ["", "Wall times on 2 cores with `make -j2` (two runs at a time, one thread each), on the machine that "
+              "ran `make`.", "", "## Crack paths and their straight-line fits", "",
+              "![crack paths](figures/crack_paths.png)", ""]
+    for run in args.runs:
+        pictures = sorted(glob.glob(os.path.join(args.out, run, "post", "figures", "damage_*.png")))
+        if not pictures:
+            continue
+        lines += [f"## Damage on the deformed plate: {run}", ""]
+        for p in pictures:
+            name = f"{run}_{os.path.basename(p)}"
+            copy_file(p, os.path.join(args.figures, name))
+            lines.append(f"![{name}](figures/{name})")
+        lines.append("")
+    write_text(args.results, "\n".join(lines))
+    print(f"report: {os.path.abspath(args.results)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
