@@ -314,9 +314,11 @@ struct OneSidedLoss {
   std::size_t energy_detached = 0;
   double energy_ratio = 0.0;  // after / before, if not detached
 };
-OneSidedLoss lose_one_side(double load, bool keep_right, const Numerics& numerics = {}) {
+OneSidedLoss lose_one_side(double load, bool keep_right, const Numerics& numerics = {},
+                           CompressedBonds compressed = CompressedBonds::break_) {
   Scene scene = damage_scene(2, 100.0);
   scene.numerics = numerics;
+  scene.material.damage->compressed_bonds = compressed;
   Model m = testing::make_model(testing::make_lattice(2, {15, 15, 1}, kDx), scene);
   PointData& p = m.points;
   BondFamilies& f = m.bonds;
@@ -376,6 +378,19 @@ TEST(SolverDamage, OverloadedPointIsDetachedWhenLosingBondsRaisesItsEnergyAtAll)
   EXPECT_LT(rise_ratio, 1.0 + Numerics{}.detach_energy_rise);
   EXPECT_GT(fall_ratio, 0.0);
   EXPECT_LT(fall_ratio, 1.0);
+}
+
+// With compressed_bonds: hold the overload rule is off (a material whose compressed bonds cannot
+// fail is not crushed, and the rule took compressive energy for crushing): the overloaded point of
+// the first case above stays, its energy rising by less than detach_energy_rise; a larger rise
+// still detaches it.
+TEST(SolverDamage, OverloadRuleIsOffWhenCompressedBondsHold) {
+  const OneSidedLoss held = lose_one_side(2.0, true, {}, CompressedBonds::hold);
+  EXPECT_FALSE(held.detached);
+  EXPECT_GT(held.energy_ratio, 1.0);
+  Numerics strict;
+  strict.detach_energy_rise = 0.1;  // below the 22 % rise of this loss
+  EXPECT_TRUE(lose_one_side(2.0, true, strict, CompressedBonds::hold).detached);
 }
 
 // The thresholds come from the scene's numerics block: a rise of 22 % detaches a point that is not

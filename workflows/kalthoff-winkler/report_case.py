@@ -120,6 +120,8 @@ def main():
     lines += ["", "Wall times on 2 cores with `make -j2` (two runs at a time, one thread each), on the machine that "
               "ran `make`.", "", "## Crack paths and their straight-line fits", "",
               "![crack paths](figures/crack_paths.png)", ""]
+    for stale in glob.glob(os.path.join(args.figures, "*_damage_*.png")):  # an earlier report's pictures
+        os.remove(stale)
     for run in args.runs:
         pictures = sorted(glob.glob(os.path.join(args.out, run, "post", "figures", "damage_*.png")))
         if not pictures:
