@@ -11,28 +11,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import mppm_outputs  # noqa: E402
 from mppm_outputs import RunOutputError  # noqa: E402,F401  (the readers' error, for the scripts)
 from elastic_waves import rayleigh_speed  # noqa: E402,F401  (for the scripts)
-
-
-
-def summary(out, run):
-    return mppm_outputs.summary(os.path.join(out, run, "post"))
-
-
-def energy_rows(out, run):
-    return mppm_outputs.energy_rows(os.path.join(out, run, "run"))
-
-
-def load_rows(out, run):
-    return mppm_outputs.load_rows(os.path.join(out, run, "run"))
-
-
-def run_info(out, run):
-    return mppm_outputs.run_info(os.path.join(out, run, "run"))
-
-
-def frames(out, run):
-    """(time, path) of every frame of the run's ParaView series, in time order."""
-    return mppm_outputs.frames(os.path.join(out, run, "post"))
+from case_runs import energy_rows, frames, load_rows, run_info, summary  # noqa: E402,F401  (for the scripts)
 
 
 def crack_damage_threshold(run_summary):
