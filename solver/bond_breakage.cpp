@@ -321,8 +321,7 @@ void BreakageUpdater::detach_on_energy_rise() {
     if (!(after > before)) continue;
     // With compressed_bonds: hold nothing is crushed (docs/theory.md section 7), so the overload
     // rule, which takes a point holding more than its family can dissipate for crushed, is off.
-    const bool overloaded =
-        !c.hold_compressed_bonds && before > c.overload_factor * family_breaking_energy(p, f, c, i);
+    const bool overloaded = !c.hold_compressed_bonds && before > c.overload_factor * family_breaking_energy(p, f, c, i);
     if (overloaded || after > (1.0 + c.detach_energy_rise) * before) {
       detach_point(p, i);
       w.detach.push_back(i);

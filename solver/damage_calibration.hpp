@@ -8,10 +8,10 @@
 // part later leaves the crack faces as waves. rho is a property of the discretization (horizon
 // factor, G_s, dimension), and less of the material, the spacing or G_cr (within +-4 % over the
 // variations benchmarks/damage_calibration.cpp lists; not everywhere: workflows/damage-calibration/
-// README.md). The table holds the mean over the horizon factors, within 6.6 % of each measured one. The table is generated: `make -C workflows/damage-calibration`
-// measures the matrix with build/bin/mppm-damage-calibration, `make -C workflows/damage-calibration
-// table` writes solver/damage_calibration_table.hpp from it, `... check` compares the two
-// (workflows/damage-calibration/README.md).
+// README.md). The table holds the mean over the horizon factors, within 6.6 % of each measured one. The table is
+// generated: `make -C workflows/damage-calibration` measures the matrix with build/bin/mppm-damage-calibration, `make
+// -C workflows/damage-calibration table` writes solver/damage_calibration_table.hpp from it, `... check` compares the
+// two (workflows/damage-calibration/README.md).
 #pragma once
 #include <optional>
 #include <string>
