@@ -10,8 +10,8 @@ namespace mppm::solver {
 namespace {
 
 // The scheme's kinetic energy 1/2 M v^{n-1/2}.v^{n+1/2} is positive for every mode the time step
-// follows (omega dt < 2) and negative for a mode beyond it, which grows by a factor of about
-// (omega dt / 2)^2 per step. Such a run keeps its energy balance closed (the negative kinetic
+// follows (omega dt < 2) and negative for a mode beyond it, which grows geometrically (by |lambda|
+// per step, lambda + 1/lambda = 2 - omega^2 dt^2). Such a run keeps its energy balance closed (the negative kinetic
 // energy books the growth) until the values overflow, so the balance alone cannot see it.
 std::optional<std::string> instability(const EnergyState& e, double scale, double tolerance) {
   const char* which = e.kinetic < -tolerance * scale              ? "translational"
