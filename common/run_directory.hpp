@@ -13,7 +13,9 @@
 // checkpoints, stops and the end):
 //   {"status": "running" | "completed" | "numerical_failure" | "interrupted" | "write_error",
 //    "message": "...", "points": N, "bonds": N, "steps": N, "time_s": t,
-//    "wall_seconds": s, "threads": n, "effects": ["micropolar", ...],
+//    "wall_seconds": s, "loop_wall_seconds": s,
+//    "start_up_seconds": {"read_scene": s, "read_points": s, ...}, "start_up_total_seconds": s,
+//    "threads": n, "effects": ["micropolar", ...],
 //    "dimension": d, "time_step_s": dt, "critical_time_step_s": dt_c,
 //    "limiting_mode": "translational" | "rotational",
 //    "snapshots": [{"file": "snapshots/snapshot_000000.snap", "step": 0, "time_s": 0.0}, ...],

@@ -75,7 +75,10 @@ ModelOptions model_options(const Scene& scene) {
 namespace {
 
 // Everything after the points: `cloud` is read for its pre-cracks only.
-Model complete_model(PointData points, const PointCloud& cloud, const ModelOptions& o) {
+Model complete_model(PointData points, const PointCloud& cloud, const ModelOptions& o, PhaseTimer* phases) {
+  auto mark = [phases](const char* phase) {
+    if (phases) phases->mark(phase);
+  };
   Model m;
   m.constants = o.constants;
   m.effects = o.effects;
@@ -85,6 +88,7 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   fo.spacing = o.spacing;
   fo.period = o.period;
   m.bonds = build_families(m.points, fo);
+  mark("bond families");
   if (o.effects.damage && !cloud.precrack_vertices.empty()) {
     // The family volumes before the cuts are kept for the points that lost bonds to them, so that
     // the notch shows as damage from the start.
@@ -94,6 +98,7 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   } else {
     m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
   }
+  mark("pre-crack cuts");
   if (o.effects.damage) {
     index_bond_pairs(m.bonds);
     mark_no_fail_zone(m.points, o.no_fail_depth);
@@ -104,6 +109,7 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   if (o.effects.viscoplasticity && o.plastic_region)
     for (std::size_t i = 0; i < m.points.owned; ++i)
       m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
+  mark("damage set-up");
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)
@@ -111,18 +117,22 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
     m.viscoplastic_model = o.viscoplastic_model;
   }
   m.kernel = internal_force_functions(m.points.dimension, o.effects);
+  mark("shape tensors");
   return m;
 }
 
 }  // namespace
 
-Model build_model(const PointCloud& cloud, const ModelOptions& o) {
-  return complete_model(make_point_data(cloud, o.effects), cloud, o);
+Model build_model(const PointCloud& cloud, const ModelOptions& o, PhaseTimer* phases) {
+  PointData points = make_point_data(cloud, o.effects);
+  if (phases) phases->mark("point data");
+  return complete_model(std::move(points), cloud, o, phases);
 }
 
-Model build_model(PointCloud&& cloud, const ModelOptions& o) {
+Model build_model(PointCloud&& cloud, const ModelOptions& o, PhaseTimer* phases) {
   PointData points = make_point_data(std::move(cloud), o.effects);
-  return complete_model(std::move(points), cloud, o);
+  if (phases) phases->mark("point data");
+  return complete_model(std::move(points), cloud, o, phases);
 }
 
 void Model::advance_internal_forces(double dt, double end_time, bool with_energy) {

@@ -12,6 +12,7 @@
 #include "solver/cosserat_material.hpp"
 #include "solver/crack_arrivals.hpp"
 #include "solver/internal_forces.hpp"
+#include "solver/phase_timer.hpp"
 #include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
@@ -84,11 +85,13 @@ struct Model {
 // key for bad parameters). Periodic lattices set `period` themselves.
 ModelOptions model_options(const Scene& scene);
 
-// Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors.
-Model build_model(const PointCloud& cloud, const ModelOptions& options);
+// Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors. With `phases`,
+// each of these is marked there as a start-up phase ("point data", "bond families", "pre-crack
+// cuts", "damage set-up", "shape tensors").
+Model build_model(const PointCloud& cloud, const ModelOptions& options, PhaseTimer* phases = nullptr);
 // The same, taking over or releasing the cloud's per-point arrays (make_point_data): what is left
 // of it after the call is its pre-cracks and boundaries.
-Model build_model(PointCloud&& cloud, const ModelOptions& options);
+Model build_model(PointCloud&& cloud, const ModelOptions& options, PhaseTimer* phases = nullptr);
 
 // Totals of the per-point energies of the last evaluation with energies [J], summed in chunks
 // fixed by the point count (ordered_point_sums.hpp: the same result for any thread count).

@@ -1,6 +1,7 @@
 // Writing the run directory.
 #include "solver/run_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <system_error>
@@ -32,6 +33,25 @@ std::string csv_row(const std::vector<double>& values) {
     row += format_number(values[k]);
   }
   return row + '\n';
+}
+
+// {"read_points": 0.12, "bond_families": 0.8, ...}: the phases in their order, keyed by their
+// names in snake case ("pre-crack cuts" -> "pre_crack_cuts").
+std::string start_up_json(const std::vector<PhaseTimer::Phase>& phases) {
+  std::string j = "{";
+  for (std::size_t k = 0; k < phases.size(); ++k) {
+    std::string key = phases[k].name;
+    std::replace_if(
+        key.begin(), key.end(), [](char c) { return c == ' ' || c == '-'; }, '_');
+    j += (k ? ", " : "") + json_quote(key) + ": " + format_number(phases[k].seconds);
+  }
+  return j + "}";
+}
+
+double start_up_total(const std::vector<PhaseTimer::Phase>& phases) {
+  double total = 0.0;
+  for (const PhaseTimer::Phase& p : phases) total += p.seconds;
+  return total;
 }
 
 }  // namespace
@@ -146,6 +166,8 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"time_s\": " + format_number(info.time) + ",\n";
   j += "  \"wall_seconds\": " + format_number(info.wall_seconds) + ",\n";
   j += "  \"loop_wall_seconds\": " + format_number(info.loop_wall_seconds) + ",\n";
+  j += "  \"start_up_seconds\": " + start_up_json(info.start_up) + ",\n";
+  j += "  \"start_up_total_seconds\": " + format_number(start_up_total(info.start_up)) + ",\n";
   j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
   j += "  \"effects\": [";
   for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_quote(info.effects[k]);

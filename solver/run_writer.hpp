@@ -14,6 +14,7 @@
 
 #include "common/scene.hpp"
 #include "common/snapshot_file.hpp"
+#include "solver/phase_timer.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
@@ -25,7 +26,10 @@ struct RunInfo {
   std::int64_t steps = 0;
   double time = 0.0;
   double wall_seconds = 0.0;       // the whole run: reading, families, critical step, loop, files
-  double loop_wall_seconds = 0.0;  // the time loop only (snapshot and row writing included)
+  double loop_wall_seconds = 0.0;  // the time loop from its first step (snapshot and row writing included)
+  // The start-up before the first step, phase by phase in their order (solver/phase_timer.hpp);
+  // their sum is wall_seconds - loop_wall_seconds.
+  std::vector<PhaseTimer::Phase> start_up;
   int threads = 1;
   std::vector<std::string> effects;
   int dimension = 2;

@@ -73,13 +73,17 @@ int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, 
                            " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
                            "or --force with it (see --help)");
   hooks.refuse_with_restart();  // before the checkpoint is read: the option is the user's mistake
+  PhaseTimer start_up;
   const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(checkpoint_path(run_directory));
+  start_up.mark("read checkpoint");
   SolveOptions options;
   options.run_directory = run_directory;
   options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
   options.quiet = cl.quiet;
   options.test_hooks = hooks;
   mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
+  start_up.mark("read points");
+  options.start_up = std::move(start_up);
   return exit_code(restart(std::move(cloud), checkpoint, options), options);
 }
 
@@ -90,14 +94,18 @@ int start_run(const mppm::CommandLine& cl, const TestHooks& hooks) {
   const auto out = cl.option("-o");
   if (!points) throw mppm::InputError("--points POINTS.vtp is required (see --help)");
   if (!out) throw mppm::InputError("-o RUN_DIR is required (see --help)");
+  PhaseTimer start_up;
   const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
+  start_up.mark("read scene");
   mppm::PointCloud cloud = mppm::read_point_cloud(*points);
+  start_up.mark("read points");
   SolveOptions options;
   options.run_directory = *out;
   options.points_file = *points;
   options.force = cl.has_flag("--force");
   options.quiet = cl.quiet;
   options.test_hooks = hooks;
+  options.start_up = std::move(start_up);
   return exit_code(solve(scene, std::move(cloud), options), options);
 }
 

@@ -81,6 +81,15 @@ class Schedule {
   double next_ = 1.0;
 };
 
+// A wall time of the start-up line in milliseconds' precision: "0.120".
+std::string log_seconds(double seconds) {
+  std::ostringstream s;
+  s << std::fixed;
+  s.precision(3);
+  s << seconds;
+  return s.str();
+}
+
 // "1.5e-3, 2e-3" for the position of point i.
 std::string position_of(const PointData& p, std::size_t i) {
   std::string s;
@@ -186,8 +195,10 @@ SolveResult solve(const Scene& scene, PointCloud&& cloud, const SolveOptions& op
 
 namespace {
 
-SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options,
+SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options_in,
                         PointCloud* release) {
+  SolveOptions options = options_in;
+  if (!options.start_up) options.start_up.emplace();
   const std::string scene_file = options.run_directory + "/" + run_layout::resolved_scene;
   if (fnv1a(file_text(scene_file)) != checkpoint.header.scene_fingerprint)
     throw InputError(scene_file + ": changed since the checkpoint " + checkpoint.path +
@@ -198,7 +209,10 @@ SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoin
                      " was started with (the points file changed since the checkpoint " + checkpoint.path +
                      "; a restart needs the same points)");
   options.test_hooks.refuse_with_restart();
-  return run(load_scene(scene_file), cloud, options, &checkpoint, release);
+  options.start_up->mark("checkpoint identity");
+  const Scene scene = load_scene(scene_file);
+  options.start_up->mark("read scene");
+  return run(scene, cloud, options, &checkpoint, release);
 }
 
 }  // namespace
@@ -257,7 +271,7 @@ class RunDriver {
       : scene_in_(scene_in),
         options_(options),
         resume_(resume),
-        wall_start_(std::chrono::steady_clock::now()),
+        start_up_(options.start_up.value_or(PhaseTimer{})),
         scene_(scene_in),
         checkpointing_(scene_in.output.checkpoint_interval > 0.0),
         guard_(scene_in.numerics.energy_check_tolerance, scene_in.numerics.energy_check_start_step) {}
@@ -272,11 +286,15 @@ class RunDriver {
     options_.test_hooks.check_against_steps(plan_.steps);
     open_run_directory();
     log_start();
+    start_up_.mark("run directory");
+    if (!resume_) write_reference();
     start_dynamics();
+    start_up_.mark("initial forces");
     if (resume_)
       restore_from_checkpoint();
     else
       write_initial_state();
+    start_time_loop();
     Progress progress("mppm-solve", plan_.steps, options_.quiet);
     const InterruptionHandlers handlers;
     if (advance(progress)) finish_completed();
@@ -295,6 +313,7 @@ class RunDriver {
   void build_model_and_conditions(const PointCloud& cloud, PointCloud* release);
   void fit_time_step();
   void open_run_directory();
+  void write_reference();
   void fill_run_info();
   void log_start();
   void log_start_up_report();
@@ -303,6 +322,8 @@ class RunDriver {
   void start_dynamics();
   void restore_from_checkpoint();
   void write_initial_state();
+  void start_time_loop();
+  std::string start_up_line() const;
   // The time loop; true when it reached time.end, false when it stopped on an interruption.
   bool advance(Progress& progress);
   void check_and_record(std::int64_t s, bool row);
@@ -325,8 +346,10 @@ class RunDriver {
   const Scene& scene_in_;  // as given: scene_.time.step is the step the run arrives at
   const SolveOptions& options_;
   const CheckpointFile* resume_;  // null for a new run
-  const std::chrono::steady_clock::time_point wall_start_;
-  std::chrono::steady_clock::time_point loop_start_;
+  // The start-up phases (run_info.json "start_up_seconds"); their start is that of the run's wall
+  // time, their end that of the time loop.
+  PhaseTimer start_up_;
+  std::optional<std::chrono::steady_clock::time_point> loop_start_;
   Scene scene_;
   // Checkpoints (output.checkpoint_interval; nothing of this is computed without it) identify the
   // run's inputs by the resolved scene as written and the points.
@@ -355,6 +378,7 @@ void RunDriver::check_inputs(const PointCloud& cloud) {
   check_points_match_scene(scene_, cloud, options_.points_file);
   if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");
   refuse_runs_that_do_not_fit(scene_, cloud);
+  start_up_.mark("memory estimate");
 }
 
 // The boundary conditions and the model; with `release` the model takes the cloud's arrays over
@@ -370,7 +394,9 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
     identity_.points_fingerprint = point_cloud_fingerprint(cloud);
   }
   conditions_.emplace(scene_, cloud, options_.points_file);
-  model_.emplace(release ? build_model(std::move(*release), model_settings) : build_model(cloud, model_settings));
+  start_up_.mark("boundary conditions");
+  model_.emplace(release ? build_model(std::move(*release), model_settings, &start_up_)
+                         : build_model(cloud, model_settings, &start_up_));
   if (release) *release = PointCloud{};
   if (model().detached_points == model().points.owned)
     throw InputError(options_.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
@@ -382,6 +408,7 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
 // view of it; the resolved scene records the step.
 void RunDriver::fit_time_step() {
   plan_.critical = critical_time_step(model());
+  start_up_.mark("critical time step");
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
                            log_number(plan_.critical.step) + " s): the discrete operator is not positive");
@@ -389,10 +416,10 @@ void RunDriver::fit_time_step() {
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
   scene_.time.step = plan_.dt;
+  start_up_.mark("damage step limit");
 }
 
-// The run directory: a new one (the resolved scene and the reference configuration written), or
-// the one a restart continues.
+// The run directory: a new one (the resolved scene written), or the one a restart continues.
 void RunDriver::open_run_directory() {
   model().set_breakage_time_step(plan_.dt);
   if (resume_)
@@ -405,10 +432,15 @@ void RunDriver::open_run_directory() {
       derived.emplace_back("critical_bond_work_J_per_m6", model().constants.critical_bond_work);
     const std::string resolved = writer().write_resolved_scene(scene_, derived);
     if (checkpointing_) identity_.scene_fingerprint = fnv1a(resolved);
-    writer().write_reference(model().points);
   }
   if (scene_.effects.damage) writer().start_crack_path_table();
   fill_run_info();
+}
+
+// A new run: the reference configuration (run_layout::reference).
+void RunDriver::write_reference() {
+  writer().write_reference(model().points);
+  start_up_.mark("reference snapshot");
 }
 
 void RunDriver::fill_run_info() {
@@ -500,7 +532,6 @@ void RunDriver::start_dynamics() {
   dynamics().set_damping(scene_.numerics.damping);
   dynamics().set_clock(scene_.time.end, plan_.steps);
   dynamics().initialize();
-  loop_start_ = std::chrono::steady_clock::now();
   rows_ = Schedule(scene_.output.load_interval, plan_.dt, true);
   snapshots_ = Schedule(scene_.output.interval, plan_.dt, false);
   checkpoints_ = Schedule(scene_.output.checkpoint_interval, plan_.dt, false);
@@ -537,6 +568,21 @@ void RunDriver::restore_from_checkpoint() {
 void RunDriver::write_initial_state() {
   record_rows();
   snapshot();
+}
+
+// The end of the start-up, the start of the time loop: the "start-up:" line of log.txt.
+void RunDriver::start_time_loop() {
+  loop_start_ = start_up_.mark(resume_ ? "restore state" : "initial snapshot");
+  info_.start_up = start_up_.phases();
+  writer().log(start_up_line());
+}
+
+// "start-up: read points 0.12 s, bond families 0.8 s, ... (total 2.3 s)"
+std::string RunDriver::start_up_line() const {
+  std::string line = "start-up:";
+  for (const PhaseTimer::Phase& p : start_up_.phases())
+    line += (line.back() == ':' ? " " : ", ") + p.name + " " + log_seconds(p.seconds) + " s";
+  return line + " (total " + log_seconds(start_up_.total_seconds()) + " s)";
 }
 
 // Per step: step, guards, row, scheduled snapshot, checkpoint, interruption.
@@ -647,8 +693,10 @@ void RunDriver::update_info(const std::string& status, const std::string& messag
   info_.steps = dynamics().steps();
   info_.time = dynamics().time();
   const auto now = std::chrono::steady_clock::now();
-  info_.wall_seconds = std::chrono::duration<double>(now - wall_start_).count();
-  info_.loop_wall_seconds = std::chrono::duration<double>(now - loop_start_).count();
+  info_.wall_seconds = std::chrono::duration<double>(now - start_up_.start()).count();
+  // 0 until the time loop starts (a rewrite during the start-up).
+  info_.loop_wall_seconds = loop_start_ ? std::chrono::duration<double>(now - *loop_start_).count() : 0.0;
+  if (!loop_start_) info_.start_up = start_up_.phases();
   info_.detached_points = model().detached_points;
 }
 

@@ -3,12 +3,14 @@
 // directory up to the last good snapshot (exit 3).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "common/checkpoint_file.hpp"
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
 #include "solver/explicit_dynamics.hpp"
+#include "solver/phase_timer.hpp"
 #include "solver/test_hooks.hpp"
 
 namespace mppm::solver {
@@ -18,6 +20,10 @@ struct SolveOptions {
   std::string points_file = "points";  // named in messages
   bool force = false;                  // overwrite an earlier run in run_directory
   bool quiet = true;                   // no progress display
+  // The start-up so far: the phases before the call (mppm-solve: reading the scene, the points or
+  // the checkpoint), whose start is also the start of the run's wall time; none: both start with
+  // the call.
+  std::optional<PhaseTimer> start_up;
   // Faults on purpose, for tests (solver/test_hooks.hpp; none by default).
   TestHooks test_hooks;
 };

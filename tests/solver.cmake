@@ -9,6 +9,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_run.cpp
   unit/test_solver_families.cpp
   unit/test_solver_command.cpp
+  unit/test_solver_start_up.cpp
   unit/test_solver_boundary_conditions.cpp
   unit/test_solver_damage.cpp
   unit/test_solver_cosserat_law.cpp
