@@ -1,6 +1,6 @@
 // The postprocessing driver: checks the run directory, streams the snapshots one at a time
-// (ParaView frames, crack tracking), then writes the load curve and the summary, and has the
-// pictures made (pictures.hpp).
+// (ParaView frames, crack tracking), then writes the load curve, the summary and view.py (the
+// ParaView state, paraview_state.hpp), and has the pictures made (pictures.hpp).
 // Outputs are committed atomically; results.pvd is rewritten after every frame so that an
 // interrupted postprocess (or a truncated snapshot) leaves a readable partial series.
 #include "postprocess/postprocess_run.hpp"
@@ -29,6 +29,7 @@
 #include "postprocess/crack_path_table.hpp"
 #include "postprocess/derived_fields.hpp"
 #include "postprocess/load_curve.hpp"
+#include "postprocess/paraview_state.hpp"
 #include "postprocess/pictures.hpp"
 #include "postprocess/run_directory_reader.hpp"
 #include "postprocess/shear_band_metrics.hpp"
@@ -600,6 +601,8 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   summary.set("notes", note_array);
   write_text((post / "summary.json").string(), summary.dump());
   result.summary = summary;
+  write_paraview_state(options.output_directory,
+                       {view_field(first.array_names), options.warp_scale, run.spacing, run.info.dimension});
 
   if (options.plot_load_curve) plot_load_curve(options.output_directory, peak.boundary, options.script_directory);
   if (options.figures) {

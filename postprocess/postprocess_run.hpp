@@ -1,6 +1,7 @@
 // The postprocessing stage as a library call: run directory -> post directory (docs/stages.md):
-// results.pvd + results/*.vtu, load_curve.csv + load_curve.png, summary.json, and with
-// `figures` PNG contour images through ParaView's pvbatch. mppm-postprocess is a thin main.
+// results.pvd + results/*.vtu, load_curve.csv + load_curve.png, summary.json, view.py (a ParaView
+// state of the series), and with `figures` PNG contour images through ParaView's pvbatch.
+// mppm-postprocess is a thin main.
 #pragma once
 #include <string>
 #include <vector>

@@ -17,6 +17,7 @@ add_dependencies(test_post_stage mppm-postprocess)
 # Needs ParaView (pvbatch) and xvfb-run: fails, never skips, when they are missing.
 mppm_add_gtest(test_post_paraview unit
   unit/test_post_pvbatch.cpp
+  unit/test_post_view_state.cpp
   unit/test_post_run_fixture.cpp
 )
 add_dependencies(test_post_paraview mppm-postprocess)

@@ -209,7 +209,7 @@ TEST(PostOutput, SameOutputForAnyThreadCount) {
         << relative << " differs between 1 and 2 threads";
     ++compared;
   }
-  EXPECT_EQ(compared, 4u + 1u + 1u + 1u);  // 4 frames, results.pvd, load_curve.csv, summary.json
+  EXPECT_EQ(compared, 4u + 1u + 1u + 1u + 1u);  // 4 frames, results.pvd, load_curve.csv, summary.json, view.py
 }
 
 TEST(PostOutput, NumericalFailureRunIsPostprocessedUpToItsLastSnapshot) {
