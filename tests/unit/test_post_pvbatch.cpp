@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "paraview_available.hpp"
 #include "postprocess/external_tools.hpp"
 #include "test_post_command.hpp"
 #include "test_post_run_fixture.hpp"
@@ -19,17 +20,6 @@ using namespace mppm::post::testing;
 // A contour image with a colour map has hundreds of distinct colours; a blank render has a
 // handful (background, antialiased text). 64 separates the two with a wide margin.
 constexpr const char* kMinimumColours = "64";
-
-// An assertion result, not ASSERT_* in a helper: those would return from the helper only,
-// and the test would go on without ParaView.
-::testing::AssertionResult paraview_installed() {
-  if (!mppm::post::find_program("pvbatch"))
-    return ::testing::AssertionFailure() << "pvbatch not found: install the Debian package paraview (make deps does)";
-  if (!mppm::post::find_program("xvfb-run"))
-    return ::testing::AssertionFailure()
-           << "xvfb-run not found: install the Debian packages xvfb and xauth (make deps does)";
-  return ::testing::AssertionSuccess();
-}
 
 TEST(PostParaView, PvbatchRendersTheSeriesWarpedAndColouredByDamage) {
   ASSERT_TRUE(paraview_installed());

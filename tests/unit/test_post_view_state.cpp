@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "paraview_available.hpp"
 #include "postprocess/external_tools.hpp"
 #include "test_post_command.hpp"
 #include "test_post_run_fixture.hpp"
@@ -17,15 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace mppm::post::testing;
-
-::testing::AssertionResult paraview_installed() {
-  if (!mppm::post::find_program("pvbatch"))
-    return ::testing::AssertionFailure() << "pvbatch not found: install the Debian package paraview (make deps does)";
-  if (!mppm::post::find_program("xvfb-run"))
-    return ::testing::AssertionFailure()
-           << "xvfb-run not found: install the Debian packages xvfb and xauth (make deps does)";
-  return ::testing::AssertionSuccess();
-}
 
 // Width and height from the PNG header (signature, then the IHDR chunk: big-endian at 16 and 20).
 std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& path) {

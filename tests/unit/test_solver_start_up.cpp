@@ -17,6 +17,7 @@
 #include "common/run_directory.hpp"
 #include "common/snapshot_file.hpp"
 #include "solver/solve_command.hpp"
+#include "tests/unit/solver_block_points.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 
 namespace mppm::solver {
@@ -32,24 +33,7 @@ std::string work_directory() {
   return dir.string();
 }
 
-// The points of solver_case1_block.yaml: 12 x 12 body points of 2.5 mm over a bottom layer of 3 rows.
-std::string block_points() {
-  const double dx = 2.5e-3;
-  PointCloud c = testing::make_lattice(2, {12, 15, 1}, dx, 0.01);
-  c.horizon = 2.05 * dx;
-  std::int64_t layer = 0;
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    c.y[i] -= 3 * dx;
-    if (c.y[i] < 0.0) {
-      c.region[i] = c.boundary_id[i] = 1;
-      ++layer;
-    }
-  }
-  c.boundaries = {BoundaryInfo{"bottom", "velocity", 12 * dx * 0.01, layer, "", 0.0}};
-  const std::string path = work_directory() + "/block.vtp";
-  write_point_cloud(c, path);
-  return path;
-}
+std::string block_points() { return testing::write_block_points(work_directory()); }
 
 int run(std::vector<std::string> args) {
   args.insert(args.begin(), "mppm-solve");
