@@ -11,14 +11,20 @@ from script_exit import InputError  # noqa: E402
 TEXT = {"calibration"}
 
 
-def row(out, run):
-    """The run's row with numbers as floats; a time of -1 (not reached in the run) becomes None."""
-    path = os.path.join(out, run, "row.csv")
+def csv_rows(out, run, name):
+    """The rows of OUT/RUN/NAME (a CSV file with a header row), as dictionaries of strings."""
+    path = os.path.join(out, run, name)
     if not os.path.isfile(path):
         raise InputError(f"{path}: missing (run `make` first)")
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+        return list(csv.DictReader(f))
+
+
+def row(out, run):
+    """The run's row with numbers as floats; a time of -1 (not reached in the run) becomes None."""
+    rows = csv_rows(out, run, "row.csv")
     if len(rows) != 1:
+        path = os.path.join(out, run, "row.csv")
         raise InputError(f"{path}: expected one row, found {len(rows)}")
     r = {}
     for key, value in rows[0].items():
@@ -31,20 +37,12 @@ def row(out, run):
 
 def history(out, run):
     """(time after the arrival [s], crack advance [m]) at every step where the count of broken crossing pairs changed."""
-    path = os.path.join(out, run, "history.csv")
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: missing (run `make` first)")
-    with open(path, newline="") as f:
-        return [(float(r["time_after_arrival_s"]), float(r["advance_m"])) for r in csv.DictReader(f)]
+    return [(float(r["time_after_arrival_s"]), float(r["advance_m"])) for r in csv_rows(out, run, "history.csv")]
 
 
 def broken_crossing_pairs(out, run):
     """The broken pairs across the crack plane ahead of the tip at the end of the run."""
-    path = os.path.join(out, run, "history.csv")
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: missing (run `make` first)")
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = csv_rows(out, run, "history.csv")
     return int(rows[-1]["broken_crossing_pairs"]) if rows else 0
 
 
