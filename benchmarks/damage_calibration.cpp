@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "common/comma_list.hpp"
 #include "common/command_line.hpp"
 #include "common/input_error.hpp"
 #include "tests/verification/problems/crack_energy.hpp"
@@ -41,9 +42,7 @@ The solver's table is the mean of released_fraction over the horizon factors of 
 
 std::vector<double> numbers(const std::string& list, const std::string& option) {
   std::vector<double> out;
-  std::stringstream s(list);
-  std::string item;
-  while (std::getline(s, item, ',')) {
+  for (const std::string& item : split_commas(list)) {
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
     if (item.empty() || *end != '\0')

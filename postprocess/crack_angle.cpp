@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/comma_list.hpp"
 #include "common/input_error.hpp"
 #include "common/units.hpp"
 #include "postprocess/point_grid.hpp"
@@ -414,15 +415,6 @@ CrackAngleResult measure_crack_angles(const CrackAngleLattice& lattice, const st
 }
 
 namespace {
-
-std::vector<std::string> split_commas(const std::string& text) {
-  std::vector<std::string> items;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) items.push_back(item);
-  if (!text.empty() && text.back() == ',') items.emplace_back();
-  return items;
-}
 
 Vector3 parse_tip(const std::string& text) {
   const auto items = split_commas(text);

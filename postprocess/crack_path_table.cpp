@@ -8,6 +8,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "common/comma_list.hpp"
 #include "common/crack_path.hpp"
 #include "common/input_error.hpp"
 #include "common/snapshot_file.hpp"
@@ -15,15 +16,6 @@
 namespace mppm::post {
 
 namespace {
-
-std::vector<std::string> cells_of(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  std::string cell;
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
 
 std::string header_text() {
   std::string header;
@@ -34,7 +26,7 @@ std::string header_text() {
 // One row: the point (a whole number below point_count) and the time (finite); the position is
 // not read (the reference points give it).
 CrackArrival parse_row(const std::string& line, std::size_t point_count, const std::string& where) {
-  const std::vector<std::string> cells = cells_of(line);
+  const std::vector<std::string> cells = split_commas(line);
   if (cells.size() != run_files::crack_path_columns().size())
     throw InputError(where + ": expected " + std::to_string(run_files::crack_path_columns().size()) +
                      " values separated by commas (" + header_text() + ")");

@@ -8,21 +8,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/comma_list.hpp"
 #include "common/input_error.hpp"
 
 namespace mppm::post {
 namespace {
 
 std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) {
-    const auto first = cell.find_first_not_of(" \t\r");
-    const auto last = cell.find_last_not_of(" \t\r");
-    cells.push_back(first == std::string::npos ? std::string() : cell.substr(first, last - first + 1));
-  }
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  std::vector<std::string> cells = split_commas(line);
+  for (std::string& cell : cells) cell = trim_blanks(cell);
   return cells;
 }
 

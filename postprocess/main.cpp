@@ -2,6 +2,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "common/comma_list.hpp"
 #include "common/command_line.hpp"
 #include "common/input_error.hpp"
 #include "postprocess/external_tools.hpp"
@@ -9,15 +10,11 @@
 
 namespace {
 
+// The non-empty items of a list option, trimmed.
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> items;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const auto first = item.find_first_not_of(' ');
-    const auto last = item.find_last_not_of(' ');
-    if (first != std::string::npos) items.push_back(item.substr(first, last - first + 1));
-  }
+  for (const std::string& item : mppm::split_commas(text))
+    if (std::string trimmed = mppm::trim_blanks(item); !trimmed.empty()) items.push_back(trimmed);
   return items;
 }
 
