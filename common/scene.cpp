@@ -1056,6 +1056,7 @@ std::vector<std::string> EffectSet::names() const {
   if (viscoplasticity) out.push_back("viscoplasticity");
   if (damage) out.push_back("damage");
   if (gravity) out.push_back("gravity");
+  if (pore_fluid) out.push_back("pore_fluid");
   return out;
 }
 

@@ -18,6 +18,7 @@ struct EffectSet {
   bool viscoplasticity = false;
   bool damage = false;
   bool gravity = false;
+  bool pore_fluid = false;  // saturated pore fluid in the pores (docs/theory.md section 11)
 
   std::vector<std::string> names() const;  // in canonical order
   friend bool operator==(const EffectSet&, const EffectSet&) = default;
@@ -141,6 +142,18 @@ struct ViscoplasticParameters {
   std::optional<Selector> region;
 };
 
+// The pore fluid (docs/theory.md section 11), saturated: the fluid fills the pores. SI units.
+struct PoreFluidParameters {
+  double permeability = 0.0;      // intrinsic permeability k [m^2]
+  double fluid_viscosity = 0.0;   // mu_f [Pa s]
+  double fluid_density = 0.0;     // rho_f [kg/m^3]
+  double biot_coefficient = 1.0;  // b, in (porosity, 1]
+  double biot_modulus = 0.0;      // M [Pa]
+  double initial_pressure = 0.0;  // p at t = 0 [Pa], compression positive
+
+  double mobility() const { return permeability / fluid_viscosity; }  // k' = k / mu_f [m^2/(Pa s)]
+};
+
 struct Material {
   std::string model = "cosserat-elastic";
   double density = 0.0;                                // skeleton partial density rho^s [kg/m^3]
@@ -152,8 +165,10 @@ struct Material {
   double length_scale = 0.0;                           // micro-polar length l [m]
   std::optional<DamageParameters> damage;
   std::optional<ViscoplasticParameters> viscoplasticity;
+  std::optional<PoreFluidParameters> pore_fluid;
 
   double partial_density() const { return solid_fraction * density; }  // rho [kg/m^3]
+  double porosity() const { return 1.0 - solid_fraction; }              // n0
   // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (docs/theory.md section 4).
   double micro_inertia() const;
   // Effective bending modulus B_w [N]: a3 in 2-D (docs/theory.md section 5); a2 in 3-D.
