@@ -305,7 +305,7 @@ TEST(Scene, NumericsThresholdsDefaultEchoAndValidate) {
   const std::pair<const char*, const char*> bad[] = {
       {"numerics.energy_check_start_step=-1", "numerics.energy_check_start_step: must be >= 0"},
       {"numerics.energy_check_start_step=2.5", "numerics.energy_check_start_step: \"2.5\" is not an integer"},
-      {"numerics.detach_energy_rise=-0.1", "numerics.detach_energy_rise: -0.10000000000000001 must be >= 0"},
+      {"numerics.detach_energy_rise=-0.1", "numerics.detach_energy_rise: -0.1 must be >= 0"},
       {"numerics.detach_energy_rise=inf", "numerics.detach_energy_rise: \"inf\" is not a finite number"},
       {"numerics.overload_factor=0", "numerics.overload_factor: 0 must be > 0"},
       {"numerics.damaged_frequency_ratio=0.5", "numerics.damaged_frequency_ratio: 0.5 must be >= 1"},
