@@ -160,6 +160,7 @@ const char* dimension_name(const Dimension& d) {
   static const Named names[] = {
       {dim::none, "a plain number"},
       {dim::length, "a length (e.g. m, mm)"},
+      {dim::area, "an area (e.g. m^2, mm^2)"},
       {dim::mass, "a mass (e.g. kg)"},
       {dim::time, "a time (e.g. s, us)"},
       {dim::angle, "an angle (e.g. deg, rad)"},

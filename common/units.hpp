@@ -22,6 +22,7 @@ struct Dimension {
 namespace dim {
 inline constexpr Dimension none{};
 inline constexpr Dimension length{{1, 0, 0}};
+inline constexpr Dimension area{{2, 0, 0}};  // m^2 (intrinsic permeability)
 inline constexpr Dimension mass{{0, 1, 0}};
 inline constexpr Dimension time{{0, 0, 1}};
 inline constexpr Dimension angle{{0, 0, 0}, true};
