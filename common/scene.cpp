@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kEffectNames{"micropolar", "viscoplasticity", "damage", "gravity"};
+const std::vector<std::string> kEffectNames{"micropolar", "viscoplasticity", "damage", "gravity", "pore_fluid"};
 
 // Fields a snapshot can hold, and the effect each one needs (empty: always available).
 const std::vector<std::pair<std::string, std::string>> kOutputFields{{"displacement", ""},
@@ -54,13 +54,15 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
     {"geometry.precracks[]", kSelectorKeys},
     {"material",
      {"model", "density", "solid_fraction", "lambda", "mu", "mu_c", "couple_moduli", "length_scale", "damage",
-      "viscoplasticity"}},
+      "viscoplasticity", "pore_fluid"}},
     {"material.damage", {"critical_energy_release_rate", "no_fail_depth", "calibration", "compressed_bonds", "region"}},
     {"material.damage.region", kRegionKeys},
     {"material.viscoplasticity",
      {"model", "friction_angle", "dilatancy_angle", "cohesion", "hardening", "viscosity", "residual_cohesion",
       "cone_match", "region"}},
     {"material.viscoplasticity.region", kRegionKeys},
+    {"material.pore_fluid",
+     {"permeability", "fluid_viscosity", "fluid_density", "biot_coefficient", "biot_modulus", "initial_pressure"}},
     {"boundary_conditions[]",
      {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation", "rotation_rate",
       "rotation_history", "depth"}},
@@ -414,6 +416,8 @@ class SceneReader {
         scene_.effects.damage = true;
       else if (name == "gravity")
         scene_.effects.gravity = true;
+      else if (name == "pore_fluid")
+        scene_.effects.pore_fluid = true;
       else if (name == "none" && list.size() == 1) {
       } else
         fail(list[k], path,
@@ -596,6 +600,7 @@ class SceneReader {
     }
     read_damage(m);
     read_viscoplasticity(m);
+    read_pore_fluid(m);
   }
 
   void warn_effect_off(const YAML::Node& node, const std::string& path, const std::string& effect) {
@@ -685,6 +690,59 @@ class SceneReader {
     }
     if (node["region"].IsDefined()) vp.region = read_region(node["region"], p + ".region");
     scene_.material.viscoplasticity = vp;
+  }
+
+  // The saturated pore fluid (docs/theory.md section 11). What is not built yet, the unsaturated
+  // model (`retention`) and a hydrostatic initial pressure, is refused by name: ignoring it would
+  // run another model than the one asked for.
+  void read_pore_fluid(const YAML::Node& m) {
+    const YAML::Node node = m["pore_fluid"];
+    const std::string p = "material.pore_fluid";
+    if (!effect_block_wanted(node, p, scene_.effects.pore_fluid, "pore_fluid")) return;
+    if (!node.IsDefined() || node.IsNull())
+      fail(m, p, "missing: the effect 'pore_fluid' needs {permeability, fluid_viscosity, biot_modulus}");
+    if (node.IsMap() && node["retention"].IsDefined()) {
+      fail(node["retention"], p + ".retention",
+           "unsaturated flow (retention) is not supported yet (remove retention: without it the pores are taken as "
+           "saturated)");
+    }
+    check_keys(node, p);
+    PoreFluidParameters fluid;
+    fluid.permeability = quantity(require(node, p, "permeability", "intrinsic permeability k, e.g. 1e-12 m^2"),
+                                  p + ".permeability", dim::area);
+    positive(node["permeability"], p + ".permeability", fluid.permeability);
+    fluid.fluid_viscosity = quantity(require(node, p, "fluid_viscosity", "mu_f, e.g. 1 mPa*s for water"),
+                                     p + ".fluid_viscosity", dim::viscosity);
+    positive(node["fluid_viscosity"], p + ".fluid_viscosity", fluid.fluid_viscosity);
+    fluid.fluid_density = quantity_or(node, p, "fluid_density", dim::density, 1000.0);
+    if (!(fluid.fluid_density >= 0.0))
+      fail(node["fluid_density"], p + ".fluid_density", format_number(fluid.fluid_density) + " must be >= 0");
+    fluid.biot_coefficient = quantity_or(node, p, "biot_coefficient", dim::none, 1.0);
+    check_biot_coefficient(node["biot_coefficient"], p + ".biot_coefficient", fluid.biot_coefficient);
+    fluid.biot_modulus =
+        quantity(require(node, p, "biot_modulus", "M, e.g. 2 GPa"), p + ".biot_modulus", dim::pressure);
+    positive(node["biot_modulus"], p + ".biot_modulus", fluid.biot_modulus);
+    fluid.initial_pressure = read_initial_pressure(node["initial_pressure"], p + ".initial_pressure");
+    scene_.material.pore_fluid = fluid;
+  }
+
+  // n0 < b <= 1: b = 1 - K / K_s for a skeleton no stiffer than its grains (b = 1: rigid grains),
+  // and the grains' share (b - n0) / K_s of the storage 1 / M = n0 / K_f + (b - n0) / K_s is positive.
+  void check_biot_coefficient(const YAML::Node& node, const std::string& path, double b) {
+    const double porosity = scene_.material.porosity();
+    if (b > porosity && b <= 1.0) return;
+    fail(node, path,
+         format_number(b) + " is out of range (expected porosity < b <= 1, with the porosity n0 = 1 - " +
+             "material.solid_fraction = " + format_number(porosity) + ")");
+  }
+
+  // A constant pressure (compression positive); 0 Pa unless given.
+  double read_initial_pressure(const YAML::Node& node, const std::string& path) {
+    if (!node.IsDefined() || node.IsNull()) return 0.0;
+    if (node.IsScalar() && node.Scalar() == "hydrostatic") {
+      fail(node, path, "a hydrostatic initial pressure is not supported yet (expected a constant pressure, e.g. 0 Pa)");
+    }
+    return quantity(node, path, dim::pressure);  // finite: the quantity parser refuses inf and nan
   }
 
   void read_gravity(const YAML::Node& root) {
