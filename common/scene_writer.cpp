@@ -115,6 +115,17 @@ void emit_viscoplasticity(YAML::Emitter& out, const ViscoplasticParameters& vp) 
   out << YAML::EndMap;
 }
 
+void emit_pore_fluid(YAML::Emitter& out, const PoreFluidParameters& fluid) {
+  out << YAML::Key << "pore_fluid" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "permeability" << YAML::Value << Num{fluid.permeability};
+  out << YAML::Key << "fluid_viscosity" << YAML::Value << Num{fluid.fluid_viscosity};
+  out << YAML::Key << "fluid_density" << YAML::Value << Num{fluid.fluid_density};
+  out << YAML::Key << "biot_coefficient" << YAML::Value << Num{fluid.biot_coefficient};
+  out << YAML::Key << "biot_modulus" << YAML::Value << Num{fluid.biot_modulus};
+  out << YAML::Key << "initial_pressure" << YAML::Value << Num{fluid.initial_pressure};
+  out << YAML::EndMap;
+}
+
 void emit_material(YAML::Emitter& out, const Scene& scene) {
   const auto& m = scene.material;
   out << YAML::Key << "material" << YAML::Value << YAML::BeginMap;
@@ -131,6 +142,7 @@ void emit_material(YAML::Emitter& out, const Scene& scene) {
   }
   if (m.damage) emit_damage(out, *m.damage);
   if (m.viscoplasticity) emit_viscoplasticity(out, *m.viscoplasticity);
+  if (m.pore_fluid) emit_pore_fluid(out, *m.pore_fluid);
   out << YAML::EndMap;
 }
 
@@ -221,6 +233,10 @@ void emit_derived(YAML::Emitter& out, const Scene& scene, const std::vector<std:
   if (scene.effects.micropolar) {
     out << YAML::Key << "micro_inertia_kg_per_m" << YAML::Value << Num{m.micro_inertia()};
     out << YAML::Key << "bending_modulus_N" << YAML::Value << Num{m.bending_modulus(scene.dimension)};
+  }
+  if (m.pore_fluid) {
+    out << YAML::Key << "porosity" << YAML::Value << Num{m.porosity()};
+    out << YAML::Key << "fluid_mobility_m2_per_Pa_s" << YAML::Value << Num{m.pore_fluid->mobility()};
   }
   for (const auto& [key, value] : derived) out << YAML::Key << key << YAML::Value << Num{value};
   out << YAML::EndMap;
