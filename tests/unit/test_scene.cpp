@@ -220,13 +220,24 @@ TEST(Scene, ResolvedSceneReadsBackToTheSameScene) {
       replace(kExample, "  - {boundary: top,    type: traction, value: [0, 8 MPa],  ramp: 6.25 us}\n",
               "  - {boundary: top, type: velocity, value: [free, -0.05 m/s], rotation_rate: 0.5,\n"
               "     history: [[0, 1], [0.09 s, 1], [0.09 s, 0]]}\n");
-  const Scene a = parse_scene(text, kPath);
+  // With the pore fluid next to damage (tests/unit/test_scene_pore_fluid.cpp checks the block alone).
+  const Scene a = parse_scene(text, kPath,
+                              {"effects=[micropolar, damage, pore_fluid]",
+                               "material.pore_fluid={permeability: 3e-13 m^2, fluid_viscosity: 1.1 mPa*s, "
+                               "biot_coefficient: 0.97, biot_modulus: 2.2 GPa, initial_pressure: 12.5 kPa}"});
   const std::string yaml = resolved_scene_yaml(a, {{"time_step_s", 2.5e-8}});
   const Scene b = parse_scene(yaml, "/elsewhere/scene.resolved.yaml");
   EXPECT_EQ(b.geometry.file, a.geometry.file);
   EXPECT_EQ(b.material.mu_c, a.material.mu_c);
   EXPECT_EQ(b.material.damage->no_fail_depth, a.material.damage->no_fail_depth);
   EXPECT_EQ(b.effects, a.effects);
+  ASSERT_TRUE(a.material.pore_fluid.has_value() && b.material.pore_fluid.has_value());
+  const auto& fa = *a.material.pore_fluid;
+  const auto& fb = *b.material.pore_fluid;
+  EXPECT_EQ(std::vector({fb.permeability, fb.fluid_viscosity, fb.fluid_density, fb.biot_coefficient, fb.biot_modulus,
+                         fb.initial_pressure}),
+            std::vector({fa.permeability, fa.fluid_viscosity, fa.fluid_density, fa.biot_coefficient, fa.biot_modulus,
+                         fa.initial_pressure}));
   ASSERT_EQ(b.boundary_conditions.size(), a.boundary_conditions.size());
   for (std::size_t k = 0; k < a.boundary_conditions.size(); ++k) {
     EXPECT_EQ(b.boundary_conditions[k].value.times, a.boundary_conditions[k].value.times);
