@@ -108,20 +108,10 @@ Outcome feed_quantity(std::string_view text) {
     if (outcome.message.empty()) violated("parse_quantity rejected \"" + std::string(text) + "\" without a message");
   }
   // Every dimension a scene asks for (scene.cpp), so each unit-check branch is reached.
-  static const Dimension kExpected[] = {dim::none,
-                                        dim::length,
-                                        dim::mass,
-                                        dim::time,
-                                        dim::angle,
-                                        dim::density,
-                                        dim::pressure,
-                                        dim::force,
-                                        dim::velocity,
-                                        dim::acceleration,
-                                        dim::energy_per_area,
-                                        dim::viscosity,
-                                        dim::rate,
-                                        Dimension{{0, 0, -1}, true}};
+  static const Dimension kExpected[] = {
+      dim::none,         dim::length,          dim::area,      dim::mass,  dim::time,
+      dim::angle,        dim::density,         dim::pressure,  dim::force, dim::velocity,
+      dim::acceleration, dim::energy_per_area, dim::viscosity, dim::rate,  Dimension{{0, 0, -1}, true}};
   for (const Dimension& d : kExpected) {
     try {
       const double v = parse_quantity_as(text, d);
