@@ -53,7 +53,7 @@ const char* element_name(CheckpointElement e) {
 
 std::uint32_t checkpoint_effect_bits(const EffectSet& effects) {
   return (effects.micropolar ? 1u : 0u) | (effects.viscoplasticity ? 2u : 0u) | (effects.damage ? 4u : 0u) |
-         (effects.gravity ? 8u : 0u);
+         (effects.gravity ? 8u : 0u) | (effects.pore_fluid ? 16u : 0u);
 }
 
 bool CheckpointFile::has(const std::string& name) const {

@@ -26,8 +26,10 @@ std::uint64_t field_components(const std::string& name, std::uint64_t D, std::ui
   if (name == "wryness" || name == "couple_stress") return R * D;
   if (name == "stress" || name == "plastic_strain") return 9;
   if (name == "porosity" || name == "plastic_shear_strain" || name == "equivalent_plastic_strain" ||
-      name == "detached" || name == "damage")
+      name == "detached" || name == "damage" || name == "pore_pressure" || name == "fluid_content" ||
+      name == "saturation")
     return 1;
+  if (name == "darcy_velocity") return D;
   return 0;
 }
 
@@ -82,6 +84,7 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   // arrivals themselves, 16 B per point on the crack path, are left out too)
   if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8 + 1;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 2 * 8 + 1;  // plastic strain and wryness, ebar, dissipation, active
+  if (has(in.effects, "pore_fluid")) p += 3 * 8;         // pressure, fluid content change, its rate
   e.bytes_per_point = p;
 
   // The integrator (solver/explicit_dynamics.hpp), per tracked point: body force and its previous

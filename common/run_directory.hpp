@@ -26,16 +26,20 @@
 
 namespace mppm::run_files {
 
-inline const std::vector<std::string>& energy_columns() {
-  static const std::vector<std::string> columns{"time_s",
-                                                "kinetic_J",
-                                                "rotational_kinetic_J",
-                                                "elastic_J",
-                                                "stabilization_J",
-                                                "plastic_dissipation_J",
-                                                "fracture_dissipation_J",
-                                                "external_work_J",
-                                                "balance_error"};
+// With the pore fluid, three more columns at the end: fluid_stored_J (V p^2 / (2 M)),
+// flow_dissipation_J (the stored fluid energy the flow removed so far) and fluid_mass_balance
+// ((fluid volume - initial) / initial; no fluid crosses a boundary yet).
+inline std::vector<std::string> energy_columns(bool pore_fluid = false) {
+  std::vector<std::string> columns{"time_s",
+                                   "kinetic_J",
+                                   "rotational_kinetic_J",
+                                   "elastic_J",
+                                   "stabilization_J",
+                                   "plastic_dissipation_J",
+                                   "fracture_dissipation_J",
+                                   "external_work_J",
+                                   "balance_error"};
+  if (pore_fluid) columns.insert(columns.end(), {"fluid_stored_J", "flow_dissipation_J", "fluid_mass_balance"});
   return columns;
 }
 

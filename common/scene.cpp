@@ -39,7 +39,11 @@ const std::vector<std::pair<std::string, std::string>> kOutputFields{{"displacem
                                                                      {"plastic_strain", "viscoplasticity"},
                                                                      {"plastic_shear_strain", "viscoplasticity"},
                                                                      {"equivalent_plastic_strain", "viscoplasticity"},
-                                                                     {"detached", ""}};
+                                                                     {"detached", ""},
+                                                                     {"pore_pressure", "pore_fluid"},
+                                                                     {"fluid_content", "pore_fluid"},
+                                                                     {"saturation", "pore_fluid"},
+                                                                     {"darcy_velocity", "pore_fluid"}};
 
 // The keys each block of a scene accepts, by the path of the block ("" = top level, "[]" = every
 // entry of a list). check_keys reads them from here, so this is the one list of valid keys;
@@ -692,7 +696,7 @@ class SceneReader {
     scene_.material.viscoplasticity = vp;
   }
 
-  // The saturated pore fluid (docs/theory.md section 11). What is not built yet, the unsaturated
+  // The saturated pore fluid (docs/theory.md section 12). What is not built yet, the unsaturated
   // model (`retention`) and a hydrostatic initial pressure, is refused by name: ignoring it would
   // run another model than the one asked for.
   void read_pore_fluid(const YAML::Node& m) {
@@ -1028,6 +1032,7 @@ class SceneReader {
     if (scene_.effects.micropolar) out.fields.push_back("rotation");
     if (scene_.effects.damage) out.fields.push_back("damage");
     if (scene_.effects.viscoplasticity) out.fields.push_back("plastic_shear_strain");
+    if (scene_.effects.pore_fluid) out.fields.push_back("pore_pressure");
     if (!o.IsDefined() || o.IsNull()) return;
     const std::string p = "output";
     check_keys(o, p);
@@ -1055,7 +1060,8 @@ class SceneReader {
         const auto& effect = it->second;
         const bool on = effect.empty() || (effect == "micropolar" && scene_.effects.micropolar) ||
                         (effect == "damage" && scene_.effects.damage) ||
-                        (effect == "viscoplasticity" && scene_.effects.viscoplasticity);
+                        (effect == "viscoplasticity" && scene_.effects.viscoplasticity) ||
+                        (effect == "pore_fluid" && scene_.effects.pore_fluid);
         if (!on) {
           scene_.warnings.push_back(location(f[k], fp) + ": " + fp + ": '" + name +
                                     "' is not written because the effect '" + effect + "' is off");

@@ -18,7 +18,7 @@ struct EffectSet {
   bool viscoplasticity = false;
   bool damage = false;
   bool gravity = false;
-  bool pore_fluid = false;  // saturated pore fluid in the pores (docs/theory.md section 11)
+  bool pore_fluid = false;  // saturated pore fluid in the pores (docs/theory.md section 12)
 
   std::vector<std::string> names() const;  // in canonical order
   friend bool operator==(const EffectSet&, const EffectSet&) = default;
@@ -142,7 +142,7 @@ struct ViscoplasticParameters {
   std::optional<Selector> region;
 };
 
-// The pore fluid (docs/theory.md section 11), saturated: the fluid fills the pores. SI units.
+// The pore fluid (docs/theory.md section 12), saturated: the fluid fills the pores. SI units.
 struct PoreFluidParameters {
   double permeability = 0.0;      // intrinsic permeability k [m^2]
   double fluid_viscosity = 0.0;   // mu_f [Pa s]
@@ -168,7 +168,7 @@ struct Material {
   std::optional<PoreFluidParameters> pore_fluid;
 
   double partial_density() const { return solid_fraction * density; }  // rho [kg/m^3]
-  double porosity() const { return 1.0 - solid_fraction; }              // n0
+  double porosity() const { return 1.0 - solid_fraction; }             // n0
   // Micro-inertia per unit volume I = 1/2 pi rho l^2 [kg/m] (docs/theory.md section 4).
   double micro_inertia() const;
   // Effective bending modulus B_w [N]: a3 in 2-D (docs/theory.md section 5); a2 in 3-D.

@@ -413,6 +413,7 @@ void BreakageUpdater::refresh_and_measure_release() {
     const StoredEnergy elastic = kernel.elastic_energy(p, c, i);
     double after = elastic.force_stress + p.stabilization_energy[i];
     if (!p.rotation.empty()) after += elastic.couple_stress;
+    if (!p.fluid_content_change.empty()) after += elastic.fluid;
     u.released_energy += w.energy_before[k] - after;
     w.affected_index[i] = -1;
   }

@@ -35,6 +35,12 @@ void visit_carried_arrays(ModelRef& model, Visit&& visit) {
       visit("plastic_wryness", p.plastic_wryness);
     }
   }
+  if (model.effects.pore_fluid) {
+    // The flow state; the flow updates read the pressure and the last evaluation's strain.
+    visit("fluid_content_change", p.fluid_content_change);
+    visit("pore_pressure", p.pore_pressure);
+    if (!model.effects.viscoplasticity) visit("strain", p.strain);
+  }
   if (model.effects.damage) {
     auto& f = model.bonds;
     // The neighbour lists with the broken bonds marked (BondFamilies::kBrokenBit); restored by
@@ -68,6 +74,17 @@ std::vector<double> energy_values(const EnergyState& e) {
           e.plastic_dissipation,
           e.fracture_dissipation,
           e.kinetic_terms};
+}
+
+// The fluid's items of the energy state (pore fluid runs only: the file of a dry run is unchanged).
+std::vector<double> fluid_energy_values(const EnergyState& e) {
+  return {e.fluid_stored, e.flow_dissipation, e.initial_fluid_volume, e.fluid_volume};
+}
+void restore_fluid_energy(const std::vector<double>& v, EnergyState& e) {
+  e.fluid_stored = v[0];
+  e.flow_dissipation = v[1];
+  e.initial_fluid_volume = v[2];
+  e.fluid_volume = v[3];
 }
 
 EnergyState energy_from(const std::vector<double>& v) {
@@ -159,6 +176,8 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   arrays.push_back(checkpoint_array("body_force", dynamics.body_force()));
   // Small arrays: built here, alive until the file is written.
   const std::vector<double> energy = energy_values(carried.energy);
+  const std::vector<double> fluid_energy = fluid_energy_values(carried.energy);
+  if (model.effects.pore_fluid) arrays.push_back(checkpoint_array("fluid_energy", fluid_energy));
   const std::vector<double> integrator{carried.time, carried.initial_total, loop.time_step};
   const std::vector<std::uint64_t> model_counters{model.broken_bonds, model.detached_points,
                                                   model.unstable_detached_points, model.energy_detached_points};
@@ -224,6 +243,7 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
   carried.time = integrator[0];
   carried.initial_total = integrator[1];
   carried.energy = energy_from(energy);
+  if (model.effects.pore_fluid) restore_fluid_energy(scalars<double>(file, "fluid_energy", 4), carried.energy);
   dynamics.restore(carried, body_force);
 
   const auto counters = scalars<std::uint64_t>(file, "model_counters", 4);

@@ -21,9 +21,18 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   c.a3 = m.couple_moduli[2];
   c.bending_modulus = m.bending_modulus(scene.dimension);
   c.density = m.partial_density();
+  c.micro_inertia = m.micro_inertia();
+  if (scene.effects.pore_fluid && m.pore_fluid) {
+    // The mixture moves as one: rho = phi_s rho_s + n0 rho_f for the inertia (and gravity),
+    // docs/theory.md section 12. (Written as the sum so that rho_f = 0 keeps the dry bits.)
+    const double fluid = m.porosity() * m.pore_fluid->fluid_density;
+    c.density = m.partial_density() + fluid;
+    c.micro_inertia = m.micro_inertia() * (c.density / m.partial_density());
+    c.biot_coefficient = m.pore_fluid->biot_coefficient;
+    c.biot_modulus = m.pore_fluid->biot_modulus;
+  }
   c.solid_fraction = m.solid_fraction;
   c.length_scale = m.length_scale;
-  c.micro_inertia = m.micro_inertia();
   c.stabilization = scene.numerics.stabilization;
   c.detach_energy_rise = scene.numerics.detach_energy_rise;
   c.overload_factor = scene.numerics.overload_factor;

@@ -19,11 +19,15 @@ struct CosseratConstants {
   // Effective bending modulus B_w: 2-D a3 (docs/theory.md section 5 convention); 3-D a2, the coefficient
   // of kap:kap, which is what a plane wryness field w_z,x sees in the 3-D law.
   double bending_modulus = 0.0;
-  double density = 0.0;             // rho = solid_fraction * material.density [kg/m^3]
-  double micro_inertia = 0.0;       // I = 1/2 pi rho l^2 [kg/m]
-  double stabilization = 0.0;       // G_s
-  double solid_fraction = 1.0;      // phi0 (porosity output n = 1 - phi0 / J)
-  double length_scale = 0.0;        // l [m]
+  double density = 0.0;         // rho = solid_fraction * material.density [kg/m^3]
+  double micro_inertia = 0.0;   // I = 1/2 pi rho l^2 [kg/m]
+  double stabilization = 0.0;   // G_s
+  double solid_fraction = 1.0;  // phi0 (porosity output n = 1 - phi0 / J)
+  double length_scale = 0.0;    // l [m]
+  // Pore fluid (docs/theory.md section 12): the coupling of pass 1, p = M (zeta - n0 - b tr eps) and the
+  // total stress sigma' - b p 1 (0 without the effect).
+  double biot_coefficient = 0.0;    // b
+  double biot_modulus = 0.0;        // M [Pa]
   double critical_bond_work = 0.0;  // w_cr [J/m^6] from G_cr (damage effect; 0 otherwise)
   // material.damage.compressed_bonds: hold: a bond at its critical work breaks only once stretched.
   bool hold_compressed_bonds = false;

@@ -139,6 +139,15 @@ CriticalTimeStep critical_time_step(Model& model) {
     saved_u = p.displacement;
     saved_w = p.rotation;
   }
+  // Pore fluid: the operator is the kernel's response at the fluid content held (undrained, the
+  // stiffening lambda + b^2 M of docs/theory.md section 12); the content is set to n0 (no change) for it, so that the
+  // response is linear in the Lanczos vector (no pressure at zero strain), and put back at the end.
+  std::vector<double> saved_fluid_content;
+  if (!p.fluid_content_change.empty()) {
+    saved_fluid_content = p.fluid_content_change;
+    for (std::size_t i = 0; i < p.owned; ++i)
+      if (p.region[i] == 0) p.fluid_content_change[i] = 0.0;
+  }
   std::vector<double>& prev_u = rest ? p.velocity : own_prev_u;
   std::vector<double>& prev_w = rest ? p.spin : own_prev_w;
   CriticalTimeStep out;
@@ -150,10 +159,20 @@ CriticalTimeStep critical_time_step(Model& model) {
   out.translational = 2.0 / std::sqrt(trans.lambda);
   out.iterations = coupled.iterations;
   CosseratConstants& c = model.constants;
-  const std::string density = " over the density rho = solid_fraction * density = " + number(c.density) + " kg/m^3";
+  const bool fluid = !p.fluid_content_change.empty();
+  const std::string density =
+      (fluid ? " over the mixture density rho = solid_fraction * density + porosity * fluid_density = "
+             : " over the density rho = solid_fraction * density = ") +
+      number(c.density) + " kg/m^3";
+  const std::string undrained = fluid
+                                    ? ", stiffened by the pore fluid held in the pores: undrained lambda + b^2 M = " +
+                                          number(c.lambda + c.biot_coefficient * c.biot_coefficient * c.biot_modulus) +
+                                          " Pa with material.pore_fluid.biot_modulus M = " + number(c.biot_modulus) +
+                                          " Pa and biot_coefficient b = " + number(c.biot_coefficient)
+                                    : std::string();
   const std::string trans_driver =
       "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
-      " Pa, with numerics.stabilization G_s = " + number(c.stabilization) + ")" + density;
+      " Pa, with numerics.stabilization G_s = " + number(c.stabilization) + undrained + ")" + density;
   out.limiting_mode = "translational";
   out.driver = trans_driver;
   // Which stiffness drives a block is told by the same estimate with a modulus switched off: the
@@ -218,6 +237,7 @@ CriticalTimeStep critical_time_step(Model& model) {
     p.displacement = saved_u;
     p.rotation = saved_w;
   }
+  if (fluid) p.fluid_content_change = std::move(saved_fluid_content);
   model.compute_internal_forces(false);
   return out;
 }

@@ -13,6 +13,7 @@
 
 #include "solver/boundary_conditions.hpp"
 #include "solver/model.hpp"
+#include "solver/pore_fluid.hpp"
 
 namespace mppm::solver {
 
@@ -25,15 +26,26 @@ struct EnergyState {
   double external_work = 0.0;         // loads, prescribed layers, and damping (negative)
   double plastic_dissipation = 0.0;   // accumulated every step (trapezoid rule, like the work)
   double fracture_dissipation = 0.0;  // stored energy released by the bonds broken so far
+  // Pore fluid (docs/theory.md section 12; zero without it): the fluid's stored energy V p^2 / (2 M),
+  // the stored energy the flow updates removed so far, and the fluid volume sum V zeta at the
+  // start and at the last row (its change is the mass balance: no fluid crosses a boundary).
+  double fluid_stored = 0.0;
+  double flow_dissipation = 0.0;
+  double initial_fluid_volume = 0.0;
+  double fluid_volume = 0.0;
   // The size of the terms whose difference is the scheme's kinetic energy, 1/2 M (v^n . v^n +
   // (dt/2)^2 a^n . a^n): the scale of its round-off. Where every energy is still round-off (the
   // step in which a load starts: v^n = dt/2 a^n, so the kinetic energy is a difference of two equal
   // numbers), this keeps the balance error and the energy check relative to a real energy.
   double kinetic_terms = 0.0;
   // Kinetic + stored energy.
-  double total() const { return kinetic + rotational_kinetic + elastic + stabilization; }
+  double total() const { return kinetic + rotational_kinetic + elastic + stabilization + fluid_stored; }
   // What the balance accounts for: total plus the energy already dissipated.
-  double accounted() const { return total() + plastic_dissipation + fracture_dissipation; }
+  double accounted() const { return total() + plastic_dissipation + fracture_dissipation + flow_dissipation; }
+  // (fluid volume now - at the start) / the start's: the fluid mass balance (pore fluid only).
+  double fluid_mass_balance() const {
+    return initial_fluid_volume > 0.0 ? (fluid_volume - initial_fluid_volume) / initial_fluid_volume : 0.0;
+  }
 };
 
 // Where the per-step guard found non-finite values (ExplicitDynamics::first_non_finite).
@@ -56,6 +68,11 @@ class ExplicitDynamics {
     clock_end_ = end;
     clock_steps_ = steps;
   }
+
+  // Pore fluid: when the flow updates run against the mechanical step (Model::fluid; default: one
+  // update of dt per step). Call it before initialize().
+  void set_flow_schedule(const FlowSchedule& schedule) { flow_ = schedule; }
+  const FlowSchedule& flow_schedule() const { return flow_; }
 
   // Mass-proportional damping coefficient c [1/s] (numerics.damping; 0 = none). Call it before
   // initialize(): damping needs the start-of-step state of every point.
@@ -134,6 +151,8 @@ class ExplicitDynamics {
   int second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i);
   int second_half_kick_tracked(const StepConstants& sc, double damp_factor, std::size_t i, std::size_t t);
   void book_step_energy(const BreakageEnergy& breakage);
+  // Pore fluid: the flow updates due after step steps_ (flow_), their dissipation booked.
+  void advance_flow();
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
@@ -154,6 +173,7 @@ class ExplicitDynamics {
   const BoundaryConditions& conditions_;
   double dt_;
   double damping_ = 0.0;
+  FlowSchedule flow_;
   double clock_end_ = 0.0;
   std::int64_t clock_steps_ = 0;
   std::array<double, 3> gravity_;

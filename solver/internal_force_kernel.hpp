@@ -214,6 +214,14 @@ StoredEnergy elastic_energies(const PointData& p, const CosseratConstants& c, st
     if constexpr (Effects::viscoplasticity) kap_elastic -= Eigen::Map<const RMat<R, D>>(&p.plastic_wryness[i * RD]);
     e.couple_stress = 0.5 * vi * (kap_elastic.cwiseProduct(couple_stress<D, R>(kap_elastic, c))).sum();
   }
+  if constexpr (Effects::pore_fluid) {
+    // The fluid's stored energy V p^2 / (2 M) at this strain and the fluid content held
+    // (docs/theory.md section 12): the pass-1 pressure's potential.
+    if (p.region[i] == 0) {
+      const double pressure = c.biot_modulus * (p.fluid_content_change[i] - c.biot_coefficient * eps.trace());
+      e.fluid = 0.5 * vi * pressure * pressure / c.biot_modulus;
+    }
+  }
   return e;
 }
 
@@ -237,19 +245,21 @@ StoredEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants
 // any thread count; the chunks run in parallel (a stress evaluation per point).
 template <int D, class Effects>
 StoredEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
-  const auto sums = ordered_point_sums<3>(p.owned, thread_point_loop(p.owned),
-                                          [&](std::size_t lo, std::size_t hi, std::array<double, 3>& acc) {
+  const auto sums = ordered_point_sums<4>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 4>& acc) {
                                             for (std::size_t i = lo; i < hi; ++i) {
                                               const StoredEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
                                               acc[0] += e.force_stress;
                                               acc[1] += e.couple_stress;
                                               acc[2] += p.stabilization_energy[i];
+                                              acc[3] += e.fluid;
                                             }
                                           });
   StoredEnergy sum;
   sum.force_stress = sums[0];
   sum.couple_stress = sums[1];
   sum.stabilization = sums[2];
+  sum.fluid = sums[3];
   return sum;
 }
 
@@ -328,6 +338,19 @@ MPPM_INLINE void own_share(const Mat<D>& a, const Mat<D>& ck, const Mat<D>& kinv
   }
 }
 
+// Pore fluid (docs/theory.md section 12): at a body point, the pressure of the fluid content held, at
+// the point's new strain, p = M (zeta - n0 - b tr eps) (the undrained update; the flow changes zeta
+// between force evaluations), stored, and the total stress sigma' - b p 1 in place of sigma'.
+// The fictitious layers carry no fluid.
+template <int D>
+MPPM_INLINE void add_pore_pressure(PointData& p, const CosseratConstants& c, std::size_t i, const Mat<D>& eps,
+                                   Mat<D>& sigma) {
+  if (p.region[i] != 0) return;
+  const double pressure = c.biot_modulus * (p.fluid_content_change[i] - c.biot_coefficient * eps.trace());
+  p.pore_pressure[i] = pressure;
+  for (int a = 0; a < D; ++a) sigma(a, a) -= c.biot_coefficient * pressure;
+}
+
 // Pass 1 at point i: strain and wryness, constitutive update (the return map with `advance`),
 // the force/moment tensors A_i, Q_i, and point i's own share of its force and moment (own_share;
 // pass 2 adds the rest). The elastic energies come from the stored strain and wryness when they
@@ -384,6 +407,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   } else {
     sigma = cosserat_stress<D>(eps, c);
   }
+  if constexpr (Effects::pore_fluid) add_pore_pressure<D>(p, c, i, eps, sigma);
   const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
   const Mat<D> a = sigma * kinv - ck * eps;

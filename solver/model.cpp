@@ -69,6 +69,10 @@ ModelOptions model_options(const Scene& scene) {
     mo.plastic_region = scene.material.viscoplasticity->region->box;
   if (scene.effects.viscoplasticity)
     mo.viscoplastic_model = plasticity::make_viscoplastic_model(scene.material, scene.path);
+  if (scene.effects.pore_fluid && scene.material.pore_fluid) {
+    mo.fluid = fluid_constants(scene);
+    mo.initial_pressure = scene.material.pore_fluid->initial_pressure;
+  }
   return mo;
 }
 
@@ -115,6 +119,11 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
     if (!o.viscoplastic_model)
       throw std::logic_error("build_model: the viscoplasticity effect needs ModelOptions::viscoplastic_model");
     m.viscoplastic_model = o.viscoplastic_model;
+  }
+  if (o.effects.pore_fluid) {
+    if (!o.fluid) throw std::logic_error("build_model: the pore_fluid effect needs ModelOptions::fluid");
+    m.fluid = o.fluid;
+    start_fluid(m.points, *o.fluid, o.initial_pressure);
   }
   m.kernel = internal_force_functions(m.points.dimension, o.effects);
   mark("shape tensors");

@@ -15,6 +15,7 @@
 #include "solver/phase_timer.hpp"
 #include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
+#include "solver/pore_fluid.hpp"
 #include "solver/step_advance.hpp"
 
 namespace mppm::solver {
@@ -31,6 +32,9 @@ struct ModelOptions {
   std::optional<std::array<std::array<double, 3>, 2>> damage_region, plastic_region;
   // Required with the viscoplasticity effect (make_viscoplastic_model of the scene's material).
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;
+  // Required with the pore_fluid effect (fluid_constants of the scene), and the pressure at t = 0.
+  std::optional<FluidConstants> fluid;
+  double initial_pressure = 0.0;
 };
 
 struct Model {
@@ -40,6 +44,7 @@ struct Model {
   BondFamilies bonds;
   InternalForceFunctions kernel;
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;  // with the effect
+  std::optional<FluidConstants> fluid;                                      // with pore_fluid
   std::size_t precrack_cut_bonds = 0;                                       // pairs (counted once)
   std::size_t detached_points = 0;
   std::size_t broken_bonds = 0;              // pairs broken by damage so far (pre-crack cuts not included)

@@ -101,6 +101,11 @@ void allocate_state(PointData& p, const EffectSet& effects) {
       p.moment_tensor_sum.assign(n * R * D, 0.0);
     }
   }
+  if (effects.pore_fluid) {  // set by start_fluid (solver/pore_fluid.hpp)
+    p.pore_pressure.assign(n, 0.0);
+    p.fluid_content_change.assign(n, 0.0);
+    p.fluid_rate.assign(n, 0.0);
+  }
 }
 
 }  // namespace

@@ -84,6 +84,14 @@ struct PointData {
   std::vector<std::size_t> refreshed_points;
   std::vector<double> force_before_refresh, moment_before_refresh;
 
+  // Pore fluid (allocated only when the effect is on, docs/theory.md section 12), per point; zero on
+  // the fictitious layers. The pressure p (compression positive) of the last force evaluation or
+  // flow update, p = M (zeta - n0 - b tr eps); the change of the fluid content zeta (fluid volume
+  // per reference volume) from the porosity n0, the state the flow advances (stored as the change:
+  // zeta itself would resolve p only to M ulp(n0), 6e-8 Pa at M = 2 GPa); the rate d zeta / dt of
+  // the last flow update.
+  std::vector<double> pore_pressure, fluid_content_change, fluid_rate;
+
   // The stabilization energy per point [J], V 1/2 sum_j V_j (z_u.T^s + z_w.M^s), filled when a force
   // evaluation is asked for energies (the bond loop that gives it is the force pass's). The elastic
   // energies are computed from the stored strain and wryness when they are summed

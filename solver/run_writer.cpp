@@ -121,12 +121,12 @@ void RunWriter::make_snapshots_durable() {
   not_yet_durable_.clear();
 }
 
-void RunWriter::set_load_header(const std::vector<std::string>& columns) {
+void RunWriter::set_load_header(const std::vector<std::string>& columns, bool pore_fluid) {
   load_csv_.clear();
   for (std::size_t k = 0; k < columns.size(); ++k) load_csv_ += (k ? "," : "") + columns[k];
   load_csv_ += '\n';
   energy_csv_.clear();
-  const auto& e = run_files::energy_columns();
+  const auto e = run_files::energy_columns(pore_fluid);
   for (std::size_t k = 0; k < e.size(); ++k) energy_csv_ += (k ? "," : "") + e[k];
   energy_csv_ += '\n';
 }
@@ -177,6 +177,11 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
   j += "  \"largest_time_step_s\": " + format_number(info.largest_time_step) + ",\n";
   j += "  \"limiting_mode\": " + json_quote(info.limiting_mode) + ",\n";
+  if (info.flow) {
+    j += "  \"fluid_time_step_s\": " + format_number(info.flow->fluid_step) + ",\n";
+    j += "  \"flow_update_interval_steps\": " + std::to_string(info.flow->interval) + ",\n";
+    j += "  \"flow_substeps\": " + std::to_string(info.flow->substeps) + ",\n";
+  }
   j += "  \"snapshots\": [";
   for (std::size_t k = 0; k < snapshots_.size(); ++k)
     j += std::string(k ? "," : "") + "\n    {\"file\": " + json_quote(snapshots_[k].file) +

@@ -16,6 +16,7 @@
 #include "common/snapshot_file.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/point_data.hpp"
+#include "solver/pore_fluid.hpp"
 
 namespace mppm::solver {
 
@@ -37,6 +38,8 @@ struct RunInfo {
   double largest_time_step = 0.0;  // the bound the step must respect (lower with damage)
   std::string limiting_mode;
   std::uint64_t detached_points = 0;
+  // Pore fluid: the fluid step limit and the flow schedule (written only with the effect).
+  std::optional<FlowSchedule> flow;
 };
 
 class RunWriter {
@@ -69,7 +72,7 @@ class RunWriter {
   void write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                       const std::vector<SnapshotFieldSource>& fields);
 
-  void set_load_header(const std::vector<std::string>& columns);
+  void set_load_header(const std::vector<std::string>& columns, bool pore_fluid = false);
   void add_load_row(const std::vector<double>& values);
   void add_energy_row(const std::vector<double>& values);
   void log(const std::string& line);  // also kept for log.txt

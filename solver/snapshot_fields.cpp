@@ -1,4 +1,4 @@
-// Snapshot fields: kinematic state, strain/stress measures, porosity, damage.
+// Snapshot fields: kinematic state, strain/stress measures, porosity, damage, pore fluid.
 #include "solver/snapshot_fields.hpp"
 
 #include <Eigen/Dense>
@@ -131,6 +131,8 @@ std::vector<std::string> available_fields(const Model& m) {
   if (m.effects.damage) f.push_back("damage");
   if (m.effects.viscoplasticity)
     for (const char* name : {"plastic_strain", "plastic_shear_strain", "equivalent_plastic_strain"}) f.push_back(name);
+  if (m.fluid)
+    for (const char* name : {"pore_pressure", "fluid_content", "saturation", "darcy_velocity"}) f.push_back(name);
   return f;
 }
 
@@ -176,6 +178,19 @@ std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vec
       sources.push_back(stored(name, 1, p.equivalent_plastic_strain));
     } else if (name == "detached") {
       sources.push_back(per_point(name, 1, [&p](std::size_t i, double* out) { *out = p.detached[i]; }));
+    } else if (name == "pore_pressure") {
+      sources.push_back(stored(name, 1, p.pore_pressure));
+    } else if (name == "fluid_content") {
+      // zeta = n0 + its change (PointData::fluid_content_change); the layers carry none.
+      sources.push_back(per_point(name, 1, [&p, n0 = m.fluid->porosity](std::size_t i, double* out) {
+        *out = p.region[i] == 0 ? n0 + p.fluid_content_change[i] : 0.0;
+      }));
+    } else if (name == "saturation") {
+      // Saturated: the fluid fills the pores of the body (the layers carry none).
+      sources.push_back(per_point(name, 1, [&p](std::size_t i, double* out) { *out = p.region[i] == 0 ? 1.0 : 0.0; }));
+    } else if (name == "darcy_velocity") {
+      sources.push_back(per_point(
+          name, D, [&m](std::size_t i, double* out) { darcy_velocity(m.points, m.bonds, *m.fluid, i, out); }));
     } else if (name == "damage") {
       // D_i = 1 - sum_j b V_j / sum_j V_j over the family before the pre-crack cuts.
       sources.push_back(

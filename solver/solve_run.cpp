@@ -243,6 +243,7 @@ struct TimeStepPlan {
   double damage_step = 0.0;  // the largest step of a damage run (Model::damage_critical_step)
   double dt = 0.0;
   std::int64_t steps = 0;
+  FlowSchedule flow;  // pore fluid: the flow updates against dt (solver/pore_fluid.hpp)
 };
 
 // A whole number of steps ends exactly at time.end (the step only shrinks; a given step that
@@ -417,6 +418,10 @@ void RunDriver::fit_time_step() {
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
   scene_.time.step = plan_.dt;
   start_up_.mark("damage step limit");
+  if (model().fluid) {
+    plan_.flow = flow_schedule(fluid_step_limit(model().points, model().bonds, *model().fluid), plan_.dt);
+    start_up_.mark("fluid step limit");
+  }
 }
 
 // The run directory: a new one (the resolved scene written), or the one a restart continues.
@@ -430,6 +435,10 @@ void RunDriver::open_run_directory() {
     std::vector<std::pair<std::string, double>> derived{{"critical_time_step_s", plan_.critical.step}};
     if (scene_.effects.damage)
       derived.emplace_back("critical_bond_work_J_per_m6", model().constants.critical_bond_work);
+    if (model().fluid) {
+      derived.emplace_back("fluid_time_step_s", plan_.flow.fluid_step);
+      derived.emplace_back("micro_conductivity", model().fluid->micro_conductivity);
+    }
     const std::string resolved = writer().write_resolved_scene(scene_, derived);
     if (checkpointing_) identity_.scene_fingerprint = fnv1a(resolved);
   }
@@ -454,6 +463,21 @@ void RunDriver::fill_run_info() {
   info_.largest_time_step = plan_.damage_step;
   info_.limiting_mode = plan_.critical.limiting_mode;
   info_.detached_points = model().detached_points;
+  if (model().fluid) info_.flow = plan_.flow;
+}
+
+// The pore fluid's line of the start-up report: its constants and how the flow is scheduled.
+std::string fluid_report(const FluidConstants& fluid, const FlowSchedule& flow, double dt) {
+  const std::string schedule = flow.substeps > 1
+                                   ? std::to_string(flow.substeps) + " flow updates per step (of " +
+                                         log_number(dt / static_cast<double>(flow.substeps)) + " s)"
+                                   : "a flow update every " + std::to_string(flow.interval) + " steps (of " +
+                                         log_number(dt * static_cast<double>(flow.interval)) + " s)";
+  return "pore fluid (saturated): Biot coefficient " + log_number(fluid.biot_coefficient) + ", Biot modulus " +
+         log_number(fluid.biot_modulus) + " Pa, mobility k/mu_f " + log_number(fluid.mobility) +
+         " m^2/(Pa s), micro-conductivity " + log_number(fluid.micro_conductivity) +
+         " 1/(Pa s m^2); fluid step limit " + log_number(flow.fluid_step) + " s against the time step " +
+         log_number(dt) + " s: " + schedule;
 }
 
 // The first lines of log.txt: what runs, and the start-up report (a restart has it already in
@@ -476,7 +500,7 @@ void RunDriver::log_start() {
   std::vector<std::string> load_header{"time_s"};
   for (const auto& bc : scene_.boundary_conditions)
     for (const auto& c : run_files::load_columns(bc.name, scene_.dimension)) load_header.push_back(c);
-  writer().set_load_header(load_header);
+  writer().set_load_header(load_header, scene_.effects.pore_fluid);
 }
 
 // The model, the critical and the chosen time step, the damage and viscoplastic settings, the
@@ -504,6 +528,7 @@ void RunDriver::log_start_up_report() {
                  log_number(plan_.damage_step) + " s (" + log_number(plan_.damage_step / critical.step) +
                  " of the critical step); a point whose lopsided family would need a step below " + log_number(dt) +
                  " s is detached (stiffness block limit " + log_number(m.block_eigenvalue_limit) + " 1/s^2)");
+  if (m.fluid) writer().log(fluid_report(*m.fluid, plan_.flow, dt));
   if (m.viscoplastic_model)
     writer().log("viscoplastic model " + m.viscoplastic_model->name() +
                  " (return map once per step; the critical step above is the elastic bound, which "
@@ -530,6 +555,7 @@ void RunDriver::log_fields_not_produced() {
 void RunDriver::start_dynamics() {
   dynamics_.emplace(model(), *conditions_, plan_.dt, scene_.gravity);
   dynamics().set_damping(scene_.numerics.damping);
+  dynamics().set_flow_schedule(plan_.flow);
   dynamics().set_clock(scene_.time.end, plan_.steps);
   dynamics().initialize();
   rows_ = Schedule(scene_.output.load_interval, plan_.dt, true);
@@ -683,8 +709,17 @@ void RunDriver::record_rows() {
   }
   writer().add_load_row(row);
   const EnergyState& e = dynamics().energy();
-  writer().add_energy_row({t, e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization, e.plastic_dissipation,
-                           e.fracture_dissipation, e.external_work, dynamics().balance_error()});
+  std::vector<double> energy_row{t,
+                                 e.kinetic,
+                                 e.rotational_kinetic,
+                                 e.elastic,
+                                 e.stabilization,
+                                 e.plastic_dissipation,
+                                 e.fracture_dissipation,
+                                 e.external_work,
+                                 dynamics().balance_error()};
+  if (model().fluid) energy_row.insert(energy_row.end(), {e.fluid_stored, e.flow_dissipation, e.fluid_mass_balance()});
+  writer().add_energy_row(energy_row);
 }
 
 void RunDriver::update_info(const std::string& status, const std::string& message) {

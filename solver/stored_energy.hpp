@@ -8,8 +8,9 @@ struct StoredEnergy {
   double force_stress = 0.0;   // 1/2 eps:sigma (elastic parts; plane strain: sigma_zz term included)
   double couple_stress = 0.0;  // 1/2 kap:m (elastic parts; 0 without micropolar)
   double stabilization = 0.0;
+  double fluid = 0.0;  // V p^2 / (2 M) of the pore fluid (docs/theory.md section 12; 0 without it)
   double elastic() const { return force_stress + couple_stress; }
-  double total() const { return force_stress + couple_stress + stabilization; }
+  double total() const { return force_stress + couple_stress + stabilization + fluid; }
 };
 
 }  // namespace mppm::solver

@@ -13,6 +13,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_boundary_conditions.cpp
   unit/test_solver_damage.cpp
   unit/test_solver_cosserat_law.cpp
+  unit/test_solver_pore_fluid.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
@@ -21,6 +22,7 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_solver_energy_balance.cpp
   verification/test_solver_crack_energy.cpp
   verification/test_solver_crack_initiation.cpp
+  verification/test_solver_pore_fluid_flow.cpp
 )
 # The energies are computed without the force kernel's fused multiply-adds only if the two files
 # share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).

@@ -61,6 +61,7 @@ TEST(MemoryEstimate, GrowsWithEveryIngredient) {
   EXPECT_GT(with([](auto& in) { in.dimension = 3; }), b);
   EXPECT_GT(with([](auto& in) { in.effects.push_back("damage"); }), b);
   EXPECT_GT(with([](auto& in) { in.effects.push_back("viscoplasticity"); }), b);
+  EXPECT_GT(with([](auto& in) { in.effects.push_back("pore_fluid"); }), b);
   EXPECT_GT(with([](auto& in) { in.snapshot_fields = {"displacement", "stress", "strain"}; }), b);
   // Given bonds (the solver's count) replace the lattice estimate.
   MemoryEstimateInput given = base;

@@ -1,0 +1,203 @@
+// Flow of the pore fluid on the lattice (see pore_fluid.hpp; docs/theory.md section 12).
+#include "solver/pore_fluid.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/ordered_point_sums.hpp"
+#include "solver/parallel_policy.hpp"
+
+namespace mppm::solver {
+
+namespace {
+
+// Body points carry the fluid; fictitious layer points (region > 0) none.
+bool carries_fluid(const PointData& p, std::size_t i) { return p.region[i] == 0; }
+
+// Visits the conducting bonds of body point i: acting, to a body point. visit(j, xi, |xi|).
+template <int D, class Visit>
+void for_each_conducting_bond(const PointData& p, const BondFamilies& f, std::size_t i, Visit&& visit) {
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    if (!f.acting(b)) continue;
+    const auto j = static_cast<std::size_t>(f.neighbor[b]);
+    if (!carries_fluid(p, j)) continue;
+    double xi[D];
+    bond_vector<D>(f, p.position.data(), i, b, xi);
+    double r2 = 0.0;
+    for (int a = 0; a < D; ++a) r2 += xi[a] * xi[a];
+    visit(j, xi, std::sqrt(r2));
+  }
+}
+
+template <int D>
+double potential(const PointData& p, const FluidConstants& fl, std::size_t i) {
+  double gx = 0.0;
+  for (int a = 0; a < D; ++a) gx += fl.gravity[a] * p.position[i * D + a];
+  return p.pore_pressure[i] - fl.fluid_density * gx;
+}
+
+template <int D>
+void fluid_rates_d(PointData& p, const BondFamilies& f, const FluidConstants& fl) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+  const bool with_gravity =
+      fl.fluid_density != 0.0 && (fl.gravity[0] != 0.0 || fl.gravity[1] != 0.0 || fl.gravity[2] != 0.0);
+#pragma omp parallel for schedule(static) if (thread_bond_loop(f.bond_count()))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    if (!carries_fluid(p, i)) {
+      p.fluid_rate[i] = 0.0;
+      continue;
+    }
+    const double psi_i = with_gravity ? potential<D>(p, fl, i) : p.pore_pressure[i];
+    double rate = 0.0;
+    for_each_conducting_bond<D>(p, f, i, [&](std::size_t j, const double*, double length) {
+      const double psi_j = with_gravity ? potential<D>(p, fl, j) : p.pore_pressure[j];
+      rate += (psi_j - psi_i) / length * p.volume[j];
+    });
+    p.fluid_rate[i] = fl.micro_conductivity * rate;
+  }
+}
+
+double volumetric_strain(const PointData& p, std::size_t i) {
+  const int D = p.dimension;
+  double trace = 0.0;
+  for (int a = 0; a < D; ++a) trace += p.strain[i * D * D + a * D + a];
+  return trace;
+}
+
+}  // namespace
+
+double lattice_micro_conductivity(int dimension, double spacing, double horizon, double thickness, double mobility) {
+  const double reach = horizon + 1e-9 * spacing;
+  const int m = static_cast<int>(std::floor(reach / spacing));
+  const double cell = dimension == 3 ? spacing * spacing * spacing : spacing * spacing * thickness;
+  double sum = 0.0;
+  const int mz = dimension == 3 ? m : 0;
+  for (int z = -mz; z <= mz; ++z)
+    for (int y = -m; y <= m; ++y)
+      for (int x = -m; x <= m; ++x) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        const double r = spacing * std::sqrt(static_cast<double>(x * x + y * y + z * z));
+        if (r <= reach) sum += r * cell;
+      }
+  return 2.0 * dimension * mobility / sum;
+}
+
+FluidConstants fluid_constants(const Scene& scene) {
+  const PoreFluidParameters& pf = *scene.material.pore_fluid;
+  FluidConstants fl;
+  fl.biot_coefficient = pf.biot_coefficient;
+  fl.biot_modulus = pf.biot_modulus;
+  fl.porosity = scene.material.porosity();
+  fl.fluid_density = pf.fluid_density;
+  fl.mobility = pf.mobility();
+  fl.micro_conductivity = lattice_micro_conductivity(scene.dimension, scene.geometry.spacing, scene.geometry.horizon(),
+                                                     scene.thickness, fl.mobility);
+  if (scene.effects.gravity) fl.gravity = scene.gravity;
+  return fl;
+}
+
+void start_fluid(PointData& p, const FluidConstants& fl, double initial_pressure) {
+  for (std::size_t i = 0; i < p.total(); ++i) {
+    const bool body = carries_fluid(p, i);
+    p.pore_pressure[i] = body ? initial_pressure : 0.0;
+    p.fluid_content_change[i] = body ? initial_pressure / fl.biot_modulus : 0.0;
+    p.fluid_rate[i] = 0.0;
+  }
+}
+
+void fluid_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl) {
+  if (p.dimension == 2)
+    fluid_rates_d<2>(p, f, fl);
+  else
+    fluid_rates_d<3>(p, f, fl);
+}
+
+double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl, double dt) {
+  fluid_rates(p, f, fl);
+  const double inv_2m = 0.5 / fl.biot_modulus;
+  const auto sums = ordered_point_sums<1>(
+      p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
+        for (std::size_t i = lo; i < hi; ++i) {
+          if (!carries_fluid(p, i)) continue;
+          const double before = p.pore_pressure[i];
+          p.fluid_content_change[i] += dt * p.fluid_rate[i];
+          const double after =
+              fl.biot_modulus * (p.fluid_content_change[i] - fl.biot_coefficient * volumetric_strain(p, i));
+          p.pore_pressure[i] = after;
+          acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
+        }
+      });
+  return sums[0];
+}
+
+double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidConstants& fl) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (!carries_fluid(p, i)) continue;
+    double sum = 0.0;
+    auto add = [&](std::size_t j, const double*, double length) { sum += p.volume[j] / length; };
+    if (p.dimension == 2)
+      for_each_conducting_bond<2>(p, f, i, add);
+    else
+      for_each_conducting_bond<3>(p, f, i, add);
+    largest = std::max(largest, sum);
+  }
+  const double rate = fl.biot_modulus * fl.micro_conductivity * largest;
+  return rate > 0.0 ? 1.0 / rate : std::numeric_limits<double>::infinity();
+}
+
+double fluid_volume(const PointData& p, const FluidConstants& fl) {
+  const auto sums = ordered_point_sums<2>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 2>& acc) {
+                                            for (std::size_t i = lo; i < hi; ++i) {
+                                              if (!carries_fluid(p, i)) continue;
+                                              acc[0] += p.volume[i];
+                                              acc[1] += p.volume[i] * p.fluid_content_change[i];
+                                            }
+                                          });
+  return fl.porosity * sums[0] + sums[1];
+}
+
+FlowSchedule flow_schedule(double fluid_step, double dt) {
+  FlowSchedule s;
+  s.fluid_step = fluid_step;
+  const double usable = 0.9 * fluid_step;
+  if (usable >= dt) {
+    const double steps = std::floor(usable / dt);
+    s.interval = steps >= 1e9 ? std::int64_t{1000000000} : std::max<std::int64_t>(1, static_cast<std::int64_t>(steps));
+  } else {
+    s.substeps = static_cast<std::int64_t>(std::ceil(dt / usable));
+  }
+  return s;
+}
+
+namespace {
+template <int D>
+void darcy_velocity_d(const PointData& p, const BondFamilies& f, const FluidConstants& fl, std::size_t i, double* q) {
+  for (int a = 0; a < D; ++a) q[a] = 0.0;
+  if (!carries_fluid(p, i) || p.detached[i]) return;
+  Eigen::Matrix<double, D, D> k = Eigen::Matrix<double, D, D>::Zero();
+  Eigen::Matrix<double, D, 1> s = Eigen::Matrix<double, D, 1>::Zero();
+  for_each_conducting_bond<D>(p, f, i, [&](std::size_t j, const double* xi, double) {
+    const Eigen::Map<const Eigen::Matrix<double, D, 1>> x(xi);
+    k += p.volume[j] * x * x.transpose();
+    s += p.volume[j] * (p.pore_pressure[j] - p.pore_pressure[i]) * x;
+  });
+  const Eigen::FullPivLU<Eigen::Matrix<double, D, D>> lu(k);
+  if (!lu.isInvertible()) return;
+  const Eigen::Matrix<double, D, 1> gradient = lu.solve(s);
+  for (int a = 0; a < D; ++a) q[a] = -fl.mobility * (gradient(a) - fl.fluid_density * fl.gravity[a]);
+}
+}  // namespace
+
+void darcy_velocity(const PointData& p, const BondFamilies& f, const FluidConstants& fl, std::size_t i, double* q) {
+  if (p.dimension == 2)
+    darcy_velocity_d<2>(p, f, fl, i, q);
+  else
+    darcy_velocity_d<3>(p, f, fl, i, q);
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,74 @@
+// The pore fluid's flow on the lattice (docs/theory.md section 12): saturated Darcy flow in bond form,
+// Biot storage, the flow step and its stability limit, and the fluid's energy and mass sums.
+// The coupling to the skeleton (p from the fluid content and the volumetric strain, the total
+// stress sigma' - b p 1) is in pass 1 of the force kernel (internal_force_kernel.hpp); this file
+// moves fluid between points at a fixed skeleton.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "common/scene.hpp"
+#include "solver/bond_families.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+struct FluidConstants {
+  double biot_coefficient = 1.0;                 // b
+  double biot_modulus = 0.0;                     // M [Pa]
+  double porosity = 0.0;                         // n0
+  double fluid_density = 0.0;                    // rho_f [kg/m^3]
+  double mobility = 0.0;                         // k' = k / mu_f [m^2 / (Pa s)]
+  double micro_conductivity = 0.0;               // kappa0 of the bond flux [1 / (Pa s m^2)]
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};  // g when the gravity effect is on, else zero
+};
+
+// kappa0 = 2 d k' / sum_j |xi_j| V_j over a full interior family of the cubic lattice of spacing
+// dx (V_j = dx^3, or dx^2 t in 2-D), with the family builder's inclusion rule (|xi| <= delta + 1e-9 dx):
+// the bond flux is then Darcy's flux exactly for a linear pressure, and k' lap p for a quadratic one.
+double lattice_micro_conductivity(int dimension, double spacing, double horizon, double thickness, double mobility);
+
+// The constants of a scene with the pore_fluid effect (validated by the scene reader).
+FluidConstants fluid_constants(const Scene& scene);
+
+// Sets every body point's fluid content to the initial pressure's at zero strain,
+// zeta - n0 = p0 / M, and its pressure to p0 (fictitious layer points: none, p = 0).
+void start_fluid(PointData& points, const FluidConstants& fluid, double initial_pressure);
+
+// The fluid-content rate of every body point from the pressures of the last force evaluation,
+// Phi_i = sum_j kappa0 (psi_j - psi_i) / |xi| V_j over the acting bonds to body points, with the
+// potential psi = p - rho_f g . x; into points.fluid_rate. Fictitious layers are impermeable.
+void fluid_rates(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid);
+
+// One flow update of length dt at the skeleton's last strain: zeta += dt Phi (fluid_rates first),
+// then p = M (zeta - n0 - b tr eps). Returns the stored fluid energy it removed (the flow's
+// dissipation, docs/theory.md section 12), summed in point chunks fixed by the point count.
+double flow_update(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, double dt);
+
+// The largest stable flow step, 1 / max_i (M sum_j kappa0 V_j / |xi|) over the body points'
+// conducting bonds (infinite when no bond conducts).
+double fluid_step_limit(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid);
+
+// sum_i V_i zeta_i over the body points, as n0 sum_i V_i + sum_i V_i (zeta_i - n0): the fluid volume
+// (mass / rho_f) in the pores.
+double fluid_volume(const PointData& points, const FluidConstants& fluid);
+
+// How the flow is scheduled against the mechanical step dt: every `interval` steps one update of
+// `interval` dt (the fluid step is the larger), or `substeps` updates of dt / substeps per step.
+struct FlowSchedule {
+  std::int64_t interval = 1;
+  std::int64_t substeps = 1;
+  double fluid_step = 0.0;  // the stability limit it was chosen from [s]
+};
+// With the margin 0.9: interval = floor(0.9 dt_f / dt) when dt_f >= dt, else substeps =
+// ceil(dt / (0.9 dt_f)).
+FlowSchedule flow_schedule(double fluid_step, double dt);
+
+// The Darcy velocity of body point i, q = -k' (grad p - rho_f g), with the nonlocal gradient
+// grad p = K_i^-1 sum_j V_j (p_j - p_i) xi over its acting bonds to body points (zero for a detached
+// point); D components into q.
+void darcy_velocity(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, std::size_t i,
+                    double* q);
+
+}  // namespace mppm::solver
