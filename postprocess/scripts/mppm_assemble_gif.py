@@ -24,8 +24,11 @@ def shared_palette(frames):
     step = max(1, len(frames) // PALETTE_SAMPLE)
     sample = frames[::step][:PALETTE_SAMPLE]
     pixels = numpy.concatenate([numpy.asarray(frame).reshape(-1, 3) for frame in sample])
-    colours, counts = numpy.unique(pixels, axis=0, return_counts=True)
-    frequent = colours[numpy.argsort(-counts, kind="stable")[:FREQUENT]]
+    # Colours packed into one integer each: a 1-D unique is many times faster than one by rows.
+    packed = (pixels[:, 0].astype(numpy.uint32) << 16) | (pixels[:, 1].astype(numpy.uint32) << 8) | pixels[:, 2]
+    colours, counts = numpy.unique(packed, return_counts=True)
+    top = colours[numpy.argsort(-counts, kind="stable")[:FREQUENT]]
+    frequent = numpy.stack([(top >> 16) & 255, (top >> 8) & 255, top & 255], axis=1)
     montage = Image.fromarray(pixels.reshape(-1, sample[0].size[0], 3))
     covering = montage.quantize(colors=256 - len(frequent), method=Image.MAXCOVERAGE, dither=Image.NONE)
     covering = numpy.array(covering.getpalette()[:3 * (256 - len(frequent))]).reshape(-1, 3)

@@ -145,7 +145,7 @@ def positions(proxy):
 
 
 def field_range(proxy, field):
-    """(low, high) of the field (its magnitude for vectors) over the shown points, or None."""
+    """(low, high) of the field (its magnitude for vectors) over the points of `proxy`, or None."""
     data = fetched(proxy)
     array = data.GetPointData().GetArray(field) if data is not None else None
     if array is None or array.GetNumberOfTuples() == 0:
@@ -276,8 +276,7 @@ def colour(display, view, pipeline, field, title, value_range):
     bar.RangeLabelFormat = "%-#.3g"
     bar.WindowLocation = "Any Location"
     bar.Orientation = "Vertical"
-    width = view.ViewSize[0]
-    bar.Position = [1.0 - (MARGIN_RIGHT - 20) * (width / 1600.0) / width, 0.15]
+    bar.Position = [1.0 - (MARGIN_RIGHT - 20) / 1600.0, 0.15]  # 20 pixels into the right margin
     bar.ScalarBarLength = 0.7
 
 
