@@ -30,6 +30,17 @@ std::string companion_script(const std::string& name, const std::string& directo
   return path.string();
 }
 
+std::string temporary_with_extension(const std::string& path) {
+  const fs::path file(path);
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, PR105329) on "." + std::string.
+  std::string name(1, '.');
+  name += file.stem().string();
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  name += file.extension().string();
+  return (file.parent_path() / name).string();
+}
+
 std::optional<std::string> find_program(const std::string& program) {
   if (program.find('/') != std::string::npos)
     return ::access(program.c_str(), X_OK) == 0 ? std::optional<std::string>(program) : std::nullopt;

@@ -21,6 +21,10 @@ std::string executable_directory();
 // ExternalToolError saying the installation is incomplete.
 std::string companion_script(const std::string& name, const std::string& directory = {});
 
+// A temporary name next to `path` for a tool's output: hidden, with the process id, and with
+// the extension kept (matplotlib, ParaView and PIL choose the format by it).
+std::string temporary_with_extension(const std::string& path);
+
 // Full path of `program` found on PATH, if any.
 std::optional<std::string> find_program(const std::string& program);
 

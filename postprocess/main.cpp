@@ -32,12 +32,20 @@ const char* kUsage =
     "  -o POST_DIR          output directory (created; an existing non-empty one is refused)\n"
     "  --force              replace an earlier POST_DIR as a whole (no stale frames remain)\n"
     "  --figures            also render PNG contour images (ParaView pvbatch, headless) into\n"
-    "                       POST_DIR/figures/FIELD_STEP.png\n"
+    "                       POST_DIR/figures: FIELD_STEP.png in 2-D; in 3-D an oblique view of\n"
+    "                       the surface, FIELD_STEP_iso.png, and a clip, FIELD_STEP_clip_X.png\n"
     "  --fields a,b         fields of the figures (default: damage, plastic_shear_strain,\n"
     "                       rotation, those the run has)\n"
     "  --times t1,t2|all    snapshot times of the figures, with units ('20 us'); the nearest\n"
     "                       snapshot is used (default: the last one)\n"
-    "  --warp-scale S       displacement scale of the deformed configuration in figures (default 1)\n"
+    "  --clip AXIS=LENGTH   3-D: the plane of the clip pictures, e.g. 'x=50mm' (plain numbers are\n"
+    "                       metres); they show the part of the body behind it, the cut face\n"
+    "                       towards the camera (default: the mid-plane across the body's largest\n"
+    "                       extent). Given, it is also the view of the movie\n"
+    "  --movie FIELD        a movie of FIELD over every snapshot, one frame each, one camera and\n"
+    "                       colour range: POST_DIR/movie_FIELD.mp4 when ffmpeg is on PATH, else\n"
+    "                       POST_DIR/movie_FIELD.gif; in 3-D the oblique view (the clip with --clip)\n"
+    "  --warp-scale S       displacement scale of the deformed configuration in pictures (default 1)\n"
     "  --compression KIND   .vtu compression: zlib (default), lz4 or none\n"
     "  --crack-tip X,Y[,Z]  a pre-crack tip (lengths: '50mm,20mm'; plain numbers are metres),\n"
     "                       repeatable; for notches cut out of the body (default: the tips of\n"
@@ -65,8 +73,8 @@ const char* kUsage =
 int main(int argc, char** argv) {
   const mppm::CommandLineSpec spec{"mppm-postprocess",
                                    kUsage,
-                                   {"-o", "--fields", "--times", "--warp-scale", "--compression", "--crack-tip",
-                                    "--crack-direction", "--crack-angle-range", "--crack-angle-time"},
+                                   {"-o", "--fields", "--times", "--warp-scale", "--clip", "--movie", "--compression",
+                                    "--crack-tip", "--crack-direction", "--crack-angle-range", "--crack-angle-time"},
                                    {"--figures", "--partial", "--no-plot", "--force"}};
   return mppm::run_stage(argc, argv, spec, [](const mppm::CommandLine& cl) -> int {
     using mppm::InputError;
@@ -88,6 +96,13 @@ int main(int argc, char** argv) {
     if (const auto times = cl.option("--times")) options.figure_times = split_list(*times);
     if ((cl.option("--fields") || cl.option("--times")) && !options.figures)
       throw InputError("--fields and --times choose the figures: add --figures");
+    if (const auto clip = cl.option("--clip")) options.clip = mppm::post::parse_clip_plane(*clip);
+    if (const auto movie = cl.option("--movie")) {
+      options.movie_field = mppm::trim_blanks(*movie);
+      if (options.movie_field.empty()) throw InputError("--movie: expected the name of a field, e.g. --movie damage");
+    }
+    if (options.clip && !options.figures && options.movie_field.empty())
+      throw InputError("--clip chooses the plane of the 3-D pictures: add --figures or --movie FIELD");
     if (const auto scale = cl.option("--warp-scale")) {
       try {
         std::size_t used = 0;
@@ -118,6 +133,7 @@ int main(int argc, char** argv) {
                   << "/results.pvd, load_curve.csv" << (options.plot_load_curve ? ", load_curve.png" : "")
                   << ", summary.json";
         if (!result.figures.empty()) std::cout << ", " << result.figures.size() << " figures";
+        if (!result.movie.empty()) std::cout << ", " << result.movie;
         std::cout << "\n";
       }
     } catch (const mppm::post::ExternalToolError& e) {

@@ -224,6 +224,16 @@ std::vector<std::string> choose_figure_fields(const std::vector<std::string>& re
   return figure_fields;
 }
 
+// --movie FIELD, checked against the arrays of a frame as --fields is.
+void check_movie_field(const std::string& field, const FirstSnapshot& first) {
+  if (field.empty()) return;
+  const std::vector<std::string>& names = first.array_names;
+  if (std::find(names.begin(), names.end(), field) != names.end()) return;
+  std::string available;
+  for (const auto& a : names) available += (available.empty() ? "" : ", ") + a;
+  throw InputError("--movie: the run has no field '" + field + "' (available: " + available + ")");
+}
+
 // Creates (or with --force replaces) the post directory and its results/ folder.
 void prepare_post_directory(const PostprocessOptions& options) {
   const fs::path post(options.output_directory);
@@ -577,6 +587,8 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   const auto crack_table = read_crack_path_table(run.path, run.reference.point_count);
   const std::vector<std::string> figure_fields = choose_figure_fields(options.figure_fields, first);
   const std::vector<std::size_t> frames_for_figures = figure_frames(options.figure_times, run.info.snapshots);
+  check_movie_field(options.movie_field, first);
+  const ClipPlane clip = resolve_clip_plane(options.clip, run.reference, run.info.dimension);
   const PointGeometry points = point_geometry(run.reference);
   const bool has_damage = first.snapshot.find("damage") != nullptr;
   check_crack_angle_options(options.crack_angle, run, points, has_damage);
@@ -605,12 +617,20 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
                        {view_field(first.array_names), options.warp_scale, run.spacing, run.info.dimension});
 
   if (options.plot_load_curve) plot_load_curve(options.output_directory, peak.boundary, options.script_directory);
+  const FigureSettings settings{run.spacing, run.info.dimension, options.warp_scale, options.script_directory, clip};
+  const auto frame = [&](std::size_t k) {
+    return FigureFrame{series.entries[k].file, run.info.snapshots[k].step, format_time(run.info.snapshots[k].time)};
+  };
   if (options.figures) {
     std::vector<FigureFrame> frames;
-    for (std::size_t k : frames_for_figures)
-      frames.push_back({series.entries[k].file, run.info.snapshots[k].step, format_time(run.info.snapshots[k].time)});
-    const FigureSettings settings{run.spacing, run.info.dimension, options.warp_scale, options.script_directory};
+    for (std::size_t k : frames_for_figures) frames.push_back(frame(k));
     result.figures = render_figures(options.output_directory, settings, frames, figure_fields);
+  }
+  if (!options.movie_field.empty()) {
+    std::vector<FigureFrame> frames;
+    for (std::size_t k = 0; k < series.entries.size(); ++k) frames.push_back(frame(k));
+    result.movie =
+        render_movie(options.output_directory, settings, frames, options.movie_field, options.clip.has_value());
   }
   return result;
 }
