@@ -108,7 +108,7 @@ def colour(display, view):
     ColorBy(display, ("POINTS", FIELD, "Magnitude") if FIELD == "displacement" else ("POINTS", FIELD))
     lut = GetColorTransferFunction(FIELD)
     if FIELD == "damage":
-        lut.ApplyPreset("Inferno (matplotlib)", True)
+        lut.ApplyPreset("Viridis (matplotlib)", True)  # as the figures: shading shows on its dark end
         lut.AutomaticRescaleRangeMode = "Never"
         lut.RescaleTransferFunction(0.0, 1.0)
     else:
