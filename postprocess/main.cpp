@@ -35,7 +35,7 @@ const char* kUsage =
     "                       POST_DIR/figures: FIELD_STEP.png in 2-D; in 3-D an oblique view of\n"
     "                       the surface, FIELD_STEP_iso.png, and a clip, FIELD_STEP_clip_X.png\n"
     "  --fields a,b         fields of the figures (default: damage, plastic_shear_strain,\n"
-    "                       rotation, those the run has)\n"
+    "                       pore_pressure, rotation, those the run has)\n"
     "  --times t1,t2|all    snapshot times of the figures, with units ('20 us'); the nearest\n"
     "                       snapshot is used (default: the last one)\n"
     "  --clip AXIS=LENGTH   3-D: the plane of the clip pictures, e.g. 'x=50mm' (plain numbers are\n"

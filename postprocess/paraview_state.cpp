@@ -178,7 +178,7 @@ std::string python_number(double value) {
 }  // namespace
 
 std::string view_field(const std::vector<std::string>& array_names) {
-  for (const char* name : {"damage", "plastic_shear_strain", "displacement"})
+  for (const char* name : {"damage", "plastic_shear_strain", "pore_pressure", "displacement"})
     if (std::find(array_names.begin(), array_names.end(), name) != array_names.end()) return name;
   return {};
 }

@@ -17,7 +17,8 @@ struct ParaViewStateSettings {
 };
 
 // The case's main field among the frame's arrays: damage when present, else
-// plastic_shear_strain, else displacement (coloured by its magnitude); empty when none is there.
+// plastic_shear_strain, else pore_pressure, else displacement (coloured by its magnitude); empty
+// when none is there.
 std::string view_field(const std::vector<std::string>& array_names);
 
 // The text of view.py for these settings.

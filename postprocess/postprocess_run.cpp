@@ -31,6 +31,7 @@
 #include "postprocess/load_curve.hpp"
 #include "postprocess/paraview_state.hpp"
 #include "postprocess/pictures.hpp"
+#include "postprocess/pore_pressure_metrics.hpp"
 #include "postprocess/run_directory_reader.hpp"
 #include "postprocess/shear_band_metrics.hpp"
 #include "postprocess/yaml_to_json.hpp"
@@ -211,7 +212,7 @@ FirstSnapshot read_first_snapshot(const RunDirectory& run) {
 std::vector<std::string> choose_figure_fields(const std::vector<std::string>& requested, const FirstSnapshot& first) {
   std::vector<std::string> figure_fields = requested;
   if (figure_fields.empty())
-    for (const char* name : {"damage", "plastic_shear_strain", "rotation"})
+    for (const char* name : {"damage", "plastic_shear_strain", "pore_pressure", "rotation"})
       if (first.snapshot.find(name)) figure_fields.emplace_back(name);
   if (figure_fields.empty() && first.snapshot.find("displacement")) figure_fields.emplace_back("displacement");
   const std::vector<std::string>& array_names = first.array_names;
@@ -338,6 +339,7 @@ struct SeriesResult {
   std::vector<PvdEntry> entries;
   std::vector<double> last_plastic_shear;
   double last_plastic_time = 0.0;
+  std::optional<PorePressureTracker> pore_pressure;  // when the snapshots have pore_pressure
 };
 
 // Streams the snapshots one at a time into results/*.vtu and results.pvd, feeding the crack
@@ -352,6 +354,7 @@ SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const P
   SeriesResult series;
   std::vector<PvdEntry>& entries = series.entries;
   Progress progress("postprocess", static_cast<std::int64_t>(snapshots.size()), options.quiet);
+  if (first.snapshot.find("pore_pressure")) series.pore_pressure.emplace(run.reference);
   for (std::size_t k = 0; k < snapshots.size(); ++k) {
     Snapshot snapshot = k == 0 ? std::move(first.snapshot) : read_snapshot(snapshots[k].path);
     if (k == 0) first.snapshot = Snapshot{};
@@ -367,6 +370,8 @@ SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const P
       write_text((post / "results.pvd").string(), pvd_text(entries));
     if (crack) crack->add_frame(snapshot.time, snapshot.find("damage")->data);
     angles.add(k, snapshot);
+    if (const SnapshotField* p = snapshot.find("pore_pressure"); p && p->components == 1 && series.pore_pressure)
+      series.pore_pressure->add_frame(snapshot.time, p->data);
     if (const SnapshotField* e = snapshot.find("plastic_shear_strain"); e && e->components == 1) {
       series.last_plastic_shear = e->data;
       series.last_plastic_time = snapshot.time;
@@ -567,6 +572,27 @@ void set_crack_angle_entries(JsonValue& summary, const CrackAngleResult& result)
   summary.set("crack_angles", details);
 }
 
+// The pore-pressure metrics (postprocess/README.md), when the snapshots have pore_pressure.
+void add_pore_pressure_metrics(JsonValue& summary, const SeriesResult& series) {
+  if (!series.pore_pressure) return;
+  const auto m = series.pore_pressure->result();
+  if (!m) return;
+  auto position = [](const PressureExtreme& e) {
+    auto v = JsonValue::array();
+    for (double x : e.position) v.push(x);
+    return v;
+  };
+  summary.set("pore_pressure_peak_Pa", m->peak.value);
+  summary.set("pore_pressure_peak_time_s", m->peak.time);
+  summary.set("pore_pressure_peak_m", position(m->peak));
+  summary.set("pore_pressure_min_Pa", m->minimum.value);
+  summary.set("pore_pressure_min_time_s", m->minimum.time);
+  summary.set("pore_pressure_min_m", position(m->minimum));
+  summary.set("pore_pressure_final_max_Pa", m->final_max);
+  summary.set("pore_pressure_final_min_Pa", m->final_min);
+  summary.set("pore_pressure_final_mean_Pa", m->final_mean);
+}
+
 void add_crack_angle_metrics(JsonValue& summary, std::vector<std::string>& notes, const CrackAngleStream& angles) {
   if (!angles.tracker) return;
   const CrackAngleResult result = angles.tracker->result();
@@ -608,6 +634,7 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   add_shear_band_metrics(summary, notes, run, points, series);
   add_crack_metrics(summary, notes, run, crack, crack_data, crack_source);
   add_crack_angle_metrics(summary, notes, angles);
+  add_pore_pressure_metrics(summary, series);
   auto note_array = JsonValue::array();
   for (const auto& note : notes) note_array.push(note);
   summary.set("notes", note_array);

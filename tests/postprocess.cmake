@@ -5,6 +5,7 @@ mppm_add_gtest(test_post_metrics unit
   unit/test_post_shear_band.cpp
   unit/test_post_crack.cpp
   unit/test_post_crack_angle.cpp
+  unit/test_post_pore_pressure.cpp
   unit/test_post_fields.cpp
 )
 mppm_add_gtest(test_post_stage unit
