@@ -26,7 +26,7 @@ std::uint64_t field_components(const std::string& name, std::uint64_t D, std::ui
   if (name == "wryness" || name == "couple_stress") return R * D;
   if (name == "stress" || name == "plastic_strain") return 9;
   if (name == "porosity" || name == "plastic_shear_strain" || name == "equivalent_plastic_strain" ||
-      name == "detached" || name == "damage")
+      name == "detached" || name == "damage" || name == "crack_area")
     return 1;
   return 0;
 }
