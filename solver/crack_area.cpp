@@ -34,7 +34,9 @@ void for_each_initial_bond(const PointData& p, const BondFamilies& f, const Prec
   const auto [first, last] = cut_range(cuts, i);
   for (std::int64_t k = first; k < last; ++k) {
     const auto j = static_cast<std::size_t>(cuts.neighbor[static_cast<std::size_t>(k)]);
-    for (int a = 0; a < D; ++a) xi[a] = p.position[j * D + a] - p.position[i * D + a];
+    for (int a = 0; a < D; ++a)
+      xi[a] = cuts.xi.empty() ? p.position[j * D + a] - p.position[i * D + a]
+                              : cuts.xi[static_cast<std::size_t>(k) * D + a];
     visit(p.volume[j], xi, true);
   }
 }
@@ -43,10 +45,15 @@ void for_each_initial_bond(const PointData& p, const BondFamilies& f, const Prec
 
 PrecrackCutBonds record_cut_bonds(const BondFamilies& f, const std::vector<std::uint8_t>& cut) {
   PrecrackCutBonds cuts;
+  const int D = f.dimension;
   for (std::size_t i = 0; i + 1 < f.offset.size(); ++i) {
     const std::size_t before = cuts.neighbor.size();
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-      if (cut[static_cast<std::size_t>(b)]) cuts.neighbor.push_back(f.neighbor[static_cast<std::size_t>(b)]);
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+      const auto entry = static_cast<std::size_t>(b);
+      if (!cut[entry]) continue;
+      cuts.neighbor.push_back(f.neighbor[entry]);
+      if (!f.xi.empty()) cuts.xi.insert(cuts.xi.end(), f.xi.begin() + entry * D, f.xi.begin() + (entry + 1) * D);
+    }
     if (cuts.neighbor.size() == before) continue;
     if (cuts.offset.empty()) cuts.offset.push_back(0);
     cuts.points.push_back(i);

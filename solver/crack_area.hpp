@@ -20,11 +20,13 @@ namespace mppm::solver {
 
 // The bonds the pre-crack cuts removed from both ends: the points that lost bonds (sorted) and
 // the neighbours point points[k] lost, neighbor[offset[k]] .. neighbor[offset[k + 1] - 1], in list
-// order. Kept only where the crack area is written (damage runs in 3-D); empty otherwise.
+// order, with their bond vectors when the lattice is periodic (as BondFamilies::xi). Kept only
+// where the crack area is written (damage runs in 3-D); empty otherwise.
 struct PrecrackCutBonds {
   std::vector<std::size_t> points;
   std::vector<std::int64_t> offset;
   std::vector<std::int32_t> neighbor;
+  std::vector<double> xi;  // D per cut bond, periodic lattices only (else empty)
   bool empty() const { return points.empty(); }
 };
 
