@@ -103,8 +103,8 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   mark("bond families");
   if (o.effects.damage && !cloud.precrack_vertices.empty()) {
     // The family volumes before the cuts are kept for the points that lost bonds to them, so that
-    // the notch shows as damage from the start.
-    // The crack area (3-D) counts the cut bonds as broken ones.
+    // the notch shows as damage from the start; in 3-D the cut bonds themselves are kept for the
+    // crack area, which counts them as broken (crack_area.hpp).
     const std::vector<double> before_cuts = family_volumes(m.points, m.bonds);
     m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, m.dimension() == 3, m.precrack_cuts);
     record_precut_family_volumes(m.points, m.bonds, before_cuts);
