@@ -26,8 +26,8 @@ std::uint64_t field_components(const std::string& name, std::uint64_t D, std::ui
   if (name == "wryness" || name == "couple_stress") return R * D;
   if (name == "stress" || name == "plastic_strain") return 9;
   if (name == "porosity" || name == "plastic_shear_strain" || name == "equivalent_plastic_strain" ||
-      name == "detached" || name == "damage" || name == "pore_pressure" || name == "fluid_content" ||
-      name == "saturation")
+      name == "detached" || name == "damage" || name == "crack_area" || name == "pore_pressure" ||
+      name == "fluid_content" || name == "saturation")
     return 1;
   if (name == "darcy_velocity") return D;
   return 0;

@@ -36,6 +36,7 @@ const std::vector<std::pair<std::string, std::string>> kOutputFields{{"displacem
                                                                      {"couple_stress", "micropolar"},
                                                                      {"porosity", ""},
                                                                      {"damage", "damage"},
+                                                                     {"crack_area", "damage"},
                                                                      {"plastic_strain", "viscoplasticity"},
                                                                      {"plastic_shear_strain", "viscoplasticity"},
                                                                      {"equivalent_plastic_strain", "viscoplasticity"},
@@ -1031,6 +1032,7 @@ class SceneReader {
     out.fields.push_back("displacement");
     if (scene_.effects.micropolar) out.fields.push_back("rotation");
     if (scene_.effects.damage) out.fields.push_back("damage");
+    if (scene_.effects.damage && scene_.dimension == 3) out.fields.push_back("crack_area");
     if (scene_.effects.viscoplasticity) out.fields.push_back("plastic_shear_strain");
     if (scene_.effects.pore_fluid) out.fields.push_back("pore_pressure");
     if (!o.IsDefined() || o.IsNull()) return;
@@ -1065,6 +1067,11 @@ class SceneReader {
         if (!on) {
           scene_.warnings.push_back(location(f[k], fp) + ": " + fp + ": '" + name +
                                     "' is not written because the effect '" + effect + "' is off");
+          continue;
+        }
+        if (name == "crack_area" && scene_.dimension != 3) {  // 2-D runs measure the crack length instead
+          scene_.warnings.push_back(location(f[k], fp) + ": " + fp + ": '" + name +
+                                    "' is written in 3-D runs only (2-D runs measure the crack length)");
           continue;
         }
         if (std::find(out.fields.begin(), out.fields.end(), name) == out.fields.end()) out.fields.push_back(name);

@@ -14,6 +14,7 @@ std::string field_unit(const std::string& name) {
       {"rotation_rate", "rad/s"},
       {"detached", "-"},
       {"damage", "-"},
+      {"crack_area", "m^2"},
       {"plastic_strain", "-"},
       {"plastic_shear_strain", "-"},
       {"equivalent_plastic_strain", "-"},

@@ -25,6 +25,7 @@
 #include "common/units.hpp"
 #include "postprocess/boundary_layer_mask.hpp"
 #include "postprocess/crack_angle.hpp"
+#include "postprocess/crack_area_metrics.hpp"
 #include "postprocess/crack_metrics.hpp"
 #include "postprocess/crack_path_table.hpp"
 #include "postprocess/derived_fields.hpp"
@@ -343,10 +344,10 @@ struct SeriesResult {
 };
 
 // Streams the snapshots one at a time into results/*.vtu and results.pvd, feeding the crack
-// tracker and the crack angles. The first snapshot is taken over from `first` (and its memory
-// released).
+// tracker, the crack angles and the crack area (3-D). The first snapshot is taken over from
+// `first` (and its memory released).
 SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const PostprocessOptions& options,
-                          std::optional<CrackTracker>& crack, CrackAngleStream& angles,
+                          std::optional<CrackTracker>& crack, CrackAngleStream& angles, CrackAreaTracker* area,
                           std::vector<std::string>& notes) {
   const auto& snapshots = run.info.snapshots;
   const fs::path post(options.output_directory);
@@ -372,6 +373,7 @@ SeriesResult write_series(const RunDirectory& run, FirstSnapshot& first, const P
     angles.add(k, snapshot);
     if (const SnapshotField* p = snapshot.find("pore_pressure"); p && p->components == 1 && series.pore_pressure)
       series.pore_pressure->add_frame(snapshot.time, p->data);
+    if (area) area->add_frame(snapshot.time, snapshot.find("crack_area")->data);
     if (const SnapshotField* e = snapshot.find("plastic_shear_strain"); e && e->components == 1) {
       series.last_plastic_shear = e->data;
       series.last_plastic_time = snapshot.time;
@@ -505,8 +507,10 @@ CrackFrameSource crack_frame_source(std::optional<CrackTracker>& crack,
   return source;
 }
 
+// `area_metrics`: a 3-D run measured by its crack area instead (add_crack_area_metrics).
 void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
-                       const std::optional<CrackTracker>& crack, bool has_damage, const CrackFrameSource& source) {
+                       const std::optional<CrackTracker>& crack, bool has_damage, bool area_metrics,
+                       const CrackFrameSource& source) {
   if (crack) {
     const CrackMetrics m = crack->finish();
     summary.set("crack_metrics_source", source.name);
@@ -522,8 +526,32 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
     if (!m.note.empty()) notes.push_back("crack: " + m.note);
   } else if (has_damage ||
              std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
-    if (run.info.dimension != 2) notes.push_back("crack metrics are measured in 2-D runs only");
+    if (run.info.dimension == 2) return;
+    notes.push_back(area_metrics
+                        ? "crack branching, end, tip speed, length and angles are measured in 2-D runs only (3-D "
+                          "runs: crack area, start time and front advance)"
+                        : "crack metrics are measured in 2-D runs, and in 3-D runs from the crack_area field, which "
+                          "this run's snapshots do not hold (output.fields)");
   }
+}
+
+// 3-D: the crack area, its start and the front advance (crack_area_metrics.hpp), and
+// crack_area.csv with their history.
+void add_crack_area_metrics(JsonValue& summary, std::vector<std::string>& notes, const CrackAreaTracker& area,
+                            const CrackFrameSource& source, const fs::path& post) {
+  const CrackAreaMetrics m = area.finish();
+  summary.set("crack_metrics_source", source.name);
+  summary.set("crack_metrics_resolution_s", source.resolution_s);
+  summary.set("crack_metrics_frames", static_cast<std::uint64_t>(source.frames));
+  summary.set("crack_start_time_s", m.start_time_s);
+  summary.set("crack_area_m2", m.area_m2);
+  summary.set("crack_precrack_area_m2", m.precrack_area_m2);
+  summary.set("crack_front_advance_m", m.front_advance_m);
+  summary.set("crack_front_advance_time_s", m.front_advance_time_s);
+  summary.set("crack_start_area_m2", area.start_area());
+  summary.set("crack_front_point_area_m2", area.front_point_area());
+  for (const auto& note : m.notes) notes.push_back("crack: " + note);
+  write_text((post / "crack_area.csv").string(), crack_area_csv(m));
 }
 
 // Given crack tips need a 2-D run with damage and must lie in the body, and a measure time must
@@ -624,15 +652,20 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   const bool crack_data = has_damage || crack_table.has_value();  // damage snapshots or the table
   std::optional<CrackTracker> crack = crack_tracker(run, points, crack_data && run.info.dimension == 2);
   CrackAngleStream angles = crack_angle_stream(run, points, first, crack, options.crack_angle);
+  std::optional<CrackAreaTracker> area;  // 3-D damage runs, from their crack_area field
+  if (run.info.dimension == 3 && first.snapshot.find("crack_area"))
+    area.emplace(points.x, points.y, points.z, points.body, run.spacing);
   std::optional<CrackTracker> no_tracker;  // the table gives the frames
-  const SeriesResult series = write_series(run, first, options, crack_table ? no_tracker : crack, angles, notes);
+  const SeriesResult series =
+      write_series(run, first, options, crack_table ? no_tracker : crack, angles, area ? &*area : nullptr, notes);
   const CrackFrameSource crack_source = crack_frame_source(crack, crack_table, run);
   result.frames = series.entries.size();
 
   const PeakLoad peak = write_load_curve(run, post, notes);
   JsonValue summary = run_summary(run, series.entries.size(), first.array_names, peak);
   add_shear_band_metrics(summary, notes, run, points, series);
-  add_crack_metrics(summary, notes, run, crack, crack_data, crack_source);
+  add_crack_metrics(summary, notes, run, crack, crack_data, area.has_value(), crack_source);
+  if (area) add_crack_area_metrics(summary, notes, *area, crack_source, post);
   add_crack_angle_metrics(summary, notes, angles);
   add_pore_pressure_metrics(summary, series);
   auto note_array = JsonValue::array();

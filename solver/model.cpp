@@ -7,6 +7,7 @@
 
 #include "common/precrack_crossing.hpp"
 #include "solver/bond_breakage.hpp"
+#include "solver/crack_area.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/plasticity/material_registry.hpp"
 #include "solver/point_stability.hpp"
@@ -16,12 +17,13 @@ namespace mppm::solver {
 
 namespace {
 
-// Bonds whose segment touches a pre-crack element are removed from both ends before the first
-// step. The crossing test is symmetric in its end points, so both ends agree.
-std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamilies& f, double horizon) {
-  if (cloud.precrack_vertices.empty()) return 0;  // (not used with periodic lattices)
+// The bond entries whose segment touches a pre-crack element (empty without pre-cracks). The
+// crossing test is symmetric in its end points, so a bond is cut from both ends or from neither.
+std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const PointData& p, const BondFamilies& f,
+                                                 double horizon) {
+  if (cloud.precrack_vertices.empty()) return {};  // (not used with periodic lattices)
   const PrecrackIndex index(cloud.dimension, cloud.precrack_vertices, horizon);
-  if (index.empty()) return 0;
+  if (index.empty()) return {};
   const int D = p.dimension;
   std::vector<std::uint8_t> cut(f.bond_count(), 0);
   const auto n = static_cast<std::int64_t>(p.owned);
@@ -38,8 +40,18 @@ std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamili
       cut[k] = (j > i ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
     }
   }
+  return cut;
+}
+
+// Removes the cut bonds from both ends before the first step; returns the pairs removed. With
+// `keep`, they are kept aside in `kept` for the crack area (crack_area.hpp).
+std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamilies& f, double horizon, bool keep,
+                               PrecrackCutBonds& kept) {
+  const std::vector<std::uint8_t> cut = bonds_cut_by_precracks(cloud, p, f, horizon);
+  if (cut.empty()) return 0;
   std::size_t removed = 0;
   for (auto v : cut) removed += v;
+  if (keep) kept = record_cut_bonds(f, cut);
   remove_bonds(f, [&](std::size_t, std::size_t k) { return cut[k] != 0; });
   return removed / 2;
 }
@@ -95,12 +107,13 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   mark("bond families");
   if (o.effects.damage && !cloud.precrack_vertices.empty()) {
     // The family volumes before the cuts are kept for the points that lost bonds to them, so that
-    // the notch shows as damage from the start.
+    // the notch shows as damage from the start; in 3-D the cut bonds themselves are kept for the
+    // crack area, which counts them as broken (crack_area.hpp).
     const std::vector<double> before_cuts = family_volumes(m.points, m.bonds);
-    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
+    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, m.dimension() == 3, m.precrack_cuts);
     record_precut_family_volumes(m.points, m.bonds, before_cuts);
   } else {
-    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon);
+    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, false, m.precrack_cuts);
   }
   mark("pre-crack cuts");
   if (o.effects.damage) {

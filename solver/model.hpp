@@ -10,6 +10,7 @@
 #include "solver/bond_breakage.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/cosserat_material.hpp"
+#include "solver/crack_area.hpp"
 #include "solver/crack_arrivals.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/phase_timer.hpp"
@@ -46,6 +47,8 @@ struct Model {
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;  // with the effect
   std::optional<FluidConstants> fluid;                                      // with pore_fluid
   std::size_t precrack_cut_bonds = 0;                                       // pairs (counted once)
+  // Damage in 3-D: the bonds the pre-crack cuts removed, for the crack area (crack_area.hpp).
+  PrecrackCutBonds precrack_cuts;
   std::size_t detached_points = 0;
   std::size_t broken_bonds = 0;              // pairs broken by damage so far (pre-crack cuts not included)
   double last_fracture_dissipation = 0.0;    // [J] released by the breaks of the last advance

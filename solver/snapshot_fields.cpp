@@ -1,10 +1,11 @@
-// Snapshot fields: kinematic state, strain/stress measures, porosity, damage, pore fluid.
+// Snapshot fields: kinematic state, strain/stress measures, porosity, damage, crack area, pore fluid.
 #include "solver/snapshot_fields.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 
 #include "solver/bond_breakage.hpp"
+#include "solver/crack_area.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/plasticity/plastic_strain_measures.hpp"
 #include "solver/symmetric_tensor.hpp"
@@ -129,6 +130,7 @@ std::vector<std::string> available_fields(const Model& m) {
     for (const char* name : {"rotation", "rotation_rate", "couple_stress", "wryness"}) f.push_back(name);
   }
   if (m.effects.damage) f.push_back("damage");
+  if (m.effects.damage && m.dimension() == 3) f.push_back("crack_area");
   if (m.effects.viscoplasticity)
     for (const char* name : {"plastic_strain", "plastic_shear_strain", "equivalent_plastic_strain"}) f.push_back(name);
   if (m.fluid)
@@ -195,6 +197,11 @@ std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vec
       // D_i = 1 - sum_j b V_j / sum_j V_j over the family before the pre-crack cuts.
       sources.push_back(
           per_point(name, 1, [&m](std::size_t i, double* out) { *out = point_damage(m.points, m.bonds, i); }));
+    } else if (name == "crack_area") {
+      // The point's share of the crack area of its broken and cut bonds [m^2] (crack_area.hpp).
+      sources.push_back(per_point(name, 1, [&m](std::size_t i, double* out) {
+        *out = point_crack_area(m.points, m.bonds, m.precrack_cuts, i);
+      }));
     }
   }
   return sources;

@@ -4,6 +4,7 @@ set(MPPM_TEST_LIBS mppm_postprocess)
 mppm_add_gtest(test_post_metrics unit
   unit/test_post_shear_band.cpp
   unit/test_post_crack.cpp
+  unit/test_post_crack_area.cpp
   unit/test_post_crack_angle.cpp
   unit/test_post_pore_pressure.cpp
   unit/test_post_fields.cpp
@@ -30,3 +31,6 @@ add_dependencies(test_post_paraview mppm-postprocess mppm-preprocess mppm-solve)
 # and the summary of mppm-postprocess's library call.
 set(MPPM_TEST_LIBS mppm_solver mppm_postprocess)
 mppm_add_gtest(test_crack_path_table unit unit/test_crack_path_table.cpp)
+# 3-D crack metrics from end to end: a small 3-D bar with a pre-crack torn apart in process, its
+# crack_area field, summary.json and crack_area.csv.
+mppm_add_gtest(test_crack_area_stage unit unit/test_crack_area_stage.cpp)

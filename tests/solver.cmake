@@ -12,6 +12,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_start_up.cpp
   unit/test_solver_boundary_conditions.cpp
   unit/test_solver_damage.cpp
+  unit/test_solver_crack_area.cpp
   unit/test_solver_cosserat_law.cpp
   unit/test_solver_pore_fluid.cpp
 )

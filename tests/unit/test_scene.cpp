@@ -1,6 +1,7 @@
 // Scene parsing: example scene, defaults, --set overrides, error locations, resolved round trip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 
 #include "common/input_error.hpp"
@@ -325,4 +326,31 @@ TEST(Scene, NumericsThresholdsDefaultEchoAndValidate) {
     const auto e = error_of(kExample, {set});
     EXPECT_NE(e.find(expected), std::string::npos) << set << ": " << e;
   }
+}
+
+// crack_area (the crack surface of the broken bonds, docs/theory.md section 7) is a field of 3-D
+// damage runs, written by default there; a 2-D scene that asks for it gets a warning, since 2-D
+// runs measure the crack length instead.
+TEST(Scene, CrackAreaIsAFieldOf3dDamageRuns) {
+  const std::string block = R"(mppm: 1
+dimension: 3
+geometry: {file: block.step, unit: mm, spacing: 1 mm, horizon_factor: 3.015}
+material: {density: 2650 kg/m3, lambda: 10 GPa, mu: 5 GPa, damage: {critical_energy_release_rate: 100 J/m^2}}
+effects: [damage]
+boundary_conditions:
+  - {name: clamp, entities: [12], type: displacement, value: [0, 0, 0]}
+time: {end: 10 us, step: 0.1 us}
+)";
+  const auto has_crack_area = [](const Scene& s) {
+    return std::find(s.output.fields.begin(), s.output.fields.end(), "crack_area") != s.output.fields.end();
+  };
+  EXPECT_TRUE(has_crack_area(parse_scene(block, kPath)));
+  EXPECT_FALSE(has_crack_area(parse_scene(replace(block, "effects: [damage]", "effects: []"), kPath)));
+  EXPECT_FALSE(has_crack_area(parse_scene(kExample, kPath)));
+  const Scene asked = parse_scene(
+      replace(kExample, "fields: [displacement, rotation, damage]", "fields: [displacement, crack_area]"), kPath);
+  EXPECT_FALSE(has_crack_area(asked));
+  ASSERT_FALSE(asked.warnings.empty());
+  EXPECT_NE(asked.warnings.back().find("'crack_area' is written in 3-D runs only"), std::string::npos)
+      << asked.warnings.back();
 }

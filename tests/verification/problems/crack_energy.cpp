@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "solver/boundary_conditions.hpp"
+#include "solver/crack_area.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "tests/verification/problems/periodic_lattice.hpp"
@@ -132,6 +133,13 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
     return count;
   };
   r.crossing_bonds = count_crossing(false);
+  // 3-D: the crack area of the broken bonds (solver/crack_area.hpp), the pre-crack's at the start.
+  auto broken_bond_area = [&] {
+    double area = 0.0;
+    for (std::size_t i = 0; i < p.owned; ++i) area += solver::point_crack_area(p, f, model.precrack_cuts, i);
+    return area;
+  };
+  const double precrack_area = D == 3 ? broken_bond_area() : 0.0;
 
   const auto start = std::chrono::steady_clock::now();
   const auto max_steps = static_cast<std::int64_t>(std::ceil(strip.end_time / dt));
@@ -167,6 +175,7 @@ CrackEnergyResult drive_crack(const Scene& scene_in, const CrackStrip& strip) {
       if (crossing(i, b)) r.crossing_bond_work += p.volume[i] * p.volume[j] * work;
     }
   r.other_bonds_broken = model.broken_bonds - r.crossing_bonds_broken;
+  if (D == 3) r.broken_bond_area = broken_bond_area() - precrack_area;
   return r;
 }
 

@@ -41,6 +41,7 @@ struct CrackEnergyResult {
   double separation_time = 0.0;           // [s]
   double fracture_dissipation = 0.0;      // [J] as the solver reports it (energy.csv)
   double crack_area = 0.0;                // new crack area (length - notch) x t (2-D) or x depth (3-D) [m^2]
+  double broken_bond_area = 0.0;          // 3-D: the new crack area the crack_area field reads [m^2]
   double measured_g = 0.0;                // fracture_dissipation / crack_area [J/m^2]
   double broken_bond_work = 0.0;          // sum V_i V_j W_ij over the broken pairs [J]
   double crossing_bond_work = 0.0;        // the same over the broken pairs across the mid-plane [J]
