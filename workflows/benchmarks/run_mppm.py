@@ -36,6 +36,7 @@ PLATE_SETS = {
     "micropolar+damage": ["micropolar", "damage"],
     "micropolar+viscoplasticity": ["micropolar", "viscoplasticity"],
     "all": ["micropolar", "damage", "viscoplasticity", "gravity"],
+    "micropolar+pore_fluid": ["micropolar", "pore_fluid"],
 }
 # Effect on but inactive: the same run as "micropolar", bit for bit.
 INACTIVE_SETS = {
@@ -68,6 +69,8 @@ def parse_arguments(argv):
     parser.add_argument("--block-set", action="append", default=[],
                         help="extra --set of the block run (e.g. geometry.spacing=5mm)")
     parser.add_argument("--skip-block", action="store_true", help="no 3-D block")
+    parser.add_argument("--plate-cases", help="only these plate cases (comma-separated names of PLATE_SETS); "
+                        "then no inactive, region, crack-branching or block runs")
     parser.add_argument("--repeats", type=int, default=3,
                         help="runs of each plate case, its thread counts taking turns; a row keeps the "
                              "fastest time loop and the slowest beside it (default 3)")
@@ -192,6 +195,13 @@ def main(argv):
     plate_cases = ([(name, effects, [], None) for name, effects in PLATE_SETS.items()] +
                    [(name, effects, sets, "micropolar") for name, (effects, sets) in INACTIVE_SETS.items()] +
                    [(name, effects, sets, None) for name, (effects, sets) in REGION_SETS.items()])
+    if args.plate_cases:
+        chosen = [c.strip() for c in args.plate_cases.split(",") if c.strip()]
+        unknown = [c for c in chosen if c not in PLATE_SETS]
+        if unknown:
+            raise InputError(f"--plate-cases: unknown case(s) {', '.join(unknown)} (expected some of {', '.join(PLATE_SETS)})")
+        plate_cases = [(name, PLATE_SETS[name], [], None) for name in chosen]
+        args.crack_scene, args.skip_block = None, True
     crack_repeats = args.repeats if args.crack_scene else 0
     if crack_repeats:
         crack_points = os.path.join(args.work, "crack-branching", "points.vtp")
@@ -220,6 +230,13 @@ def main(argv):
             rows.append(row("block-3d", "micropolar+damage+viscoplasticity", threads, info, peak))
             shutil.rmtree(os.path.join(run_dir, "snapshots"), ignore_errors=True)  # 1e6-point snapshots
     write_csv(args.csv, CSV_COLUMNS, rows)
+    if args.plate_cases:  # each chosen case against the first, thread count by thread count
+        first = plate_cases[0][0]
+        for r in rows:
+            base = next(b for b in rows if b["effects"] == first and b["threads"] == r["threads"])
+            if r is not base:
+                print(f"{r['effects']}: {float(r['wall_seconds']) / float(base['wall_seconds']):.3f}x the time loop of {first}"
+                      f" on {r['threads']} thread(s)")
     return 0
 
 
