@@ -18,8 +18,15 @@ bool has(const std::vector<std::string>& list, const char* name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
+// Resident size of mppm-solve apart from the run's arrays: the C++ runtime, OpenMP, VTK,
+// yaml-cpp and their data. Measured peak RSS on Debian 12: 15.1 MiB for `mppm-solve --help`,
+// 16.6 MiB for a 1000-point run; rounded up.
+constexpr std::uint64_t kProgramBytes = 20ull << 20;
+
+}  // namespace
+
 // Values per point of a snapshot field (solver/snapshot_fields.cpp); 0 for an unknown name.
-std::uint64_t field_components(const std::string& name, std::uint64_t D, std::uint64_t R) {
+std::uint64_t snapshot_field_components(const std::string& name, std::uint64_t D, std::uint64_t R) {
   if (name == "displacement" || name == "velocity") return D;
   if (name == "rotation" || name == "rotation_rate") return R;
   if (name == "strain") return D * D;
@@ -32,13 +39,6 @@ std::uint64_t field_components(const std::string& name, std::uint64_t D, std::ui
   if (name == "darcy_velocity") return D;
   return 0;
 }
-
-// Resident size of mppm-solve apart from the run's arrays: the C++ runtime, OpenMP, VTK,
-// yaml-cpp and their data. Measured peak RSS on Debian 12: 15.1 MiB for `mppm-solve --help`,
-// 16.6 MiB for a 1000-point run; rounded up.
-constexpr std::uint64_t kProgramBytes = 20ull << 20;
-
-}  // namespace
 
 std::uint64_t estimated_bond_entries(std::uint64_t points, double horizon_factor, int dimension) {
   if (!(horizon_factor > 0) || horizon_factor > 50) return 0;
@@ -102,7 +102,7 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   // Snapshots are written a chunk of points at a time (common/snapshot_file.hpp), one field after
   // the other: the buffer of the widest field (the reference snapshot's position has 3).
   std::uint64_t components = 3;
-  for (const std::string& f : in.snapshot_fields) components = std::max(components, field_components(f, D, R));
+  for (const std::string& f : in.snapshot_fields) components = std::max(components, snapshot_field_components(f, D, R));
   e.snapshot_bytes = components * 8 * std::min<std::uint64_t>(in.points, kSnapshotPointsPerChunk);
 
   e.fixed_bytes = kProgramBytes;

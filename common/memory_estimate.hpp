@@ -38,6 +38,10 @@ struct MemoryEstimate {
 // the points: every point of a regular lattice has at most this many bonds.
 std::uint64_t estimated_bond_entries(std::uint64_t points, double horizon_factor, int dimension);
 
+// Values per point of a snapshot field (solver/snapshot_fields.cpp) for the dimension D and the
+// rotation components R (0 without micropolar); 0 for an unknown name.
+std::uint64_t snapshot_field_components(const std::string& name, std::uint64_t D, std::uint64_t R);
+
 MemoryEstimate estimate_run_memory(const MemoryEstimateInput& input);
 
 // "1.23 GiB", "456 MiB", "789 KiB".

@@ -1,6 +1,8 @@
 // The mppm-solve command line (docs/stages.md "Commands").
 #include "solver/solve_command.hpp"
 
+#include <omp.h>
+
 #include <iostream>
 #include <utility>
 
@@ -9,6 +11,9 @@
 #include "common/input_error.hpp"
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "solver/bond_families.hpp"
+#include "solver/point_data.hpp"
+#include "solver/run_estimate.hpp"
 #include "solver/solve_run.hpp"
 #include "solver/test_hooks.hpp"
 
@@ -22,6 +27,7 @@ mppm::CommandLineSpec solve_command_spec() {
   spec.usage =
       "usage: mppm-solve SCENE.yaml --points POINTS.vtp -o RUN_DIR [options]\n"
       "       mppm-solve --restart RUN_DIR [--points POINTS.vtp] [--threads N] [--quiet]\n"
+      "       mppm-solve SCENE.yaml --points POINTS.vtp --estimate [--threads N]\n"
       "\n"
       "Runs the explicit micro-polar periporomechanics solver on the points made by\n"
       "mppm-preprocess and writes the run directory (resolved scene, snapshots, load.csv,\n"
@@ -34,6 +40,8 @@ mppm::CommandLineSpec solve_command_spec() {
       "  --threads N         OpenMP threads (results are identical for any N)\n"
       "  --force             overwrite an earlier run in RUN_DIR\n"
       "  --quiet             no progress display\n"
+      "  --estimate          print the points, bonds, time step, steps, predicted wall time at\n"
+      "                      --threads and peak memory of the run, without running it (no -o)\n"
       "  --restart RUN_DIR   continue the run in RUN_DIR from its checkpoint (RUN_DIR/checkpoint/,\n"
       "                      written every output.checkpoint_interval of simulated time and on\n"
       "                      Ctrl-C / SIGTERM) to time.end, with the run's scene.resolved.yaml and\n"
@@ -52,7 +60,7 @@ mppm::CommandLineSpec solve_command_spec() {
   // --fail-checkpoint-write K are test hooks (solver/test_hooks.hpp, solver/README.md "Test hooks"),
   // not listed in the usage: they make the run fail on purpose.
   spec.value_options = {"-o", "--points", "--inject-nan", "--inject-kick", "--restart", "--fail-checkpoint-write"};
-  spec.flag_options = {"--force"};
+  spec.flag_options = {"--force", "--estimate"};
   return spec;
 }
 
@@ -85,6 +93,29 @@ int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, 
   start_up.mark("read points");
   options.start_up = std::move(start_up);
   return exit_code(restart(std::move(cloud), checkpoint, options), options);
+}
+
+// mppm-solve SCENE.yaml --points POINTS --estimate: what the run would cost (solver/run_estimate.hpp),
+// its bonds counted from the families.
+int estimate_only(const mppm::CommandLine& cl) {
+  if (cl.positional.size() != 1) throw mppm::InputError("expected exactly one scene file (see --help)");
+  const auto points = cl.option("--points");
+  if (!points) throw mppm::InputError("--points POINTS.vtp is required (see --help)");
+  if (cl.option("-o") || cl.has_flag("--force"))
+    throw mppm::InputError("--estimate runs nothing: no -o or --force with it (see --help)");
+  const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
+  const mppm::PointCloud cloud = mppm::read_point_cloud(*points);
+  if (cloud.dimension != scene.dimension)
+    throw mppm::InputError(*points + ": a " + std::to_string(cloud.dimension) + "-D points file for a " +
+                           std::to_string(scene.dimension) + "-D scene");
+  const PointData data = make_point_data(cloud, scene.effects);
+  FamilyOptions families;
+  families.horizon = scene.geometry.horizon();
+  families.spacing = scene.geometry.spacing;
+  const std::uint64_t bonds = build_families(data, families).bond_count();
+  const RunEstimate estimate = estimate_run(scene, cloud, bonds, omp_get_max_threads());
+  std::cout << format_run_estimate(scene, estimate);
+  return mppm::kExitSuccess;
 }
 
 // mppm-solve SCENE.yaml --points POINTS -o RUN_DIR: a new run.
@@ -120,6 +151,7 @@ int solve_command(int argc, char** argv) {
     if (const auto hook = cl.option("--inject-nan")) hooks.inject_nan = parse_nan_injection(*hook);
     if (const auto hook = cl.option("--inject-kick")) hooks.inject_kick = parse_velocity_kick(*hook);
     if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
+    if (cl.has_flag("--estimate")) return estimate_only(cl);
     return start_run(cl, hooks);
   });
 }

@@ -133,3 +133,15 @@ TEST(PreprocessCommandLine, SameBytesForOneAndTwoThreads) {
     ASSERT_TRUE(file_bytes(two_path) == reference) << "run " << repeat << " at 2 threads differs from 1 thread";
   }
 }
+
+// --estimate: what mppm-solve will need, printed without a points file; with -o refused.
+TEST(PreprocessCommandLine, EstimatePrintsTheRunWithoutAPointsFile) {
+  const CliRun r = run(scene("pre_branching_plate.yaml") + " --estimate --threads 2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* line : {"points", "bonds", "(lattice estimate)", "time step", "steps", "wall time", "peak memory"})
+    EXPECT_NE(r.output.find(line), std::string::npos) << "missing '" << line << "' in: " << r.output;
+  const std::string out = output_path("estimate.vtp");
+  const CliRun both = run(scene("pre_branching_plate.yaml") + " --estimate -o " + out);
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_FALSE(fs::exists(out));
+}

@@ -1,0 +1,72 @@
+// The run cost model (see run_cost_model.hpp). Every constant is a measurement on the
+// development machine (2 vCPUs, AMD EPYC, Debian 12), idle, from workflows/benchmarks/results.md
+// (2026-12-03): the time loop of the crack-branching plate (2-D, 16 000 points, 46 bonds per
+// point) with each effect set, and of 3-D blocks (216 000 points with 31 bonds per point, and the
+// 1-million-point block with the full model).
+#include "common/run_cost_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mppm {
+
+namespace {
+
+bool has(const std::vector<std::string>& effects, const char* name) {
+  return std::find(effects.begin(), effects.end(), name) != effects.end();
+}
+
+// One bond update of the non-polar elastic model, one thread: 2-D 6.15 s / (2000 x 737 752);
+// 3-D 1 / 7.0e7 (the 216 000-point block).
+constexpr double kBaseSeconds2d = 4.17e-9, kBaseSeconds3d = 14.3e-9;
+// What each effect multiplies it by (the plate: micropolar 10.13 / 6.15 s; damage 13.07 / 10.13;
+// viscoplasticity 18.18 / 10.13. 3-D: micropolar with damage 2.9e7 against 7.0e7 updates/s, the
+// full model 2.0e7). Gravity costs nothing measurable; the pore fluid's flow updates 1.12x with a
+// flow update every few steps (make -C workflows/benchmarks pore-fluid).
+constexpr double kMicropolar2d = 1.65, kMicropolar3d = 1.87;
+constexpr double kDamage = 1.29;
+constexpr double kViscoplasticity2d = 1.79, kViscoplasticity3d = 1.45;
+constexpr double kPoreFluid = 1.12;
+// Two threads run the plate's loop 1.92-2.02x as fast as one: 0.95 per doubling of the threads.
+constexpr double kEfficiencyPerDoubling = 0.95;
+// The start-up: the Lanczos estimate of the critical step costs about 90 force evaluations of the
+// elastic model (the plate: 0.47 s of start-up against 5.1 ms per step with micropolar), plus
+// reading the points and writing the reference, about 2 us per point (3-D block: 52 s of start-up).
+constexpr double kStartUpEvaluations = 90.0;
+constexpr double kStartUpSecondsPerPoint = 2e-6;
+// A snapshot: each value computed (a stress or damage is a small loop per point), checksummed and
+// written: about 10 ns per value (the crack-branching case writes 665 MB of snapshots in a run
+// whose loop alone takes 15 s of its 24 s).
+constexpr double kSnapshotSecondsPerValue = 10e-9;
+
+double elastic_seconds_per_update(int dimension, bool micropolar) {
+  const double base = dimension == 3 ? kBaseSeconds3d : kBaseSeconds2d;
+  return micropolar ? base * (dimension == 3 ? kMicropolar3d : kMicropolar2d) : base;
+}
+
+}  // namespace
+
+RunCostEstimate estimate_run_cost(const RunCostInput& in) {
+  RunCostEstimate e;
+  const bool micropolar = has(in.effects, "micropolar");
+  const double elastic = elastic_seconds_per_update(in.dimension, micropolar);
+  double update = elastic;
+  if (has(in.effects, "damage")) update *= kDamage;
+  if (has(in.effects, "viscoplasticity")) update *= in.dimension == 3 ? kViscoplasticity3d : kViscoplasticity2d;
+  if (has(in.effects, "pore_fluid")) update *= kPoreFluid;
+  e.seconds_per_bond_update = update;
+  const double threads = std::max(1, in.threads);
+  e.thread_speed_up = threads * std::pow(kEfficiencyPerDoubling, std::log2(threads));
+  const auto bonds = static_cast<double>(in.bonds);
+  e.seconds_per_step = bonds * update / e.thread_speed_up;
+  e.snapshot_seconds =
+      kSnapshotSecondsPerValue * static_cast<double>(in.points) * static_cast<double>(in.snapshot_values_per_point);
+  e.loop_seconds = static_cast<double>(std::max<std::int64_t>(0, in.steps)) * e.seconds_per_step +
+                   static_cast<double>(std::max<std::int64_t>(0, in.snapshots)) * e.snapshot_seconds;
+  e.start_up_seconds = kStartUpEvaluations * bonds * elastic / e.thread_speed_up +
+                       kStartUpSecondsPerPoint * static_cast<double>(in.points);
+  e.total_seconds = e.start_up_seconds + e.loop_seconds;
+  return e;
+}
+
+}  // namespace mppm

@@ -1,0 +1,106 @@
+// The run estimate (solver/run_estimate.hpp, common/run_cost_model.hpp): the cost model's
+// arithmetic, the sample block's critical step against a whole body's, and mppm-solve --estimate
+// as the user runs it (nothing written, the misprinted step refused as the run would refuse it).
+// How close the predicted wall times come to measured ones is a measurement, on an idle machine:
+// workflows/accuracy-cost/README.md.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "common/run_cost_model.hpp"
+#include "solver/critical_time_step.hpp"
+#include "solver/run_estimate.hpp"
+#include "solver/solve_command.hpp"
+#include "tests/unit/solver_block_points.hpp"
+#include "tests/verification/solver_test_lattice.hpp"
+
+namespace mppm::solver {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(RunCostModel, WallTimeIsStartUpPlusStepsAndSnapshots) {
+  RunCostInput in;
+  in.dimension = 2;
+  in.effects = {"micropolar", "damage"};
+  in.points = 16000;
+  in.bonds = 737752;
+  in.steps = 2000;
+  in.snapshots = 3;
+  in.snapshot_values_per_point = 4;
+  const RunCostEstimate one = estimate_run_cost(in);
+  EXPECT_NEAR(one.total_seconds, one.start_up_seconds + 2000 * one.seconds_per_step + 3 * one.snapshot_seconds,
+              1e-12 * one.total_seconds);
+  EXPECT_NEAR(one.seconds_per_step, in.bonds * one.seconds_per_bond_update, 1e-15);
+  // Each effect costs more; the measured plate: 13.07 s for the 2000 steps on one thread.
+  RunCostInput elastic = in;
+  elastic.effects = {"micropolar"};
+  EXPECT_LT(estimate_run_cost(elastic).seconds_per_bond_update, one.seconds_per_bond_update);
+  EXPECT_NEAR(2000 * one.seconds_per_step, 13.07, 0.05 * 13.07);
+  // Two threads: 0.95 of twice as fast.
+  RunCostInput two = in;
+  two.threads = 2;
+  EXPECT_NEAR(estimate_run_cost(two).seconds_per_step, one.seconds_per_step / 1.9, 1e-12);
+  // 3-D costs more per bond update.
+  RunCostInput three = in;
+  three.dimension = 3;
+  EXPECT_GT(estimate_run_cost(three).seconds_per_bond_update, one.seconds_per_bond_update);
+}
+
+// The critical step of the sample block (free faces and corners) is the body's: within 2 % on a
+// block 4x its size (the cut families at faces and corners set the highest frequency in both).
+TEST(RunEstimate, SampleBlockGivesTheBodysCriticalStep) {
+  for (const bool micropolar : {false, true}) {
+    Scene scene = testing::make_scene(2, micropolar, 1e-3, 3.015);
+    const PointCloud body = testing::make_lattice(2, {40, 24, 1}, 1e-3, scene.thickness);
+    Model model = testing::make_model(body, scene);
+    const double whole = critical_time_step(model).step;
+    const RunEstimate e = estimate_run(scene, body, 0, 1);
+    EXPECT_NEAR(e.critical_step, whole, 0.02 * whole) << "micropolar " << micropolar;
+    EXPECT_EQ(e.points, body.size());
+    EXPECT_NEAR(e.time_step, scene.time.safety * e.critical_step, 1e-15);
+  }
+}
+
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+
+Outcome run_solve(std::vector<std::string> args) {
+  args.insert(args.begin(), "mppm-solve");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::stringstream out, err;
+  auto* old_out = std::cout.rdbuf(out.rdbuf());
+  auto* old_err = std::cerr.rdbuf(err.rdbuf());
+  const int code = solve_command(static_cast<int>(args.size()), argv.data());
+  std::cout.rdbuf(old_out);
+  std::cerr.rdbuf(old_err);
+  return {code, out.str(), err.str()};
+}
+
+TEST(RunEstimate, SolveEstimatePrintsTheRunAndWritesNothing) {
+  const fs::path dir = fs::path(MPPM_BINARY_DIR) / "solver-test-runs" / "estimate";
+  fs::create_directories(dir);
+  const std::string points = testing::write_block_points(dir.string());
+  const std::string scenes = std::string(MPPM_SOURCE_DIR) + "/tests/data/scenes/";
+  const auto before = std::distance(fs::directory_iterator(dir), fs::directory_iterator());
+  const Outcome ok = run_solve({scenes + "solver_case1_block.yaml", "--points", points, "--estimate"});
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  for (const char* line : {"points", "bonds", "time step", "steps", "wall time", "peak memory"})
+    EXPECT_NE(ok.out.find(line), std::string::npos) << line << " missing in:\n" << ok.out;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), before) << "nothing written";
+  // The misprinted couple modulus with the case's 7 us: refused before anything runs, as the run.
+  const Outcome bad = run_solve({scenes + "solver_case1_misprint.yaml", "--points", points, "--estimate"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("time.step"), std::string::npos) << bad.err;
+  // An estimate runs nothing: no output directory.
+  EXPECT_EQ(run_solve({scenes + "solver_case1_block.yaml", "--points", points, "--estimate", "-o", "x"}).code, 2);
+}
+
+}  // namespace
+}  // namespace mppm::solver
