@@ -507,15 +507,20 @@ CrackFrameSource crack_frame_source(std::optional<CrackTracker>& crack,
   return source;
 }
 
+// Where the crack metrics' frames came from, how fine they resolve an event, how many were tracked.
+void set_crack_metrics_source(JsonValue& summary, const CrackFrameSource& source) {
+  summary.set("crack_metrics_source", source.name);
+  summary.set("crack_metrics_resolution_s", source.resolution_s);
+  summary.set("crack_metrics_frames", static_cast<std::uint64_t>(source.frames));
+}
+
 // `area_metrics`: a 3-D run measured by its crack area instead (add_crack_area_metrics).
 void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, const RunDirectory& run,
                        const std::optional<CrackTracker>& crack, bool has_damage, bool area_metrics,
                        const CrackFrameSource& source) {
   if (crack) {
     const CrackMetrics m = crack->finish();
-    summary.set("crack_metrics_source", source.name);
-    summary.set("crack_metrics_resolution_s", source.resolution_s);
-    summary.set("crack_metrics_frames", static_cast<std::uint64_t>(source.frames));
+    set_crack_metrics_source(summary, source);
     summary.set("crack_start_time_s", m.start_time_s);
     summary.set("crack_branch_time_s", m.branch_time_s);
     summary.set("crack_end_time_s", m.end_time_s);
@@ -540,9 +545,7 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
 void add_crack_area_metrics(JsonValue& summary, std::vector<std::string>& notes, const CrackAreaTracker& area,
                             const CrackFrameSource& source, const fs::path& post) {
   const CrackAreaMetrics m = area.finish();
-  summary.set("crack_metrics_source", source.name);
-  summary.set("crack_metrics_resolution_s", source.resolution_s);
-  summary.set("crack_metrics_frames", static_cast<std::uint64_t>(source.frames));
+  set_crack_metrics_source(summary, source);
   summary.set("crack_start_time_s", m.start_time_s);
   summary.set("crack_area_m2", m.area_m2);
   summary.set("crack_precrack_area_m2", m.precrack_area_m2);

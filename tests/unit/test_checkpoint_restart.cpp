@@ -85,14 +85,7 @@ Case damage_bar() {
 Case saturated_bar() {
   Case c = elastic_bar();
   c.scene.effects.pore_fluid = true;
-  PoreFluidParameters f;
-  f.permeability = 1e-10;
-  f.fluid_viscosity = 1e-3;
-  f.fluid_density = 1000.0;
-  f.biot_coefficient = 0.9;
-  f.biot_modulus = 2e9;
-  f.initial_pressure = 1e5;
-  c.scene.material.pore_fluid = f;
+  c.scene.material.pore_fluid = testing::water(1e-10, 0.9, 1e5);
   c.scene.output.fields = {"displacement", "pore_pressure", "fluid_content", "darcy_velocity"};
   return c;
 }

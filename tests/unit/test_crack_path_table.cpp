@@ -27,6 +27,7 @@
 #include "postprocess/postprocess_run.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/solve_run.hpp"
+#include "tests/unit/test_scratch_directory.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 #include "tests/verification/solver_viscoplastic_cases.hpp"
 
@@ -46,26 +47,11 @@ constexpr std::array<int, 3> kBar{24, 8, 1};
 constexpr double kHorizonFactor = 3.05;
 constexpr double kSnapshotInterval = 2e-6;
 
-// One directory per test process (CTest runs the tests of this suite as parallel processes),
-// removed at the end unless a test failed (kept for a look).
-fs::path scratch_root() {
-  return fs::path(MPPM_BINARY_DIR) / "test_scratch" / ("crack_path_table_" + std::to_string(::getpid()));
-}
-
-class RemoveScratch : public ::testing::Environment {
- public:
-  void TearDown() override {
-    if (::testing::UnitTest::GetInstance()->Passed()) fs::remove_all(scratch_root());
-  }
-};
+const std::string kScratch = "crack_path_table";
 [[maybe_unused]] const ::testing::Environment* const kRemoveScratch =
-    ::testing::AddGlobalTestEnvironment(new RemoveScratch);
+    ::testing::AddGlobalTestEnvironment(new mppm::testing::RemoveScratch(kScratch));
 
-std::string fresh_directory(const std::string& name) {
-  const fs::path dir = scratch_root() / name;
-  fs::remove_all(dir);
-  return dir.string();
-}
+std::string fresh_directory(const std::string& name) { return mppm::testing::fresh_scratch_directory(kScratch, name); }
 
 struct Case {
   Scene scene;

@@ -6,6 +6,7 @@
 
 #include "common/input_error.hpp"
 #include "common/scene.hpp"
+#include "tests/unit/scene_text_edits.hpp"
 
 using namespace mppm;
 
@@ -48,18 +49,11 @@ numerics:
 const std::string kPath = "/cases/crack/scene.yaml";
 
 std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parse_scene(text, kPath, overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return mppm::testing::scene_error_of(text, kPath, overrides);
 }
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  return text.replace(pos, from.size(), to);
+  return mppm::testing::replace_once(std::move(text), from, to);
 }
 }  // namespace
 

@@ -10,6 +10,7 @@
 
 #include "common/input_error.hpp"
 #include "common/scene.hpp"
+#include "tests/unit/scene_text_edits.hpp"
 
 using namespace mppm;
 
@@ -46,18 +47,11 @@ const std::string kPath = "/cases/consolidation/scene.yaml";
 const std::string kBlock = "material.pore_fluid";
 
 std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parse_scene(text, kPath, overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return mppm::testing::scene_error_of(text, kPath, overrides);
 }
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto pos = text.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  return text.replace(pos, from.size(), to);
+  return mppm::testing::replace_once(std::move(text), from, to);
 }
 
 // The scene without the line of `key` in the pore_fluid block.

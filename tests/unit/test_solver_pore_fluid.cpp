@@ -27,13 +27,7 @@ constexpr double kDx = 1e-3;
 Scene fluid_scene(int dimension, bool micropolar, double horizon_factor) {
   Scene s = make_scene(dimension, micropolar, kDx, horizon_factor);
   s.effects.pore_fluid = true;
-  PoreFluidParameters f;
-  f.permeability = 1e-12;
-  f.fluid_viscosity = 1e-3;
-  f.fluid_density = 1000.0;
-  f.biot_coefficient = 0.9;
-  f.biot_modulus = 2e9;
-  s.material.pore_fluid = f;
+  s.material.pore_fluid = testing::water(1e-12, 0.9);
   return s;
 }
 

@@ -45,6 +45,19 @@ inline Scene make_scene(int dimension, bool micropolar, double dx, double horizo
   return s;
 }
 
+// Water in the pores (docs/theory.md section 12): the pore-fluid tests' fluid, with their permeability,
+// Biot coefficient and initial pressure.
+inline PoreFluidParameters water(double permeability, double biot_coefficient, double initial_pressure = 0.0) {
+  PoreFluidParameters f;
+  f.permeability = permeability;
+  f.fluid_viscosity = 1e-3;
+  f.fluid_density = 1000.0;
+  f.biot_coefficient = biot_coefficient;
+  f.biot_modulus = 2e9;
+  f.initial_pressure = initial_pressure;
+  return f;
+}
+
 // True when the full horizon of point i lies inside the lattice (its family is symmetric).
 inline bool is_interior(const Model& m, std::size_t i, std::array<int, 3> n, double dx, double horizon) {
   const int D = m.dimension();

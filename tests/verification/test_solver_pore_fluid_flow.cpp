@@ -26,13 +26,7 @@ constexpr int kNx = 32, kNy = 8;  // periods above twice the largest horizon
 Scene fluid_scene(double horizon_factor) {
   Scene s = make_scene(2, false, kDx, horizon_factor);
   s.effects.pore_fluid = true;
-  PoreFluidParameters f;
-  f.permeability = 1e-12;
-  f.fluid_viscosity = 1e-3;
-  f.fluid_density = 1000.0;
-  f.biot_coefficient = 1.0;
-  f.biot_modulus = 2e9;
-  s.material.pore_fluid = f;
+  s.material.pore_fluid = testing::water(1e-12, 1.0);
   return s;
 }
 
