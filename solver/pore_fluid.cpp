@@ -121,7 +121,9 @@ double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl
   const auto sums = ordered_point_sums<1>(
       p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
         for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i)) continue;
+          // A detached point has no bond left to conduct and stores no energy (its strain is
+          // zeroed): its fluid stays as it was, and its pressure too.
+          if (!carries_fluid(p, i) || p.detached[i]) continue;
           const double before = p.pore_pressure[i];
           p.fluid_content_change[i] += dt * p.fluid_rate[i];
           const double after =

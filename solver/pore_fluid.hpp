@@ -42,8 +42,8 @@ void start_fluid(PointData& points, const FluidConstants& fluid, double initial_
 void fluid_rates(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid);
 
 // One flow update of length dt at the skeleton's last strain: zeta += dt Phi (fluid_rates first),
-// then p = M (zeta - n0 - b tr eps). Returns the stored fluid energy it removed (the flow's
-// dissipation, docs/theory.md section 12), summed in point chunks fixed by the point count.
+// then p = M (zeta - n0 - b tr eps), at every body point that is not detached. Returns the stored fluid energy it
+// removed (the flow's dissipation, docs/theory.md section 12), summed in point chunks fixed by the point count.
 double flow_update(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, double dt);
 
 // The largest stable flow step, 1 / max_i (M sum_j kappa0 V_j / |xi|) over the body points'

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "common/input_error.hpp"
+#include "solver/bond_breakage.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/pore_fluid.hpp"
@@ -136,6 +137,28 @@ TEST(SolverPoreFluid, FlowConservesTheFluidAndDissipatesItsEnergy) {
   }
   // 200 updates of sums of ~100 terms of size V zeta: round-off ~1e-16 each, relative.
   EXPECT_NEAR(fluid_volume(m.points, *m.fluid), volume0, 1e-13 * volume0);
+}
+
+// A detached point (every bond broken, as damage leaves it) keeps its fluid and its pressure through
+// the flow updates, and the update books nothing for it: it stores no energy.
+TEST(SolverPoreFluid, DetachedPointKeepsItsFluid) {
+  Scene scene = fluid_scene(2, false, 3.05);
+  scene.effects.damage = true;
+  scene.material.damage = DamageParameters{};
+  Model m = make_model(make_lattice(2, {9, 9, 1}, kDx, scene.thickness), scene);
+  const std::size_t k = 40;  // the middle point
+  for (std::int64_t b = m.bonds.offset[k]; b < m.bonds.offset[k + 1]; ++b) {
+    const auto j = static_cast<std::size_t>(m.bonds.neighbor[b]);
+    m.bonds.break_bond(mirror_bond(m.bonds, k, j));
+    m.bonds.break_bond(b);
+  }
+  m.points.detached[k] = 1;
+  m.points.fluid_content_change[k] = 1e-4;
+  m.points.pore_pressure[k] = 7e5;
+  const double removed = flow_update(m.points, m.bonds, *m.fluid, 1e-9);
+  EXPECT_EQ(m.points.fluid_content_change[k], 1e-4);
+  EXPECT_EQ(m.points.pore_pressure[k], 7e5);
+  EXPECT_EQ(removed, 0.0);  // every other point is at rest with p = 0
 }
 
 // The pass-1 pressure of a uniform volumetric strain e (d e = tr eps) at the initial fluid
