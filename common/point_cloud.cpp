@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include "common/atomic_file.hpp"
@@ -251,8 +252,9 @@ std::vector<BoundaryInfo> read_boundaries(const VtkPolyDataArrays& file, const s
     BoundaryInfo info;
     info.name = names[static_cast<std::size_t>(k)];
     info.type = types[static_cast<std::size_t>(k)];
-    if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" && info.type != "pressure")
-      fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
+    static const std::set<std::string> known{"velocity", "displacement",  "traction",
+                                             "pressure", "pore_pressure", "fluid_flux"};
+    if (!known.count(info.type)) fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
     info.area = finite_value(areas, k, 0, path);
     const double point_count = finite_value(counts, k, 0, path);
     if (point_count < 0 || point_count > 9e15 || point_count != std::floor(point_count))
