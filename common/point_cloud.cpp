@@ -145,6 +145,20 @@ void add_field_data(vtkPolyData* poly, const PointCloud& cloud) {
 
 }  // namespace
 
+std::optional<std::size_t> shared_boundary(const std::vector<BoundaryInfo>& boundaries, std::size_t k) {
+  const BoundaryInfo& fluid = boundaries[k];
+  if (fluid.point_count != 0 || fluid.selector.empty()) return std::nullopt;
+  auto kinematic = [](const std::string& t) { return t == "velocity" || t == "displacement"; };
+  auto loaded = [](const std::string& t) { return t == "traction" || t == "pressure"; };
+  for (std::size_t j = 0; j < boundaries.size(); ++j) {
+    const BoundaryInfo& other = boundaries[j];
+    if (j == k || other.selector != fluid.selector || other.point_count == 0) continue;
+    if ((fluid.type == "pore_pressure" && kinematic(other.type)) || (fluid.type == "fluid_flux" && loaded(other.type)))
+      return j;
+  }
+  return std::nullopt;
+}
+
 void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   const auto n = static_cast<vtkIdType>(cloud.size());
   vtkNew<vtkPolyData> poly;

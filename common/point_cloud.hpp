@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,13 @@ struct PointCloud {
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
 };
+
+// The boundary whose points fluid boundary k shares (docs/stages.md "Boundaries"): for a
+// pore_pressure boundary without layer points of its own, the kinematic (velocity, displacement)
+// boundary with the same selector; for a fluid_flux boundary without loaded points of its own, the
+// traction or pressure boundary with the same selector. None otherwise (a boundary with points of
+// its own, not a fluid boundary, no selector stored, or no match).
+std::optional<std::size_t> shared_boundary(const std::vector<BoundaryInfo>& boundaries, std::size_t k);
 
 // Writes VTK XML PolyData (binary, appended, compressed), atomically (temporary + rename).
 // Throws InputError if the file cannot be written.
