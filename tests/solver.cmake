@@ -14,6 +14,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_damage.cpp
   unit/test_solver_cosserat_law.cpp
   unit/test_solver_pore_fluid.cpp
+  unit/test_solver_fluid_boundaries.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
