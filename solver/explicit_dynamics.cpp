@@ -174,34 +174,35 @@ void ExplicitDynamics::evaluate_energy() {
   }
 }
 
-void ExplicitDynamics::advance_flow() {
-  if (!model_.fluid) return;
+bool ExplicitDynamics::advance_flow() {
+  if (!model_.fluid) return false;
+  if (flow_.substeps <= 1 && steps_ % flow_.interval != 0) return false;
   if (!has_fluid_boundaries()) {  // every face impermeable
     if (flow_.substeps > 1) {
       const double sub = dt_ / static_cast<double>(flow_.substeps);
       for (std::int64_t k = 0; k < flow_.substeps; ++k)
         energy_.flow_dissipation += flow_update(model_.points, model_.bonds, *model_.fluid, sub);
-    } else if (steps_ % flow_.interval == 0) {
+    } else {
       energy_.flow_dissipation +=
           flow_update(model_.points, model_.bonds, *model_.fluid, dt_ * static_cast<double>(flow_.interval));
     }
-    return;
+    return true;
   }
-  if (flow_.substeps <= 1 && steps_ % flow_.interval != 0) return;
   // The boundaries at the step's end, the time of the state the updates start from.
   conditions_.prescribe_pore_pressure(model_.points, time_);
   flow_boundaries_.drains = &model_.drains;
   flow_boundaries_.sources.clear();
   for (const FedSurface& s : conditions_.fed())
     flow_boundaries_.sources.push_back({&s.points, s.value.component_at(time_, 0) * s.area / s.volume_sum});
-  const std::vector<double> before = boundary_volume_;
+  boundary_volume_start_ = boundary_volume_;  // (sized at initialize(): no allocation)
   const std::int64_t updates = flow_.substeps > 1 ? flow_.substeps : 1;
   const double h =
       flow_.substeps > 1 ? dt_ / static_cast<double>(flow_.substeps) : dt_ * static_cast<double>(flow_.interval);
   for (std::int64_t k = 0; k < updates; ++k) flow_update_with_boundaries(h);
   const double span = h * static_cast<double>(updates);
   for (std::size_t c = 0; c < boundary_volume_.size(); ++c)
-    boundary_rate_[c] = (boundary_volume_[c] - before[c]) / span;
+    boundary_rate_[c] = (boundary_volume_[c] - boundary_volume_start_[c]) / span;
+  return true;
 }
 
 void ExplicitDynamics::flow_update_with_boundaries(double h) {
@@ -234,6 +235,7 @@ void ExplicitDynamics::initialize() {
   if (model_.fluid && has_fluid_boundaries()) {
     conditions_.prescribe_pore_pressure(model_.points, time_);
     boundary_volume_.assign(conditions_.condition_count(), 0.0);
+    boundary_volume_start_.assign(conditions_.condition_count(), 0.0);
     boundary_rate_.assign(conditions_.condition_count(), 0.0);
   }
   compute_loads_and_forces(true, false);
@@ -298,8 +300,10 @@ void ExplicitDynamics::complete_step(bool with_energy) {
   book_step_energy(breakage);
   ++steps_;
   // The flow at the skeleton's new configuration, before the energies of the step's end
-  // (docs/theory.md section 12: the fractional step).
-  advance_flow();
+  // (docs/theory.md section 12: the fractional step), and the forces again at the fluid content it
+  // left: the next step's first half kick must see that pressure (a kick with the forces of before
+  // the flow can pump energy into the fastest modes of the skeleton).
+  if (advance_flow()) model_.compute_internal_forces(false);
   if (with_energy) evaluate_energy();
 }
 

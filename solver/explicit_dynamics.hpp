@@ -172,7 +172,8 @@ class ExplicitDynamics {
   void book_step_energy(const BreakageEnergy& breakage);
   // Pore fluid: the flow updates due after step steps_ (flow_), their dissipation booked, the
   // drained layers' pressure prescribed first and the volumes through the fluid boundaries booked.
-  void advance_flow();
+  // True when updates ran.
+  bool advance_flow();
   // One flow update of length h with the fluid boundaries at time_; the volumes through them added
   // to boundary_volume_.
   void flow_update_with_boundaries(double h);
@@ -224,7 +225,7 @@ class ExplicitDynamics {
   double initial_total_ = 0.0;
   // Pore fluid boundaries: per scene condition, the volume through it so far and the last rate;
   // the boundaries of the flow updates (its source list reused from update to update).
-  std::vector<double> boundary_volume_, boundary_rate_;
+  std::vector<double> boundary_volume_, boundary_rate_, boundary_volume_start_;
   FlowBoundaries flow_boundaries_;
 };
 
