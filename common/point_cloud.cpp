@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include "common/atomic_file.hpp"
@@ -144,6 +145,20 @@ void add_field_data(vtkPolyData* poly, const PointCloud& cloud) {
 
 }  // namespace
 
+std::optional<std::size_t> shared_boundary(const std::vector<BoundaryInfo>& boundaries, std::size_t k) {
+  const BoundaryInfo& fluid = boundaries[k];
+  if (fluid.point_count != 0 || fluid.selector.empty()) return std::nullopt;
+  auto kinematic = [](const std::string& t) { return t == "velocity" || t == "displacement"; };
+  auto loaded = [](const std::string& t) { return t == "traction" || t == "pressure"; };
+  for (std::size_t j = 0; j < boundaries.size(); ++j) {
+    const BoundaryInfo& other = boundaries[j];
+    if (j == k || other.selector != fluid.selector || other.point_count == 0) continue;
+    if ((fluid.type == "pore_pressure" && kinematic(other.type)) || (fluid.type == "fluid_flux" && loaded(other.type)))
+      return j;
+  }
+  return std::nullopt;
+}
+
 void write_point_cloud(const PointCloud& cloud, const std::string& path) {
   const auto n = static_cast<vtkIdType>(cloud.size());
   vtkNew<vtkPolyData> poly;
@@ -251,8 +266,9 @@ std::vector<BoundaryInfo> read_boundaries(const VtkPolyDataArrays& file, const s
     BoundaryInfo info;
     info.name = names[static_cast<std::size_t>(k)];
     info.type = types[static_cast<std::size_t>(k)];
-    if (info.type != "velocity" && info.type != "displacement" && info.type != "traction" && info.type != "pressure")
-      fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
+    static const std::set<std::string> known{"velocity", "displacement",  "traction",
+                                             "pressure", "pore_pressure", "fluid_flux"};
+    if (!known.count(info.type)) fail(path, "boundary '" + info.name + "' has unknown type '" + info.type + "'");
     info.area = finite_value(areas, k, 0, path);
     const double point_count = finite_value(counts, k, 0, path);
     if (point_count < 0 || point_count > 9e15 || point_count != std::floor(point_count))

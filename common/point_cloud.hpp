@@ -3,21 +3,26 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace mppm {
 
 // region[i]: 0 = body, k > 0 = fictitious layer of boundary k (1-based index into
-// `boundaries`, i.e. scene boundary condition k-1).
+// `boundaries`, i.e. scene boundary condition k-1): a kinematic or a drained (pore_pressure) layer.
 // boundary_id[i]: for a layer point, k (== region); for a body point inside the loaded
-// depth of traction/pressure boundary k, k (the nearest such boundary wins at corners);
-// otherwise 0.
+// depth of traction/pressure/fluid_flux boundary k, k (the nearest such boundary wins at corners;
+// a fluid flux takes only points no traction or pressure has); otherwise 0.
 struct BoundaryInfo {
-  std::string name;              // scene label (physical group name, or "bc<k>")
-  std::string type;              // "velocity", "displacement", "traction", "pressure"
-  double area = 0.0;             // loaded area [m^2] (2-D: length * thickness)
-  std::int64_t point_count = 0;  // layer points (kinematic) or loaded body points (traction)
+  std::string name;   // scene label (physical group name, or "bc<k>")
+  std::string type;   // "velocity", "displacement", "traction", "pressure", "pore_pressure", "fluid_flux"
+  double area = 0.0;  // loaded area [m^2] (2-D: length * thickness)
+  // Layer points (kinematic, pore_pressure) or loaded body points (traction, pressure, fluid_flux).
+  // 0 for a fluid condition that shares the points of a mechanical condition with the same selector
+  // (docs/stages.md "Boundaries"): a pore_pressure condition the layer of a kinematic one, a fluid_flux
+  // condition the loaded points of a traction or pressure.
+  std::int64_t point_count = 0;
   // What the layer was made from, so that the solver can refuse a scene that selects or sizes
   // it differently (the layers are fixed in the points file): the scene's selection
   // (Selector::fingerprint) and the layer depth [m] (horizon for kinematic layers, the loaded
@@ -50,6 +55,13 @@ struct PointCloud {
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
 };
+
+// The boundary whose points fluid boundary k shares (docs/stages.md "Boundaries"): for a
+// pore_pressure boundary without layer points of its own, the kinematic (velocity, displacement)
+// boundary with the same selector; for a fluid_flux boundary without loaded points of its own, the
+// traction or pressure boundary with the same selector. None otherwise (a boundary with points of
+// its own, not a fluid boundary, no selector stored, or no match).
+std::optional<std::size_t> shared_boundary(const std::vector<BoundaryInfo>& boundaries, std::size_t k);
 
 // Writes VTK XML PolyData (binary, appended, compressed), atomically (temporary + rename).
 // Throws InputError if the file cannot be written.

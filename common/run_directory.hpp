@@ -1,10 +1,14 @@
 // Files of a run directory other than snapshots (docs/stages.md "Files between stages"):
 // the contract between mppm-solve (writer) and mppm-postprocess / restart (readers).
 //
-// load.csv   header: time_s, then for every loaded boundary NAME (scene order) its mean
+// load.csv   header: time_s, then for every boundary condition NAME (scene order) its mean
 //            displacement and its reaction (kinematic) or applied (traction) force:
 //              NAME_ux_m, NAME_uy_m[, NAME_uz_m], NAME_Fx_N, NAME_Fy_N[, NAME_Fz_N]
-//            (2-D forces are for the scene thickness). One row per load_interval.
+//            (2-D forces are for the scene thickness), or for a pore fluid condition the fluid
+//            volume through it (fluid_load_columns): a drained one NAME_outflow_m3_per_s (the rate
+//            of the last flow update, out of the body), NAME_outflow_m3 (so far), a fed one
+//            NAME_inflow_m3_per_s, NAME_inflow_m3 (into the body; 2-D: for the scene thickness).
+//            One row per load_interval.
 // energy.csv header: time_s, kinetic_J, rotational_kinetic_J, elastic_J, stabilization_J,
 //            plastic_dissipation_J, fracture_dissipation_J, external_work_J, balance_error
 //            balance_error = (kinetic + elastic + stabilization + dissipations - external
@@ -27,8 +31,9 @@
 namespace mppm::run_files {
 
 // With the pore fluid, three more columns at the end: fluid_stored_J (V p^2 / (2 M)),
-// flow_dissipation_J (the stored fluid energy the flow removed so far) and fluid_mass_balance
-// ((fluid volume - initial) / initial; no fluid crosses a boundary yet).
+// flow_dissipation_J (the stored fluid energy the flow removed so far, the energy the fluid carried
+// out through the boundaries included) and fluid_mass_balance ((fluid volume - initial + outflow -
+// inflow) / initial: round-off).
 inline std::vector<std::string> energy_columns(bool pore_fluid = false) {
   std::vector<std::string> columns{"time_s",
                                    "kinetic_J",
@@ -50,6 +55,13 @@ inline std::vector<std::string> load_columns(const std::string& boundary, int di
   for (int c = 0; c < dimension; ++c) columns.push_back(boundary + "_u" + axes[c] + "_m");
   for (int c = 0; c < dimension; ++c) columns.push_back(boundary + "_F" + axes[c] + "_N");
   return columns;
+}
+
+// Column names of one pore fluid boundary condition in load.csv: drained (pore_pressure) or fed
+// (fluid_flux).
+inline std::vector<std::string> fluid_load_columns(const std::string& boundary, bool drained) {
+  const std::string what = drained ? "_outflow" : "_inflow";
+  return {boundary + what + "_m3_per_s", boundary + what + "_m3"};
 }
 
 }  // namespace mppm::run_files

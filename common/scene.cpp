@@ -763,11 +763,11 @@ class SceneReader {
     scene_.gravity = {g[0], g[1], d == 3 ? g[2] : 0.0};
   }
 
-  // The unit of a condition's value.
+  // The unit of a condition's value (a fluid flux is an inflow velocity, volume per area and time).
   static Dimension value_unit(BoundaryType type) {
-    return type == BoundaryType::velocity       ? dim::velocity
-           : type == BoundaryType::displacement ? dim::length
-                                                : dim::pressure;
+    return type == BoundaryType::velocity || type == BoundaryType::fluid_flux ? dim::velocity
+           : type == BoundaryType::displacement                               ? dim::length
+                                                                              : dim::pressure;
   }
   // The unit of a micro-rotation condition: a rate on a velocity layer, an angle on a displacement one.
   static Dimension rotation_unit(BoundaryType type) {
@@ -784,7 +784,7 @@ class SceneReader {
 
   // Reads `value`, `ramp`, `history` of one boundary condition into a History, then its rotation.
   void read_boundary_value(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
-    const std::size_t n = bc.type == BoundaryType::pressure ? 1 : static_cast<std::size_t>(scene_.dimension);
+    const std::size_t n = value_components(bc.type, scene_.dimension);
     const Dimension unit = value_unit(bc.type);
     std::vector<double> value(n, 0.0);
     bc.constrained.assign(n, true);
@@ -811,12 +811,16 @@ class SceneReader {
     read_boundary_rotation(node, p, bc);
   }
 
-  // `value`: one pressure, or one entry per component (kinematic components may be free).
+  // `value`: one pressure (pressure, pore_pressure) or inflow (fluid_flux), or one entry per
+  // component (kinematic components may be free).
   std::vector<double> read_value_components(const YAML::Node& v, const std::string& path, BoundaryCondition& bc,
                                             const Dimension& unit) {
     const std::size_t n = bc.constrained.size();
     std::vector<double> value(n, 0.0);
-    if (bc.type == BoundaryType::pressure) {
+    if (n == 1 && (bc.type == BoundaryType::pressure || is_fluid(bc.type))) {
+      is_free_component(v, path, bc);  // refused: only kinematic components can be free
+      if (!v.IsScalar())
+        fail(v, path, "expected one value, " + unit.to_string() + ", for a " + to_string(bc.type) + " condition");
       value[0] = quantity(v, path, unit);
       return value;
     }
@@ -851,6 +855,7 @@ class SceneReader {
         const double factor = quantity(row[1], rp + "[1]", dim::none);
         for (std::size_t c = 0; c < n; ++c) rowv[c] = factor * value[c];
       } else if (n == 1 && row[1].IsScalar()) {
+        is_free_component(row[1], rp + "[1]", bc);  // refused: only kinematic components can be free
         rowv[0] = quantity(row[1], rp + "[1]", unit);
       } else {
         const YAML::Node vals = row[1];
@@ -873,6 +878,12 @@ class SceneReader {
   // Rotation on a kinematic layer: a full `rotation_history`, or `rotation` / `rotation_rate`
   // following the same time profile as the value.
   void read_boundary_rotation(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
+    if (!is_kinematic(bc.type))
+      for (const char* key : {"rotation", "rotation_rate", "rotation_history"})
+        if (node[key].IsDefined())
+          fail(node[key], p + "." + key,
+               std::string("micro-rotation can be prescribed only on velocity or displacement conditions (not on a ") +
+                   to_string(bc.type) + " condition)");
     const char* rotation_key = bc.type == BoundaryType::velocity ? "rotation_rate" : "rotation";
     const char* other_key = bc.type == BoundaryType::velocity ? "rotation" : "rotation_rate";
     if (node[other_key].IsDefined()) {
@@ -966,37 +977,10 @@ class SceneReader {
       BoundaryCondition bc;
       bc.line = node.Mark().line + 1;
       read_selector_keys(node, p, bc.selector);
-      const auto type = scalar(require(node, p, "type", "velocity, displacement, traction or pressure"), p + ".type",
-                               "a condition type");
-      static const std::vector<std::string> types{"velocity", "displacement", "traction", "pressure"};
-      if (type == "velocity")
-        bc.type = BoundaryType::velocity;
-      else if (type == "displacement")
-        bc.type = BoundaryType::displacement;
-      else if (type == "traction")
-        bc.type = BoundaryType::traction;
-      else if (type == "pressure")
-        bc.type = BoundaryType::pressure;
-      else
-        fail(node["type"], p + ".type",
-             "unknown type '" + type + "' (expected one of: " + join(types) + ")" + suggestion(type, types));
+      bc.type = read_boundary_type(node, p);
       read_boundary_value(node, p, bc);
-      if (node["depth"].IsDefined()) {
-        if (is_kinematic(bc.type))
-          fail(node["depth"], p + ".depth",
-               "only traction and pressure conditions have a loaded depth (kinematic layers are as deep as the "
-               "horizon)");
-        bc.traction_depth = quantity(node["depth"], p + ".depth", dim::length);
-        positive(node["depth"], p + ".depth", bc.traction_depth);
-      } else {
-        bc.traction_depth = scene_.geometry.spacing;
-      }
-      if (node["name"].IsDefined())
-        bc.name = scalar(node["name"], p + ".name", "a label");
-      else if (!bc.selector.physical_group.empty())
-        bc.name = bc.selector.physical_group;
-      else
-        bc.name = "bc" + std::to_string(k + 1);
+      read_boundary_depth(node, p, bc);
+      bc.name = boundary_label(node, p, bc, k);
       if (!names.insert(bc.name).second) {
         fail(node, p + ".name",
              "the label '" + bc.name +
@@ -1004,6 +988,69 @@ class SceneReader {
       }
       scene_.boundary_conditions.push_back(bc);
     }
+    refuse_two_fluid_conditions_on_one_boundary(list);
+  }
+
+  BoundaryType read_boundary_type(const YAML::Node& node, const std::string& p) {
+    const auto type = scalar(require(node, p, "type",
+                                     "velocity, displacement, traction, pressure, pore_pressure or "
+                                     "fluid_flux"),
+                             p + ".type", "a condition type");
+    static const std::vector<std::pair<std::string, BoundaryType>> known{
+        {"velocity", BoundaryType::velocity},           {"displacement", BoundaryType::displacement},
+        {"traction", BoundaryType::traction},           {"pressure", BoundaryType::pressure},
+        {"pore_pressure", BoundaryType::pore_pressure}, {"fluid_flux", BoundaryType::fluid_flux}};
+    std::vector<std::string> names;
+    for (const auto& [name, value] : known) {
+      if (name != type) {
+        names.push_back(name);
+        continue;
+      }
+      // The fluid's conditions need its state: without the effect there is no pressure to prescribe.
+      if (is_fluid(value) && !scene_.effects.pore_fluid)
+        fail(node["type"], p + ".type", type + " needs the effect pore_fluid (add it to effects)");
+      return value;
+    }
+    fail(node["type"], p + ".type",
+         "unknown type '" + type + "' (expected one of: " + join(names) + ")" + suggestion(type, names));
+  }
+
+  // `depth`: the loaded layer of a traction, pressure or fluid flux (default dx).
+  void read_boundary_depth(const YAML::Node& node, const std::string& p, BoundaryCondition& bc) {
+    if (!node["depth"].IsDefined()) {
+      bc.traction_depth = scene_.geometry.spacing;
+      return;
+    }
+    if (!has_loaded_depth(bc.type))
+      fail(node["depth"], p + ".depth",
+           std::string("only traction, pressure and fluid_flux conditions have a loaded depth (the layer of a ") +
+               to_string(bc.type) + " condition is as deep as the horizon)");
+    bc.traction_depth = quantity(node["depth"], p + ".depth", dim::length);
+    positive(node["depth"], p + ".depth", bc.traction_depth);
+  }
+
+  // `name`, else the physical group (with _pore_pressure / _fluid_flux appended for the fluid's
+  // conditions, so that a face can carry a load and a fluid condition under distinct labels), else bcK.
+  std::string boundary_label(const YAML::Node& node, const std::string& p, const BoundaryCondition& bc, std::size_t k) {
+    if (node["name"].IsDefined()) return scalar(node["name"], p + ".name", "a label");
+    if (bc.selector.physical_group.empty()) return "bc" + std::to_string(k + 1);
+    return is_fluid(bc.type) ? bc.selector.physical_group + "_" + to_string(bc.type) : bc.selector.physical_group;
+  }
+
+  // A boundary is drained or takes an inflow, not both, and not twice: two fluid conditions with
+  // the same selection would prescribe the fluid there twice over.
+  void refuse_two_fluid_conditions_on_one_boundary(const YAML::Node& list) {
+    const auto& conditions = scene_.boundary_conditions;
+    for (std::size_t k = 0; k < conditions.size(); ++k)
+      for (std::size_t j = 0; j < k; ++j) {
+        if (!is_fluid(conditions[k].type) || !is_fluid(conditions[j].type)) continue;
+        if (conditions[k].selector.fingerprint() != conditions[j].selector.fingerprint()) continue;
+        fail(list[k], "boundary_conditions[" + std::to_string(k) + "]",
+             std::string("a second fluid condition (") + to_string(conditions[k].type) + ") on " +
+                 conditions[k].selector.describe() + ", which boundary_conditions[" + std::to_string(j) + "] ('" +
+                 conditions[j].name + "') already gives a " + to_string(conditions[j].type) +
+                 " (a boundary is drained or takes an inflow, once)");
+      }
   }
 
   void read_time(const YAML::Node& t) {
@@ -1177,6 +1224,10 @@ const char* to_string(BoundaryType type) {
       return "traction";
     case BoundaryType::pressure:
       return "pressure";
+    case BoundaryType::pore_pressure:
+      return "pore_pressure";
+    case BoundaryType::fluid_flux:
+      return "fluid_flux";
   }
   return "?";
 }

@@ -46,26 +46,42 @@ struct History {
   double component_at(double t, std::size_t c) const;
 };
 
-enum class BoundaryType { velocity, displacement, traction, pressure };
+// pore_pressure (a drained boundary) and fluid_flux (an inflow) act on the pore fluid only
+// (docs/theory.md section 12).
+enum class BoundaryType { velocity, displacement, traction, pressure, pore_pressure, fluid_flux };
 const char* to_string(BoundaryType type);
 
 // True for conditions carried by a fictitious layer outside the body (docs/theory.md section 8).
 inline bool is_kinematic(BoundaryType type) {
   return type == BoundaryType::velocity || type == BoundaryType::displacement;
 }
+// True for the pore fluid's conditions (the effect pore_fluid only).
+inline bool is_fluid(BoundaryType type) {
+  return type == BoundaryType::pore_pressure || type == BoundaryType::fluid_flux;
+}
+// True for conditions carried by the body points within a loaded depth of the boundary
+// (BoundaryCondition::traction_depth); the others have a layer as deep as the horizon outside it.
+inline bool has_loaded_depth(BoundaryType type) {
+  return type == BoundaryType::traction || type == BoundaryType::pressure || type == BoundaryType::fluid_flux;
+}
+// The number of components of a condition's value: one for a pressure, a pore pressure and a
+// fluid flux (inflow per unit area), d otherwise.
+inline std::size_t value_components(BoundaryType type, int dimension) {
+  return type == BoundaryType::pressure || is_fluid(type) ? 1 : static_cast<std::size_t>(dimension);
+}
 
 struct BoundaryCondition {
   std::string name;  // label used in load.csv, POINTS.vtp and summaries
   Selector selector;
   BoundaryType type = BoundaryType::traction;
-  // Components (d of them; 1 for pressure). For kinematic conditions a component may be
-  // free (not prescribed): constrained[c] == false.
+  // Components (value_components: d of them; 1 for pressure, pore_pressure and fluid_flux). For
+  // kinematic conditions a component may be free (not prescribed): constrained[c] == false.
   History value;
   std::vector<bool> constrained;
   // Micro-rotation condition on a kinematic layer (micropolar only): rotation rate
   // (velocity type) or rotation (displacement type); 1 component in 2-D, 3 in 3-D.
   std::optional<History> rotation;
-  double traction_depth = 0.0;  // traction/pressure: depth of the loaded layer [m] (default dx)
+  double traction_depth = 0.0;  // traction/pressure/fluid_flux: depth of the loaded layer [m] (default dx)
   int line = 0;                 // line in the scene file, for messages
 };
 

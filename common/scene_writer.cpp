@@ -182,7 +182,7 @@ void emit_boundary_condition(YAML::Emitter& out, const BoundaryCondition& bc) {
     }
     out << YAML::EndSeq;
   }
-  if (!is_kinematic(bc.type)) out << YAML::Key << "depth" << YAML::Value << Num{bc.traction_depth};
+  if (has_loaded_depth(bc.type)) out << YAML::Key << "depth" << YAML::Value << Num{bc.traction_depth};
   out << YAML::EndMap;
 }
 

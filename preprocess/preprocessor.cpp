@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "common/input_error.hpp"
@@ -90,33 +91,109 @@ void check_body_wider_than_spacing(const Scene& scene, const GeometryModel& mode
     }
 }
 
-// The facets each boundary condition selects, and the layers they make: kinematic boundaries
-// one horizon deep outside the body, loaded ones traction_depth (default dx) deep inside it.
+// The facets each boundary condition selects, and the layers they make: kinematic and drained
+// (pore_pressure) boundaries one horizon deep outside the body, loaded ones (traction, pressure,
+// fluid_flux) traction_depth (default dx) deep inside it. A fluid condition with the selection of
+// a mechanical one shares its points instead (docs/stages.md "Boundaries").
 struct BoundaryLayers {
   std::vector<std::vector<std::size_t>> selected;  // per boundary condition
-  std::vector<LayerRequest> kinematic, loaded;
+  std::vector<LayerRequest> kinematic, drained, loaded, fluxes;
+  std::vector<std::optional<std::size_t>> shares;  // per boundary condition: the condition whose points it takes
 };
 
+double layer_depth(const Scene& scene, const BoundaryCondition& bc) {
+  if (!has_loaded_depth(bc.type)) return scene.geometry.horizon();
+  return bc.traction_depth > 0 ? bc.traction_depth : scene.geometry.spacing;
+}
+
+// The kind of points a condition is carried by: a kinematic layer, a drained layer, loaded points
+// (traction, pressure) or fed points (fluid flux).
+enum class Carrier { kinematic, drained, loaded, fed };
+Carrier carrier(BoundaryType type) {
+  if (is_kinematic(type)) return Carrier::kinematic;
+  if (type == BoundaryType::pore_pressure) return Carrier::drained;
+  return type == BoundaryType::fluid_flux ? Carrier::fed : Carrier::loaded;
+}
+
+// Two conditions with the same selection: a drained one shares a kinematic layer, a flux shares
+// loaded points (with the same depth); two of one kind would compete for the same points, the
+// later getting none, so they are refused here with the reason (the scene reader refuses two
+// fluid conditions already).
+std::vector<std::optional<std::size_t>> shared_points(const Scene& scene) {
+  const auto& conditions = scene.boundary_conditions;
+  std::vector<std::optional<std::size_t>> shares(conditions.size());
+  for (std::size_t k = 0; k < conditions.size(); ++k)
+    for (std::size_t j = 0; j < conditions.size(); ++j) {
+      const BoundaryCondition &a = conditions[k], &b = conditions[j];
+      if (j == k || a.selector.fingerprint() != b.selector.fingerprint()) continue;
+      const Carrier ca = carrier(a.type), cb = carrier(b.type);
+      const std::string context = scene_context(scene, a, k) + ": " + to_string(a.type) + " on " +
+                                  a.selector.describe() + ", the selection of boundary_conditions[" +
+                                  std::to_string(j) + "] ('" + b.name + "', " + to_string(b.type) + ")";
+      if ((ca == Carrier::drained && cb == Carrier::kinematic) || (ca == Carrier::fed && cb == Carrier::loaded)) {
+        if (ca == Carrier::fed && std::abs(layer_depth(scene, a) - layer_depth(scene, b)) >
+                                      1e-9 * std::max(layer_depth(scene, a), layer_depth(scene, b)))
+          throw InputError(context + ": a fluid flux takes the loaded points of that condition, so its depth (" +
+                           std::to_string(layer_depth(scene, a)) + " m) must be that condition's (" +
+                           std::to_string(layer_depth(scene, b)) + " m)");
+        shares[k] = j;
+      } else if (ca == cb && j < k) {
+        throw InputError(context + ": both would be carried by the same " +
+                         (ca == Carrier::kinematic ? std::string("layer points (one kinematic condition per layer: "
+                                                                 "prescribe the components in one condition, the "
+                                                                 "others free)")
+                                                   : std::string("loaded points (one traction or pressure per "
+                                                                 "boundary: add the loads into one condition)")));
+      }
+    }
+  return shares;
+}
+
 BoundaryLayers select_boundaries(const Scene& scene, const GeometryModel& model, const FacetMesh& boundary) {
-  const double dx = scene.geometry.spacing;
-  const double horizon = scene.geometry.horizon();
   BoundaryLayers layers;
   layers.selected.resize(scene.boundary_conditions.size());
+  layers.shares = shared_points(scene);
   for (std::size_t b = 0; b < scene.boundary_conditions.size(); ++b) {
     const BoundaryCondition& bc = scene.boundary_conditions[b];
     layers.selected[b] = select_boundary_facets(bc.selector, model, boundary, scene_context(scene, bc, b));
+    if (layers.shares[b]) continue;
     LayerRequest layer;
     layer.boundary = static_cast<std::int32_t>(b + 1);
     layer.facets = layers.selected[b];
-    if (is_kinematic(bc.type)) {
-      layer.depth = horizon;
-      layers.kinematic.push_back(layer);
-    } else {
-      layer.depth = bc.traction_depth > 0 ? bc.traction_depth : dx;
-      layers.loaded.push_back(layer);
+    layer.depth = layer_depth(scene, bc);
+    switch (carrier(bc.type)) {
+      case Carrier::kinematic:
+        layers.kinematic.push_back(layer);
+        break;
+      case Carrier::drained:
+        layers.drained.push_back(layer);
+        break;
+      case Carrier::loaded:
+        layers.loaded.push_back(layer);
+        break;
+      case Carrier::fed:
+        layers.fluxes.push_back(layer);
+        break;
     }
   }
   return layers;
+}
+
+// The fluid's tags where the mechanical ones leave a point free: a drained layer takes no point
+// of a kinematic layer, a flux no point a traction or pressure loads, so that the mechanics of a
+// run are those without the fluid's conditions. Returns the points each boundary had in `fluid`
+// before (to tell a layer that lies wholly in the others from a selection too small for dx).
+std::vector<std::int64_t> add_where_free(LayerTags& mechanical, const LayerTags& fluid, std::size_t conditions) {
+  std::vector<std::int64_t> tagged(conditions + 1, 0);
+  for (std::size_t g = 0; g < fluid.boundary.size(); ++g) {
+    if (fluid.boundary[g] == 0) continue;
+    ++tagged[static_cast<std::size_t>(fluid.boundary[g])];
+    if (mechanical.boundary[g] != 0) continue;
+    mechanical.boundary[g] = fluid.boundary[g];
+    mechanical.facet[g] = fluid.facet[g];
+    mechanical.distance[g] = fluid.distance[g];
+  }
+  return tagged;
 }
 
 std::vector<double> precrack_vertices(const Scene& scene, const GeometryModel& model) {
@@ -186,26 +263,37 @@ void place_points(PointCloud& cloud, const LatticeGrid& grid, const std::vector<
   }
 }
 
-// Name, type, selection, depth and area of each boundary; throws for one that got no point.
+// Name, type, selection, depth and area of each boundary; throws for one that got no point (a
+// condition that shares another's points has none of its own: point_count 0). `fluid_tagged`: the
+// points each fluid boundary had before the mechanical layers took theirs (add_where_free).
 void describe_boundaries(const Scene& scene, const GeometryModel& model, const FacetMesh& boundary,
-                         const std::vector<std::vector<std::size_t>>& selected, PointCloud& cloud) {
+                         const BoundaryLayers& layers, const std::vector<std::int64_t>& fluid_tagged,
+                         PointCloud& cloud) {
   const double dx = scene.geometry.spacing;
-  const double horizon = scene.geometry.horizon();
   for (std::size_t b = 0; b < scene.boundary_conditions.size(); ++b) {
     const BoundaryCondition& bc = scene.boundary_conditions[b];
     BoundaryInfo& info = cloud.boundaries[b];
     info.name = boundary_label(bc, b);
     info.type = to_string(bc.type);
     info.selector = bc.selector.fingerprint();
-    info.depth = is_kinematic(bc.type) ? horizon : (bc.traction_depth > 0 ? bc.traction_depth : dx);
+    info.depth = layer_depth(scene, bc);
     double measure = 0.0;
-    for (std::size_t f : selected[b]) measure += facet_measure(boundary, f);
+    for (std::size_t f : layers.selected[b]) measure += facet_measure(boundary, f);
     info.area = scene.dimension == 2 ? measure * cloud.thickness : measure;
-    if (info.point_count == 0)
-      throw InputError(scene_context(scene, bc, b) + ": " + bc.selector.describe() + " of " + model.file +
-                       " gets no lattice point (the selected boundary is too small "
-                       "for dx = " +
-                       std::to_string(dx) + " m)");
+    if (info.point_count > 0 || layers.shares[b]) continue;
+    if (is_fluid(bc.type) && fluid_tagged[b + 1] > 0)
+      throw InputError(scene_context(scene, bc, b) + ": the " +
+                       (bc.type == BoundaryType::pore_pressure
+                            ? std::string("drained layer of ") + bc.selector.describe() +
+                                  " lies wholly in the layers of kinematic conditions (to drain a kinematic "
+                                  "layer, select its boundary exactly as its condition does)"
+                            : std::string("points within the depth of ") + bc.selector.describe() +
+                                  " are all loaded by traction or pressure conditions (to feed a loaded boundary, "
+                                  "select it exactly as its condition does)"));
+    throw InputError(scene_context(scene, bc, b) + ": " + bc.selector.describe() + " of " + model.file +
+                     " gets no lattice point (the selected boundary is too small "
+                     "for dx = " +
+                     std::to_string(dx) + " m)");
   }
 }
 
@@ -292,7 +380,8 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
   cloud.precrack_vertices = precrack_vertices(scene, model);
 
   clock = std::chrono::steady_clock::now();
-  const int padding = selections.kinematic.empty() ? 0 : static_cast<int>(std::ceil(horizon / dx - 1e-9)) + 1;
+  const bool outside_layers = !selections.kinematic.empty() || !selections.drained.empty();
+  const int padding = outside_layers ? static_cast<int>(std::ceil(horizon / dx - 1e-9)) + 1 : 0;
   const LatticeGrid grid = lattice_for_box(box.low, box.high, dx, d, padding);
   report.lattice = grid.count;
   const std::vector<std::uint8_t> inside = classify_inside(grid, boundary);
@@ -301,12 +390,23 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
   clock = std::chrono::steady_clock::now();
   LayerTags layers = assign_layers(grid, inside, boundary, selections.kinematic, false);
   if (!selections.kinematic.empty()) drop_points_nearer_to_other_facets(layers, grid, boundary, horizon);
-  const LayerTags tractions = assign_layers(grid, inside, boundary, selections.loaded, true);
+  std::vector<std::int64_t> fluid_tagged(scene.boundary_conditions.size() + 1, 0);
+  if (!selections.drained.empty()) {
+    LayerTags drained = assign_layers(grid, inside, boundary, selections.drained, false);
+    drop_points_nearer_to_other_facets(drained, grid, boundary, horizon);
+    fluid_tagged = add_where_free(layers, drained, scene.boundary_conditions.size());
+  }
+  LayerTags tractions = assign_layers(grid, inside, boundary, selections.loaded, true);
+  if (!selections.fluxes.empty()) {
+    const auto fed = add_where_free(tractions, assign_layers(grid, inside, boundary, selections.fluxes, true),
+                                    scene.boundary_conditions.size());
+    for (std::size_t k = 0; k < fed.size(); ++k) fluid_tagged[k] += fed[k];
+  }
   report.seconds_layers = seconds_since(clock);
 
   const std::int64_t total = count_points_per_region(scene, model, inside, layers, report);
   place_points(cloud, grid, inside, layers, tractions, boundary, report.points_per_region, total);
-  describe_boundaries(scene, model, boundary, selections.selected, cloud);
+  describe_boundaries(scene, model, boundary, selections, fluid_tagged, cloud);
   warn_points_on_precracks(cloud, grid, inside, report);
   estimate_solver_needs(scene, cloud, total, report);
   return result;
@@ -348,8 +448,15 @@ std::string format_report(const Scene& scene, const PreprocessResult& result, co
     const BoundaryInfo& info = cloud.boundaries[b];
     s << "    [" << b + 1 << "] " << std::left << std::setw(12) << info.name << std::right << " " << std::setw(12)
       << info.type << ": ";
-    if (info.type == "velocity" || info.type == "displacement")
+    const std::optional<std::size_t> shared = shared_boundary(cloud.boundaries, b);
+    if (shared)
+      s << "the " << (info.type == "pore_pressure" ? "layer" : "loaded points") << " of [" << *shared + 1 << "]";
+    else if (info.type == "velocity" || info.type == "displacement")
       s << info.point_count << " layer points (region " << b + 1 << ")";
+    else if (info.type == "pore_pressure")
+      s << info.point_count << " drained layer points (region " << b + 1 << ")";
+    else if (info.type == "fluid_flux")
+      s << info.point_count << " fed body points (boundary_id " << b + 1 << ")";
     else
       s << info.point_count << " loaded body points (boundary_id " << b + 1 << ")";
     s << ", " << (d == 2 ? "length x thickness" : "area") << " " << info.area << " m^2\n";

@@ -65,7 +65,7 @@ double critical_bond_work(const DamageParameters& damage, int dimension, double 
   return dimension == 3 ? g_cr / (s * dx3 * spacing) : g_cr / (s * dx3 * thickness);
 }
 
-void mark_no_fail_zone(PointData& p, double depth) {
+void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_t>& ignored) {
   std::fill(p.no_fail.begin(), p.no_fail.end(), 0);
   if (!(depth > 0.0)) return;
   // Nearest boundary point by a k-d tree (CGAL), in 3-D coordinates (z = 0 in 2-D).
@@ -77,7 +77,8 @@ void mark_no_fail_zone(PointData& p, double depth) {
   };
   std::vector<Kernel::Point_3> boundary;
   for (std::size_t i = 0; i < p.owned; ++i)
-    if (p.boundary_id[i] > 0) boundary.push_back(point(i));
+    if (p.boundary_id[i] > 0 && std::find(ignored.begin(), ignored.end(), p.boundary_id[i]) == ignored.end())
+      boundary.push_back(point(i));
   if (boundary.empty()) return;
   Search::Tree tree(boundary.begin(), boundary.end());
   tree.build();

@@ -36,8 +36,9 @@ double lattice_crossing_sum(int dimension, double horizon_factor);
 
 // Marks as no-fail (points.no_fail = 1) every point closer than `depth` to a point of a boundary
 // condition (a kinematic layer point or a loaded body point: boundary_id > 0), the boundary points
-// themselves included when depth > 0. A bond with a no-fail end never breaks.
-void mark_no_fail_zone(PointData& points, double depth);
+// themselves included when depth > 0. A bond with a no-fail end never breaks. The boundary ids in
+// `ignored` (the pore fluid's own boundaries: FluidBoundaryLayout::fluid_only_ids) make no zone.
+void mark_no_fail_zone(PointData& points, double depth, const std::vector<std::int32_t>& ignored = {});
 
 // sum_j V_j over each point's whole list (broken bonds included), in list order.
 std::vector<double> family_volumes(const PointData& points, const BondFamilies& bonds);

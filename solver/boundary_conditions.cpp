@@ -61,15 +61,14 @@ void BoundaryConditions::match(const Scene& scene, const PointCloud& cloud, int 
                                const std::vector<std::int32_t>& region, const std::vector<std::int32_t>& boundary_id,
                                const std::vector<double>& volume, const std::string& points_file) {
   rotation_components_ = rotation_components;
-  const int D = dimension_;
-  const int R = rotation_components_;
   condition_count_ = scene.boundary_conditions.size();
   prescribed_.assign(points, 0);
   if (cloud.boundaries.size() != condition_count_)
     throw InputError(points_file + ": holds " + std::to_string(cloud.boundaries.size()) +
                      " boundaries but the scene has " + std::to_string(condition_count_) +
                      " boundary conditions (rerun mppm-preprocess with this scene)");
-  std::vector<std::vector<std::int32_t>> layer_points(condition_count_ + 1), loaded_points(condition_count_ + 1);
+  PointsByCondition by{std::vector<std::vector<std::int32_t>>(condition_count_ + 1),
+                       std::vector<std::vector<std::int32_t>>(condition_count_ + 1)};
   for (std::size_t i = 0; i < points; ++i) {
     const auto r = region.empty() ? 0 : region[i];
     const auto b = boundary_id.empty() ? 0 : boundary_id[i];
@@ -77,78 +76,162 @@ void BoundaryConditions::match(const Scene& scene, const PointCloud& cloud, int 
       throw InputError(points_file + ": point " + std::to_string(i) + " has region " + std::to_string(r) +
                        " but the scene has " + std::to_string(condition_count_) + " boundary conditions");
     if (r > 0)
-      layer_points[r].push_back(static_cast<std::int32_t>(i));
+      by.layer[r].push_back(static_cast<std::int32_t>(i));
     else if (b > 0 && static_cast<std::size_t>(b) <= condition_count_)
-      loaded_points[b].push_back(static_cast<std::int32_t>(i));
+      by.loaded[b].push_back(static_cast<std::int32_t>(i));
   }
   for (std::size_t k = 0; k < condition_count_; ++k) {
     const BoundaryCondition& bc = scene.boundary_conditions[k];
-    const BoundaryInfo& info = cloud.boundaries[k];
     names_.push_back(bc.name);
-    if (info.type != to_string(bc.type))
-      throw InputError(points_file + ": boundary " + std::to_string(k + 1) + " ('" + info.name + "') is of type '" +
-                       info.type + "' but scene boundary condition '" + bc.name + "' is '" + to_string(bc.type) +
-                       "' (rerun mppm-preprocess with this scene)");
-    // The layers are fixed in the points file: a scene that selects or sizes them differently
-    // would run silently with the old ones (e.g. --set boundary_conditions[0].depth=3mm).
-    const std::string key =
-        scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) + "]";
-    if (!info.selector.empty() && info.selector != bc.selector.fingerprint())
-      throw InputError(key + ": selects " + bc.selector.describe() + " but " + points_file + " was made with " +
-                       info.selector + " for this boundary (rerun mppm-preprocess with this scene)");
-    if (!is_kinematic(bc.type) && info.depth > 0.0 &&
-        std::abs(info.depth - bc.traction_depth) > 1e-9 * std::max(info.depth, bc.traction_depth)) {
-      std::ostringstream s;
-      s << key << ".depth: the loaded layer is " << bc.traction_depth << " m deep in the scene but " << points_file
-        << " was made with " << info.depth
-        << " m (the loaded points are fixed there: rerun mppm-preprocess with this scene)";
-      throw InputError(s.str());
-    }
-    if (is_kinematic(bc.type)) {
-      if (layer_points[k + 1].empty())
-        throw InputError(points_file + ": kinematic boundary condition '" + bc.name + "' has no layer points (region " +
-                         std::to_string(k + 1) + ")");
-      KinematicLayer layer;
-      layer.condition = k;
-      layer.name = bc.name;
-      layer.points = std::move(layer_points[k + 1]);
-      layer.constrained.assign(D, 1);
-      for (int c = 0; c < D && c < static_cast<int>(bc.constrained.size()); ++c)
-        layer.constrained[c] = bc.constrained[c] ? 1 : 0;
-      layer.displacement_type = bc.type == BoundaryType::displacement;
-      layer.value = bc.value;
-      if (bc.rotation && R > 0) layer.rotation = bc.rotation;
-      for (auto i : layer.points) {
-        std::uint8_t bits = 0;
-        for (int c = 0; c < D; ++c)
-          if (layer.constrained[c]) bits |= static_cast<std::uint8_t>(1u << c);
-        if (layer.rotation)
-          for (int c = 0; c < R; ++c) bits |= static_cast<std::uint8_t>(1u << (kRotationBit + c));
-        prescribed_[i] = bits;
-      }
-      layers_.push_back(std::move(layer));
-    } else {
-      LoadedSurface s;
-      s.condition = k;
-      s.name = bc.name;
-      s.points = std::move(loaded_points[k + 1]);
-      s.pressure = bc.type == BoundaryType::pressure;
-      if (s.pressure) {
-        s.normal.assign(s.points.size() * static_cast<std::size_t>(D), 0.0);
-        const std::vector<double>* components[3] = {&cloud.normal_x, &cloud.normal_y, &cloud.normal_z};
-        for (std::size_t q = 0; q < s.points.size(); ++q)
-          for (int c = 0; c < D; ++c)
-            if (!components[c]->empty()) s.normal[q * D + c] = (*components[c])[static_cast<std::size_t>(s.points[q])];
-      }
-      s.value = bc.value;
-      s.area = info.area;
-      for (auto i : s.points) s.volume_sum += volume[i];
-      if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
-        throw InputError(points_file + ": loaded boundary '" + bc.name +
-                         "' has no loaded points or no area (boundary_id " + std::to_string(k + 1) + ")");
-      surfaces_.push_back(std::move(s));
-    }
+    check_condition(scene, cloud, k, points_file);
+    if (is_kinematic(bc.type))
+      add_kinematic_layer(bc, k, by.layer[k + 1], points_file);
+    else if (!is_fluid(bc.type))
+      add_loaded_surface(bc, k, cloud, by.loaded[k + 1], volume, points_file);
   }
+  // The fluid's conditions after the mechanical ones, whose points they may share.
+  for (std::size_t k = 0; k < condition_count_; ++k) {
+    const BoundaryType type = scene.boundary_conditions[k].type;
+    if (type == BoundaryType::pore_pressure) add_drained_layer(scene, cloud, k, by, points_file);
+    if (type == BoundaryType::fluid_flux) add_fed_surface(scene, cloud, k, by, volume, points_file);
+  }
+}
+
+// Condition k against boundary k of the points file: its type, selection and loaded depth.
+void BoundaryConditions::check_condition(const Scene& scene, const PointCloud& cloud, std::size_t k,
+                                         const std::string& points_file) const {
+  const BoundaryCondition& bc = scene.boundary_conditions[k];
+  const BoundaryInfo& info = cloud.boundaries[k];
+  if (info.type != to_string(bc.type))
+    throw InputError(points_file + ": boundary " + std::to_string(k + 1) + " ('" + info.name + "') is of type '" +
+                     info.type + "' but scene boundary condition '" + bc.name + "' is '" + to_string(bc.type) +
+                     "' (rerun mppm-preprocess with this scene)");
+  // The layers are fixed in the points file: a scene that selects or sizes them differently
+  // would run silently with the old ones (e.g. --set boundary_conditions[0].depth=3mm).
+  const std::string key =
+      scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) + "]";
+  if (!info.selector.empty() && info.selector != bc.selector.fingerprint())
+    throw InputError(key + ": selects " + bc.selector.describe() + " but " + points_file + " was made with " +
+                     info.selector + " for this boundary (rerun mppm-preprocess with this scene)");
+  if (has_loaded_depth(bc.type) && info.depth > 0.0 &&
+      std::abs(info.depth - bc.traction_depth) > 1e-9 * std::max(info.depth, bc.traction_depth)) {
+    std::ostringstream s;
+    s << key << ".depth: the loaded layer is " << bc.traction_depth << " m deep in the scene but " << points_file
+      << " was made with " << info.depth
+      << " m (the loaded points are fixed there: rerun mppm-preprocess with this scene)";
+    throw InputError(s.str());
+  }
+}
+
+void BoundaryConditions::add_kinematic_layer(const BoundaryCondition& bc, std::size_t k,
+                                             std::vector<std::int32_t> points, const std::string& points_file) {
+  const int D = dimension_;
+  const int R = rotation_components_;
+  if (points.empty())
+    throw InputError(points_file + ": kinematic boundary condition '" + bc.name + "' has no layer points (region " +
+                     std::to_string(k + 1) + ")");
+  KinematicLayer layer;
+  layer.condition = k;
+  layer.name = bc.name;
+  layer.points = std::move(points);
+  layer.constrained.assign(D, 1);
+  for (int c = 0; c < D && c < static_cast<int>(bc.constrained.size()); ++c)
+    layer.constrained[c] = bc.constrained[c] ? 1 : 0;
+  layer.displacement_type = bc.type == BoundaryType::displacement;
+  layer.value = bc.value;
+  if (bc.rotation && R > 0) layer.rotation = bc.rotation;
+  for (auto i : layer.points) {
+    std::uint8_t bits = 0;
+    for (int c = 0; c < D; ++c)
+      if (layer.constrained[c]) bits |= static_cast<std::uint8_t>(1u << c);
+    if (layer.rotation)
+      for (int c = 0; c < R; ++c) bits |= static_cast<std::uint8_t>(1u << (kRotationBit + c));
+    prescribed_[i] = bits;
+  }
+  layers_.push_back(std::move(layer));
+}
+
+void BoundaryConditions::add_loaded_surface(const BoundaryCondition& bc, std::size_t k, const PointCloud& cloud,
+                                            std::vector<std::int32_t> points, const std::vector<double>& volume,
+                                            const std::string& points_file) {
+  const int D = dimension_;
+  LoadedSurface s;
+  s.condition = k;
+  s.name = bc.name;
+  s.points = std::move(points);
+  s.pressure = bc.type == BoundaryType::pressure;
+  if (s.pressure) {
+    s.normal.assign(s.points.size() * static_cast<std::size_t>(D), 0.0);
+    const std::vector<double>* components[3] = {&cloud.normal_x, &cloud.normal_y, &cloud.normal_z};
+    for (std::size_t q = 0; q < s.points.size(); ++q)
+      for (int c = 0; c < D; ++c)
+        if (!components[c]->empty()) s.normal[q * D + c] = (*components[c])[static_cast<std::size_t>(s.points[q])];
+  }
+  s.value = bc.value;
+  s.area = cloud.boundaries[k].area;
+  for (auto i : s.points) s.volume_sum += volume[i];
+  if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
+    throw InputError(points_file + ": loaded boundary '" + bc.name + "' has no loaded points or no area (boundary_id " +
+                     std::to_string(k + 1) + ")");
+  surfaces_.push_back(std::move(s));
+}
+
+// The layer of drained condition k: its own (region k + 1: an inert layer, held still), or the
+// layer of the kinematic condition with its selection (docs/stages.md "Boundaries").
+void BoundaryConditions::add_drained_layer(const Scene& scene, const PointCloud& cloud, std::size_t k,
+                                           const PointsByCondition& by, const std::string& points_file) {
+  const BoundaryCondition& bc = scene.boundary_conditions[k];
+  DrainedLayer layer;
+  layer.condition = k;
+  layer.name = bc.name;
+  layer.value = bc.value;
+  if (!by.layer[k + 1].empty()) {
+    layer.points = by.layer[k + 1];
+    const auto all = static_cast<std::uint8_t>((1u << dimension_) - 1u) |
+                     static_cast<std::uint8_t>(((1u << rotation_components_) - 1u) << kRotationBit);
+    for (const std::int32_t i : layer.points) prescribed_[static_cast<std::size_t>(i)] = all;
+  } else if (const auto shared = shared_boundary(cloud.boundaries, k)) {
+    layer.points = by.layer[*shared + 1];
+    layer.inert = false;
+  }
+  if (layer.points.empty())
+    throw InputError(scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) +
+                     "] ('" + bc.name + "'): a drained boundary on a point set with no layer: " + points_file +
+                     " has no layer points for it (region " + std::to_string(k + 1) +
+                     ") and no kinematic boundary selected as it is to share (rerun mppm-preprocess with this scene)");
+  drained_.push_back(std::move(layer));
+}
+
+// The fed points of flux condition k: its own (boundary_id k + 1), or the loaded points of the
+// traction or pressure with its selection.
+void BoundaryConditions::add_fed_surface(const Scene& scene, const PointCloud& cloud, std::size_t k,
+                                         const PointsByCondition& by, const std::vector<double>& volume,
+                                         const std::string& points_file) {
+  const BoundaryCondition& bc = scene.boundary_conditions[k];
+  FedSurface s;
+  s.condition = k;
+  s.name = bc.name;
+  s.value = bc.value;
+  s.area = cloud.boundaries[k].area;
+  s.points = by.loaded[k + 1];
+  if (s.points.empty())
+    if (const auto shared = shared_boundary(cloud.boundaries, k)) s.points = by.loaded[*shared + 1];
+  for (auto i : s.points) s.volume_sum += volume[i];
+  if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
+    throw InputError(scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) +
+                     "] ('" + bc.name + "'): a fluid-flux boundary with no fed points or no area in " + points_file +
+                     " (boundary_id " + std::to_string(k + 1) + "; rerun mppm-preprocess with this scene)");
+  fed_.push_back(std::move(s));
+}
+
+FluidBoundaryLayout BoundaryConditions::fluid_layout() const {
+  FluidBoundaryLayout layout;
+  for (const DrainedLayer& layer : drained_) {
+    layout.drained.push_back({layer.points, layer.inert});
+    if (layer.inert) layout.fluid_only_ids.push_back(static_cast<std::int32_t>(layer.condition + 1));
+  }
+  for (const FedSurface& s : fed_) layout.fluid_only_ids.push_back(static_cast<std::int32_t>(s.condition + 1));
+  return layout;
 }
 
 void BoundaryConditions::prescribe(PointData& p, double t) const {
@@ -189,6 +272,22 @@ void BoundaryConditions::prescribe(PointData& p, double t) const {
           p.spin[i * R + c] = s[c];
         }
     }
+  }
+  // The inert drained layers take no part in the mechanics: held where they are.
+  for (const DrainedLayer& layer : drained_) {
+    if (!layer.inert) continue;
+    for (const std::int32_t point : layer.points) {
+      const auto i = static_cast<std::size_t>(point);
+      for (int c = 0; c < D; ++c) p.displacement[i * D + c] = p.velocity[i * D + c] = 0.0;
+      for (int c = 0; c < R; ++c) p.rotation[i * R + c] = p.spin[i * R + c] = 0.0;
+    }
+  }
+}
+
+void BoundaryConditions::prescribe_pore_pressure(PointData& p, double t) const {
+  for (const DrainedLayer& layer : drained_) {
+    const double pressure = layer.value.component_at(t, 0);
+    for (const std::int32_t i : layer.points) p.pore_pressure[static_cast<std::size_t>(i)] = pressure;
   }
 }
 

@@ -120,6 +120,7 @@ void restore_broken_bonds(const CheckpointFile& file, BondFamilies& f) {
 }
 
 constexpr const char* kArrivalPoints = "crack_arrival_points";
+constexpr const char* kFluidBoundaries = "fluid_boundary_flows";
 constexpr const char* kArrivalTimes = "crack_arrival_times";
 
 void restore_crack_arrivals(const CheckpointFile& file, Model& model) {
@@ -178,6 +179,9 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   const std::vector<double> energy = energy_values(carried.energy);
   const std::vector<double> fluid_energy = fluid_energy_values(carried.energy);
   if (model.effects.pore_fluid) arrays.push_back(checkpoint_array("fluid_energy", fluid_energy));
+  // The volumes through the fluid boundaries and their last rates (runs with such conditions only).
+  if (!carried.fluid_boundary_flows.empty())
+    arrays.push_back(checkpoint_array(kFluidBoundaries, carried.fluid_boundary_flows));
   const std::vector<double> integrator{carried.time, carried.initial_total, loop.time_step};
   const std::vector<std::uint64_t> model_counters{model.broken_bonds, model.detached_points,
                                                   model.unstable_detached_points, model.energy_detached_points};
@@ -244,6 +248,9 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
   carried.initial_total = integrator[1];
   carried.energy = energy_from(energy);
   if (model.effects.pore_fluid) restore_fluid_energy(scalars<double>(file, "fluid_energy", 4), carried.energy);
+  if (dynamics.has_fluid_boundaries())
+    carried.fluid_boundary_flows =
+        scalars<double>(file, kFluidBoundaries, dynamics.carried().fluid_boundary_flows.size());
   dynamics.restore(carried, body_force);
 
   const auto counters = scalars<std::uint64_t>(file, "model_counters", 4);

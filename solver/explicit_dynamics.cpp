@@ -167,25 +167,77 @@ void ExplicitDynamics::evaluate_energy() {
   if (model_.fluid) {
     energy_.fluid_stored = e.fluid;
     energy_.fluid_volume = fluid_volume(p, *model_.fluid);
+    double out = 0.0;  // in scene order
+    for (std::size_t k = 0; k < boundary_volume_.size(); ++k)
+      out += conditions_.drained_condition(k) ? boundary_volume_[k] : -boundary_volume_[k];
+    energy_.fluid_net_outflow = out;
   }
 }
 
-void ExplicitDynamics::advance_flow() {
-  if (!model_.fluid) return;
-  if (flow_.substeps > 1) {
-    const double sub = dt_ / static_cast<double>(flow_.substeps);
-    for (std::int64_t k = 0; k < flow_.substeps; ++k)
-      energy_.flow_dissipation += flow_update(model_.points, model_.bonds, *model_.fluid, sub);
-  } else if (steps_ % flow_.interval == 0) {
-    energy_.flow_dissipation +=
-        flow_update(model_.points, model_.bonds, *model_.fluid, dt_ * static_cast<double>(flow_.interval));
+bool ExplicitDynamics::advance_flow() {
+  if (!model_.fluid) return false;
+  if (flow_.substeps <= 1 && steps_ % flow_.interval != 0) return false;
+  if (!has_fluid_boundaries()) {  // every face impermeable
+    if (flow_.substeps > 1) {
+      const double sub = dt_ / static_cast<double>(flow_.substeps);
+      for (std::int64_t k = 0; k < flow_.substeps; ++k)
+        energy_.flow_dissipation += flow_update(model_.points, model_.bonds, *model_.fluid, sub);
+    } else {
+      energy_.flow_dissipation +=
+          flow_update(model_.points, model_.bonds, *model_.fluid, dt_ * static_cast<double>(flow_.interval));
+    }
+    return true;
   }
+  // The boundaries at the step's end, the time of the state the updates start from.
+  conditions_.prescribe_pore_pressure(model_.points, time_);
+  flow_boundaries_.drains = &model_.drains;
+  flow_boundaries_.sources.clear();
+  for (const FedSurface& s : conditions_.fed())
+    flow_boundaries_.sources.push_back({&s.points, s.value.component_at(time_, 0) * s.area / s.volume_sum});
+  boundary_volume_start_ = boundary_volume_;  // (sized at initialize(): no allocation)
+  const std::int64_t updates = flow_.substeps > 1 ? flow_.substeps : 1;
+  const double h =
+      flow_.substeps > 1 ? dt_ / static_cast<double>(flow_.substeps) : dt_ * static_cast<double>(flow_.interval);
+  for (std::int64_t k = 0; k < updates; ++k) flow_update_with_boundaries(h);
+  const double span = h * static_cast<double>(updates);
+  for (std::size_t c = 0; c < boundary_volume_.size(); ++c)
+    boundary_rate_[c] = (boundary_volume_[c] - boundary_volume_start_[c]) / span;
+  return true;
+}
+
+void ExplicitDynamics::flow_update_with_boundaries(double h) {
+  energy_.flow_dissipation += flow_update(model_.points, model_.bonds, *model_.fluid, h, &flow_boundaries_);
+  const std::vector<DrainedLayer>& drained = conditions_.drained();
+  for (std::size_t k = 0; k < drained.size(); ++k) boundary_volume_[drained[k].condition] += model_.drains.outflow[k];
+  const std::vector<FedSurface>& fed = conditions_.fed();
+  for (std::size_t k = 0; k < fed.size(); ++k)
+    boundary_volume_[fed[k].condition] += h * flow_boundaries_.sources[k].rate * fed[k].volume_sum;
+}
+
+ExplicitDynamics::FluidBoundaryFlow ExplicitDynamics::fluid_boundary_flow(std::size_t k) const {
+  if (k >= boundary_volume_.size()) return {};
+  return {boundary_rate_[k], boundary_volume_[k]};
+}
+
+ExplicitDynamics::Carried ExplicitDynamics::carried() const {
+  Carried c{time_, steps_, energy_, initial_total_, {}};
+  if (has_fluid_boundaries()) {
+    c.fluid_boundary_flows = boundary_volume_;
+    c.fluid_boundary_flows.insert(c.fluid_boundary_flows.end(), boundary_rate_.begin(), boundary_rate_.end());
+  }
+  return c;
 }
 
 void ExplicitDynamics::initialize() {
   time_ = 0.0;
   steps_ = 0;
   conditions_.prescribe(model_.points, time_);
+  if (model_.fluid && has_fluid_boundaries()) {
+    conditions_.prescribe_pore_pressure(model_.points, time_);
+    boundary_volume_.assign(conditions_.condition_count(), 0.0);
+    boundary_volume_start_.assign(conditions_.condition_count(), 0.0);
+    boundary_rate_.assign(conditions_.condition_count(), 0.0);
+  }
   compute_loads_and_forces(true, false);
   // The points the pre-crack cuts put on the crack path are on it from the start.
   if (model_.effects.damage) model_.crack_arrivals.start(model_.points, model_.bonds, time_);
@@ -205,6 +257,11 @@ void ExplicitDynamics::restore(const Carried& carried, const std::vector<double>
   initial_total_ = carried.initial_total;
   finite_ = true;  // a checkpoint is written only after the step's non-finite guard passed
   body_force_ = body_force;
+  const std::size_t n = boundary_volume_.size();
+  if (carried.fluid_boundary_flows.size() == 2 * n) {
+    boundary_volume_.assign(carried.fluid_boundary_flows.begin(), carried.fluid_boundary_flows.begin() + n);
+    boundary_rate_.assign(carried.fluid_boundary_flows.begin() + n, carried.fluid_boundary_flows.end());
+  }
 }
 
 ExplicitDynamics::StepConstants ExplicitDynamics::step_constants() const {
@@ -243,8 +300,10 @@ void ExplicitDynamics::complete_step(bool with_energy) {
   book_step_energy(breakage);
   ++steps_;
   // The flow at the skeleton's new configuration, before the energies of the step's end
-  // (docs/theory.md section 12: the fractional step).
-  advance_flow();
+  // (docs/theory.md section 12: the fractional step), and the forces again at the fluid content it
+  // left: the next step's first half kick must see that pressure (a kick with the forces of before
+  // the flow can pump energy into the fastest modes of the skeleton).
+  if (advance_flow()) model_.compute_internal_forces(false);
   if (with_energy) evaluate_energy();
 }
 

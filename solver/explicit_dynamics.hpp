@@ -27,12 +27,15 @@ struct EnergyState {
   double plastic_dissipation = 0.0;   // accumulated every step (trapezoid rule, like the work)
   double fracture_dissipation = 0.0;  // stored energy released by the bonds broken so far
   // Pore fluid (docs/theory.md section 12; zero without it): the fluid's stored energy V p^2 / (2 M),
-  // the stored energy the flow updates removed so far, and the fluid volume sum V zeta at the
-  // start and at the last row (its change is the mass balance: no fluid crosses a boundary).
+  // the stored energy the flow updates removed so far (the energy the fluid carried out through the
+  // boundaries included), the fluid volume sum V zeta at the start and at the last row, and the
+  // volume that left through the boundaries so far (outflow of the drained ones less the inflow of
+  // the fed ones).
   double fluid_stored = 0.0;
   double flow_dissipation = 0.0;
   double initial_fluid_volume = 0.0;
   double fluid_volume = 0.0;
+  double fluid_net_outflow = 0.0;
   // The size of the terms whose difference is the scheme's kinetic energy, 1/2 M (v^n . v^n +
   // (dt/2)^2 a^n . a^n): the scale of its round-off. Where every energy is still round-off (the
   // step in which a load starts: v^n = dt/2 a^n, so the kinetic energy is a difference of two equal
@@ -42,9 +45,11 @@ struct EnergyState {
   double total() const { return kinetic + rotational_kinetic + elastic + stabilization + fluid_stored; }
   // What the balance accounts for: total plus the energy already dissipated.
   double accounted() const { return total() + plastic_dissipation + fracture_dissipation + flow_dissipation; }
-  // (fluid volume now - at the start) / the start's: the fluid mass balance (pore fluid only).
+  // (fluid volume now - at the start + net outflow) / the start's (the pore volume the fluid
+  // filled): the fluid mass balance (pore fluid only), round-off.
   double fluid_mass_balance() const {
-    return initial_fluid_volume > 0.0 ? (fluid_volume - initial_fluid_volume) / initial_fluid_volume : 0.0;
+    return initial_fluid_volume > 0.0 ? (fluid_volume - initial_fluid_volume + fluid_net_outflow) / initial_fluid_volume
+                                      : 0.0;
   }
 };
 
@@ -94,6 +99,17 @@ class ExplicitDynamics {
     complete_step(with_energy);
   }
 
+  // Pore fluid: what went through fluid boundary condition k (scene order; zero for the others):
+  // the volume so far [m^3] (out of a drained boundary, into a fed one) and the rate of the last
+  // flow update [m^3/s] (0 before the first).
+  struct FluidBoundaryFlow {
+    double rate = 0.0, volume = 0.0;
+  };
+  FluidBoundaryFlow fluid_boundary_flow(std::size_t k) const;
+  // True when the conditions hold a drained or fed boundary (then Carried::fluid_boundary_flows is
+  // filled).
+  bool has_fluid_boundaries() const { return !conditions_.drained().empty() || !conditions_.fed().empty(); }
+
   double time() const { return time_; }
   std::int64_t steps() const { return steps_; }
   double time_step() const { return dt_; }
@@ -120,8 +136,11 @@ class ExplicitDynamics {
     std::int64_t steps = 0;
     EnergyState energy;
     double initial_total = 0.0;
+    // Pore fluid with fluid boundary conditions: per scene condition the volume through it so far,
+    // then per condition the rate of the last flow update (fluid_boundary_flow); else empty.
+    std::vector<double> fluid_boundary_flows;
   };
-  Carried carried() const { return {time_, steps_, energy_, initial_total_}; }
+  Carried carried() const;
   // The external force density of the last evaluation (the first half kick of the next step uses
   // it), D per tracked point (see tracked_ below): every other point has none.
   const std::vector<double>& body_force() const { return body_force_; }
@@ -151,8 +170,13 @@ class ExplicitDynamics {
   int second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i);
   int second_half_kick_tracked(const StepConstants& sc, double damp_factor, std::size_t i, std::size_t t);
   void book_step_energy(const BreakageEnergy& breakage);
-  // Pore fluid: the flow updates due after step steps_ (flow_), their dissipation booked.
-  void advance_flow();
+  // Pore fluid: the flow updates due after step steps_ (flow_), their dissipation booked, the
+  // drained layers' pressure prescribed first and the volumes through the fluid boundaries booked.
+  // True when updates ran.
+  bool advance_flow();
+  // One flow update of length h with the fluid boundaries at time_; the volumes through them added
+  // to boundary_volume_.
+  void flow_update_with_boundaries(double h);
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
@@ -199,6 +223,10 @@ class ExplicitDynamics {
   std::vector<double> work_increment_;                     // summed serially, in point order (book_step_energy)
   EnergyState energy_;
   double initial_total_ = 0.0;
+  // Pore fluid boundaries: per scene condition, the volume through it so far and the last rate;
+  // the boundaries of the flow updates (its source list reused from update to update).
+  std::vector<double> boundary_volume_, boundary_rate_, boundary_volume_start_;
+  FlowBoundaries flow_boundaries_;
 };
 
 }  // namespace mppm::solver

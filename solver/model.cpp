@@ -56,6 +56,25 @@ std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamili
   return removed / 2;
 }
 
+// The drain bonds to inert layers that touch a pre-crack are dropped (cracks do not conduct), with the
+// test the families' cuts use (the lower index first).
+void cut_precrack_drain_bonds(const PointCloud& cloud, const PointData& p, std::vector<DrainBond>& drains,
+                              double horizon) {
+  if (cloud.precrack_vertices.empty() || drains.empty()) return;
+  const PrecrackIndex index(cloud.dimension, cloud.precrack_vertices, horizon);
+  if (index.empty()) return;
+  const int D = p.dimension;
+  auto point = [&](std::size_t i) {
+    Point3 x{0, 0, 0};
+    for (int c = 0; c < D; ++c) x[c] = p.position[i * D + c];
+    return x;
+  };
+  std::erase_if(drains, [&](const DrainBond& d) {
+    const auto i = static_cast<std::size_t>(d.body), j = static_cast<std::size_t>(d.layer);
+    return j > i ? index.crosses(point(i), point(j)) : index.crosses(point(j), point(i));
+  });
+}
+
 // Point i inside a box (a 2-D box's z range is unbounded).
 bool inside(const PointData& p, std::size_t i, const std::array<std::array<double, 3>, 2>& box) {
   for (int a = 0; a < p.dimension; ++a) {
@@ -104,6 +123,10 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   fo.spacing = o.spacing;
   fo.period = o.period;
   m.bonds = build_families(m.points, fo);
+  // The inert drained layers leave the mechanics before anything reads the families (docs/theory.md
+  // section 12): the rest of the model is that of the run without them.
+  std::vector<DrainBond> inert_drains;
+  if (o.effects.pore_fluid) inert_drains = take_out_inert_layers(m.points, m.bonds, o.fluid_boundaries);
   mark("bond families");
   if (o.effects.damage && !cloud.precrack_vertices.empty()) {
     // The family volumes before the cuts are kept for the points that lost bonds to them, so that
@@ -115,10 +138,11 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   } else {
     m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, false, m.precrack_cuts);
   }
+  cut_precrack_drain_bonds(cloud, m.points, inert_drains, o.horizon);
   mark("pre-crack cuts");
   if (o.effects.damage) {
     index_bond_pairs(m.bonds);
-    mark_no_fail_zone(m.points, o.no_fail_depth);
+    mark_no_fail_zone(m.points, o.no_fail_depth, o.fluid_boundaries.fluid_only_ids);
     if (o.damage_region)
       for (std::size_t i = 0; i < m.points.owned; ++i)
         if (!inside(m.points, i, *o.damage_region)) m.points.no_fail[i] = 1;
@@ -137,6 +161,13 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
     if (!o.fluid) throw std::logic_error("build_model: the pore_fluid effect needs ModelOptions::fluid");
     m.fluid = o.fluid;
     start_fluid(m.points, *o.fluid, o.initial_pressure);
+    m.drains = make_drain_bonds(m.points, m.bonds, o.fluid_boundaries, std::move(inert_drains));
+    for (const DrainedPoints& layer : o.fluid_boundaries.drained)
+      if (layer.inert)
+        for (const std::int32_t i : layer.points) {
+          ++m.inert_points;
+          if (m.points.detached[static_cast<std::size_t>(i)]) --m.detached_points;  // they have no bonds
+        }
   }
   m.kernel = internal_force_functions(m.points.dimension, o.effects);
   mark("shape tensors");

@@ -36,6 +36,9 @@ struct ModelOptions {
   // Required with the pore_fluid effect (fluid_constants of the scene), and the pressure at t = 0.
   std::optional<FluidConstants> fluid;
   double initial_pressure = 0.0;
+  // Pore fluid: the drained layers and the fluid's own boundary ids (BoundaryConditions::fluid_layout);
+  // empty: every face impermeable.
+  FluidBoundaryLayout fluid_boundaries;
 };
 
 struct Model {
@@ -46,7 +49,12 @@ struct Model {
   InternalForceFunctions kernel;
   std::shared_ptr<const plasticity::ViscoplasticModel> viscoplastic_model;  // with the effect
   std::optional<FluidConstants> fluid;                                      // with pore_fluid
-  std::size_t precrack_cut_bonds = 0;                                       // pairs (counted once)
+  // Pore fluid: the bonds of body points to drained layers (solver/fluid_boundaries.hpp), and the
+  // points of the inert drained layers (out of the mechanics: no bonds, detached, held still by the
+  // boundary conditions; not counted in detached_points).
+  DrainBonds drains;
+  std::size_t inert_points = 0;
+  std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
   // Damage in 3-D: the bonds the pre-crack cuts removed, for the crack area (crack_area.hpp).
   PrecrackCutBonds precrack_cuts;
   std::size_t detached_points = 0;
@@ -93,7 +101,8 @@ struct Model {
 // key for bad parameters). Periodic lattices set `period` themselves.
 ModelOptions model_options(const Scene& scene);
 
-// Builds families, cuts bonds across the cloud's pre-cracks, computes shape tensors. With `phases`,
+// Builds families (the inert drained layers' bonds taken out), cuts bonds across the cloud's
+// pre-cracks, computes shape tensors, and with the pore fluid the drain bonds. With `phases`,
 // each of these is marked there as a start-up phase ("point data", "bond families", "pre-crack
 // cuts", "damage set-up", "shape tensors").
 Model build_model(const PointCloud& cloud, const ModelOptions& options, PhaseTimer* phases = nullptr);

@@ -31,6 +31,17 @@ void for_each_conducting_bond(const PointData& p, const BondFamilies& f, std::si
   }
 }
 
+// Visits the conducting drain bonds of row `row` of the drain bonds (docs/theory.md section 12):
+// visit(j, xi, |xi|, bond) with j the drained-layer point.
+template <class Visit>
+void for_each_drain_bond(const PointData& p, const BondFamilies& f, const DrainBonds& d, std::size_t row,
+                         Visit&& visit) {
+  for (auto b = static_cast<std::size_t>(d.offset[row]); b < static_cast<std::size_t>(d.offset[row + 1]); ++b) {
+    if (!d.conducts(p, f, row, b)) continue;
+    visit(static_cast<std::size_t>(d.neighbor[b]), &d.xi[3 * b], d.length[b], b);
+  }
+}
+
 template <int D>
 double potential(const PointData& p, const FluidConstants& fl, std::size_t i) {
   double gx = 0.0;
@@ -38,11 +49,14 @@ double potential(const PointData& p, const FluidConstants& fl, std::size_t i) {
   return p.pore_pressure[i] - fl.fluid_density * gx;
 }
 
+bool has_gravity(const FluidConstants& fl) {
+  return fl.fluid_density != 0.0 && (fl.gravity[0] != 0.0 || fl.gravity[1] != 0.0 || fl.gravity[2] != 0.0);
+}
+
 template <int D>
 void fluid_rates_d(PointData& p, const BondFamilies& f, const FluidConstants& fl) {
   const auto n = static_cast<std::int64_t>(p.owned);
-  const bool with_gravity =
-      fl.fluid_density != 0.0 && (fl.gravity[0] != 0.0 || fl.gravity[1] != 0.0 || fl.gravity[2] != 0.0);
+  const bool with_gravity = has_gravity(fl);
 #pragma omp parallel for schedule(static) if (thread_bond_loop(f.bond_count()))
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
@@ -58,6 +72,45 @@ void fluid_rates_d(PointData& p, const BondFamilies& f, const FluidConstants& fl
     });
     p.fluid_rate[i] = fl.micro_conductivity * rate;
   }
+}
+
+// The drain bonds' share of the fluid rates, kappa0 sum_j (psi_j - psi_i) / |xi| V_j over the
+// conducting drain bonds of each body point that has any (psi_j of the layer's prescribed
+// pressure), added to points.fluid_rate; each bond's volume rate into the layer,
+// kappa0 (psi_i - psi_j) V_i V_j / |xi|, into d.pair_flux (0 for a bond that does not conduct).
+template <int D>
+void add_drain_rates(PointData& p, const BondFamilies& f, DrainBonds& d, const FluidConstants& fl) {
+  const auto rows = static_cast<std::int64_t>(d.point.size());
+  const bool with_gravity = has_gravity(fl);
+  std::fill(d.pair_flux.begin(), d.pair_flux.end(), 0.0);
+#pragma omp parallel for schedule(static) if (thread_bond_loop(d.bond_count()))
+  for (std::int64_t r = 0; r < rows; ++r) {
+    const auto row = static_cast<std::size_t>(r);
+    const auto i = static_cast<std::size_t>(d.point[row]);
+    const double psi_i = with_gravity ? potential<D>(p, fl, i) : p.pore_pressure[i];
+    double rate = 0.0;
+    for_each_drain_bond(p, f, d, row, [&](std::size_t j, const double*, double length, std::size_t b) {
+      const double psi_j = with_gravity ? potential<D>(p, fl, j) : p.pore_pressure[j];
+      const double term = (psi_j - psi_i) / length * p.volume[j];
+      rate += term;
+      d.pair_flux[b] = -fl.micro_conductivity * term * p.volume[i];
+    });
+    p.fluid_rate[i] += fl.micro_conductivity * rate;
+  }
+}
+
+// Adds the sources s of the fed points to their fluid rates.
+void add_sources(PointData& p, const std::vector<FluidSource>& sources) {
+  for (const FluidSource& s : sources)
+    for (const std::int32_t i : *s.points) p.fluid_rate[static_cast<std::size_t>(i)] += s.rate;
+}
+
+// The volume each drained condition let out over an update of dt: dt sum of its bonds' volume
+// rates, in bond order.
+void book_outflow(DrainBonds& d, double dt) {
+  std::fill(d.outflow.begin(), d.outflow.end(), 0.0);
+  for (std::size_t b = 0; b < d.bond_count(); ++b) d.outflow[static_cast<std::size_t>(d.drain[b])] += d.pair_flux[b];
+  for (double& v : d.outflow) v *= dt;
 }
 
 double volumetric_strain(const PointData& p, std::size_t i) {
@@ -115,28 +168,39 @@ void fluid_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl) 
     fluid_rates_d<3>(p, f, fl);
 }
 
-double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl, double dt) {
+double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl, double dt,
+                   FlowBoundaries* boundaries) {
   fluid_rates(p, f, fl);
+  DrainBonds* drains = boundaries ? boundaries->drains : nullptr;
+  if (drains) {
+    if (p.dimension == 2)
+      add_drain_rates<2>(p, f, *drains, fl);
+    else
+      add_drain_rates<3>(p, f, *drains, fl);
+    book_outflow(*drains, dt);
+  }
+  if (boundaries) add_sources(p, boundaries->sources);
   const double inv_2m = 0.5 / fl.biot_modulus;
   const auto sums = ordered_point_sums<1>(
       p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
         for (std::size_t i = lo; i < hi; ++i) {
-          // A detached point has no bond left to conduct and stores no energy (its strain is
-          // zeroed): its fluid stays as it was, and its pressure too.
-          if (!carries_fluid(p, i) || p.detached[i]) continue;
+          if (!carries_fluid(p, i)) continue;
           const double before = p.pore_pressure[i];
           p.fluid_content_change[i] += dt * p.fluid_rate[i];
           const double after =
               fl.biot_modulus * (p.fluid_content_change[i] - fl.biot_coefficient * volumetric_strain(p, i));
           p.pore_pressure[i] = after;
-          acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
+          // A detached point keeps its fluid (the mass balance counts it) but stores no energy
+          // (kernel::elastic_energy_of_point; its strain is zero): its change is not the flow's.
+          if (!p.detached[i]) acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
         }
       });
   return sums[0];
 }
 
-double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidConstants& fl) {
+double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidConstants& fl, const DrainBonds* drains) {
   double largest = 0.0;
+  std::size_t row = 0;  // the drain bonds' rows are sorted by point: walked alongside
   for (std::size_t i = 0; i < p.owned; ++i) {
     if (!carries_fluid(p, i)) continue;
     double sum = 0.0;
@@ -145,6 +209,10 @@ double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidCo
       for_each_conducting_bond<2>(p, f, i, add);
     else
       for_each_conducting_bond<3>(p, f, i, add);
+    if (drains && row < drains->point.size() && static_cast<std::size_t>(drains->point[row]) == i)
+      for_each_drain_bond(p, f, *drains, row++, [&](std::size_t j, const double*, double length, std::size_t) {
+        sum += p.volume[j] / length;
+      });
     largest = std::max(largest, sum);
   }
   const double rate = fl.biot_modulus * fl.micro_conductivity * largest;
@@ -178,16 +246,22 @@ FlowSchedule flow_schedule(double fluid_step, double dt) {
 
 namespace {
 template <int D>
-void darcy_velocity_d(const PointData& p, const BondFamilies& f, const FluidConstants& fl, std::size_t i, double* q) {
+void darcy_velocity_d(const PointData& p, const BondFamilies& f, const FluidConstants& fl, std::size_t i, double* q,
+                      const DrainBonds* drains) {
   for (int a = 0; a < D; ++a) q[a] = 0.0;
   if (!carries_fluid(p, i) || p.detached[i]) return;
   Eigen::Matrix<double, D, D> k = Eigen::Matrix<double, D, D>::Zero();
   Eigen::Matrix<double, D, 1> s = Eigen::Matrix<double, D, 1>::Zero();
-  for_each_conducting_bond<D>(p, f, i, [&](std::size_t j, const double* xi, double) {
+  auto add = [&](std::size_t j, const double* xi) {
     const Eigen::Map<const Eigen::Matrix<double, D, 1>> x(xi);
     k += p.volume[j] * x * x.transpose();
     s += p.volume[j] * (p.pore_pressure[j] - p.pore_pressure[i]) * x;
-  });
+  };
+  for_each_conducting_bond<D>(p, f, i, [&](std::size_t j, const double* xi, double) { add(j, xi); });
+  const std::ptrdiff_t row = drains ? drains->row_of(i) : -1;
+  if (row >= 0)
+    for_each_drain_bond(p, f, *drains, static_cast<std::size_t>(row),
+                        [&](std::size_t j, const double* xi, double, std::size_t) { add(j, xi); });
   const Eigen::FullPivLU<Eigen::Matrix<double, D, D>> lu(k);
   if (!lu.isInvertible()) return;
   const Eigen::Matrix<double, D, 1> gradient = lu.solve(s);
@@ -195,11 +269,12 @@ void darcy_velocity_d(const PointData& p, const BondFamilies& f, const FluidCons
 }
 }  // namespace
 
-void darcy_velocity(const PointData& p, const BondFamilies& f, const FluidConstants& fl, std::size_t i, double* q) {
+void darcy_velocity(const PointData& p, const BondFamilies& f, const FluidConstants& fl, std::size_t i, double* q,
+                    const DrainBonds* drains) {
   if (p.dimension == 2)
-    darcy_velocity_d<2>(p, f, fl, i, q);
+    darcy_velocity_d<2>(p, f, fl, i, q, drains);
   else
-    darcy_velocity_d<3>(p, f, fl, i, q);
+    darcy_velocity_d<3>(p, f, fl, i, q, drains);
 }
 
 }  // namespace mppm::solver

@@ -7,9 +7,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "common/scene.hpp"
 #include "solver/bond_families.hpp"
+#include "solver/fluid_boundaries.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
@@ -38,17 +40,35 @@ void start_fluid(PointData& points, const FluidConstants& fluid, double initial_
 
 // The fluid-content rate of every body point from the pressures of the last force evaluation,
 // Phi_i = sum_j kappa0 (psi_j - psi_i) / |xi| V_j over the acting bonds to body points, with the
-// potential psi = p - rho_f g . x; into points.fluid_rate. Fictitious layers are impermeable.
+// potential psi = p - rho_f g . x; into points.fluid_rate. Fictitious layers are impermeable
+// here: the drained ones conduct through their drain bonds (flow_update).
 void fluid_rates(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid);
 
-// One flow update of length dt at the skeleton's last strain: zeta += dt Phi (fluid_rates first),
-// then p = M (zeta - n0 - b tr eps), at every body point that is not detached. Returns the stored fluid energy it
-// removed (the flow's dissipation, docs/theory.md section 12), summed in point chunks fixed by the point count.
-double flow_update(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, double dt);
+// A fluid-flux boundary's source on its points: s = q A / sum V [1/s] (docs/theory.md section 12).
+struct FluidSource {
+  const std::vector<std::int32_t>* points = nullptr;
+  double rate = 0.0;
+};
+// The boundaries of a flow update: the drain bonds (their layer points carry the prescribed
+// pressure already: BoundaryConditions::prescribe_pore_pressure) and the sources.
+struct FlowBoundaries {
+  DrainBonds* drains = nullptr;
+  std::vector<FluidSource> sources;
+};
+
+// One flow update of length dt at the skeleton's last strain: zeta += dt (Phi + s) (fluid_rates
+// first, then the drain bonds' share of Phi and the sources of `boundaries`), then
+// p = M (zeta - n0 - b tr eps) (a detached point's strain is zero). With drain bonds, drains->outflow gets the volume
+// each drained condition let out. Returns the stored fluid energy it removed (the flow's dissipation, and the energy
+// the fluid carried out through the boundaries: docs/theory.md section 12), summed in point chunks fixed by the point
+// count.
+double flow_update(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, double dt,
+                   FlowBoundaries* boundaries = nullptr);
 
 // The largest stable flow step, 1 / max_i (M sum_j kappa0 V_j / |xi|) over the body points'
-// conducting bonds (infinite when no bond conducts).
-double fluid_step_limit(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid);
+// conducting bonds and drain bonds (infinite when no bond conducts).
+double fluid_step_limit(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid,
+                        const DrainBonds* drains = nullptr);
 
 // sum_i V_i zeta_i over the body points, as n0 sum_i V_i + sum_i V_i (zeta_i - n0): the fluid volume
 // (mass / rho_f) in the pores.
@@ -66,9 +86,9 @@ struct FlowSchedule {
 FlowSchedule flow_schedule(double fluid_step, double dt);
 
 // The Darcy velocity of body point i, q = -k' (grad p - rho_f g), with the nonlocal gradient
-// grad p = K_i^-1 sum_j V_j (p_j - p_i) xi over its acting bonds to body points (zero for a detached
-// point); D components into q.
+// grad p = K_i^-1 sum_j V_j (p_j - p_i) xi over its acting bonds to body points and its conducting
+// drain bonds (zero for a detached point); D components into q.
 void darcy_velocity(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, std::size_t i,
-                    double* q);
+                    double* q, const DrainBonds* drains = nullptr);
 
 }  // namespace mppm::solver

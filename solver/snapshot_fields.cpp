@@ -191,8 +191,9 @@ std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vec
       // Saturated: the fluid fills the pores of the body (the layers carry none).
       sources.push_back(per_point(name, 1, [&p](std::size_t i, double* out) { *out = p.region[i] == 0 ? 1.0 : 0.0; }));
     } else if (name == "darcy_velocity") {
-      sources.push_back(per_point(
-          name, D, [&m](std::size_t i, double* out) { darcy_velocity(m.points, m.bonds, *m.fluid, i, out); }));
+      sources.push_back(per_point(name, D, [&m](std::size_t i, double* out) {
+        darcy_velocity(m.points, m.bonds, *m.fluid, i, out, &m.drains);
+      }));
     } else if (name == "damage") {
       // D_i = 1 - sum_j b V_j / sum_j V_j over the family before the pre-crack cuts.
       sources.push_back(

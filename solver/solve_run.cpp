@@ -320,6 +320,7 @@ class RunDriver {
   void log_start_up_report();
   void log_test_hooks();
   void log_fields_not_produced();
+  void log_fluid_boundaries();
   void start_dynamics();
   void restore_from_checkpoint();
   void write_initial_state();
@@ -387,7 +388,7 @@ void RunDriver::check_inputs(const PointCloud& cloud) {
 // not read after this.
 void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* release) {
   // Bad viscoplastic parameters are an InputError naming the key.
-  const ModelOptions model_settings = model_options(scene_);
+  ModelOptions model_settings = model_options(scene_);
   if (resume_) {
     identity_.scene_fingerprint = resume_->header.scene_fingerprint;  // checked by restart()
     identity_.points_fingerprint = resume_->header.points_fingerprint;
@@ -395,6 +396,7 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
     identity_.points_fingerprint = point_cloud_fingerprint(cloud);
   }
   conditions_.emplace(scene_, cloud, options_.points_file);
+  if (scene_.effects.pore_fluid) model_settings.fluid_boundaries = conditions_->fluid_layout();
   start_up_.mark("boundary conditions");
   model_.emplace(release ? build_model(std::move(*release), model_settings, &start_up_)
                          : build_model(cloud, model_settings, &start_up_));
@@ -419,7 +421,8 @@ void RunDriver::fit_time_step() {
   scene_.time.step = plan_.dt;
   start_up_.mark("damage step limit");
   if (model().fluid) {
-    plan_.flow = flow_schedule(fluid_step_limit(model().points, model().bonds, *model().fluid), plan_.dt);
+    plan_.flow =
+        flow_schedule(fluid_step_limit(model().points, model().bonds, *model().fluid, &model().drains), plan_.dt);
     start_up_.mark("fluid step limit");
   }
 }
@@ -499,7 +502,10 @@ void RunDriver::log_start() {
   }
   std::vector<std::string> load_header{"time_s"};
   for (const auto& bc : scene_.boundary_conditions)
-    for (const auto& c : run_files::load_columns(bc.name, scene_.dimension)) load_header.push_back(c);
+    for (const auto& c : is_fluid(bc.type)
+                             ? run_files::fluid_load_columns(bc.name, bc.type == BoundaryType::pore_pressure)
+                             : run_files::load_columns(bc.name, scene_.dimension))
+      load_header.push_back(c);
   writer().set_load_header(load_header, scene_.effects.pore_fluid);
 }
 
@@ -529,11 +535,30 @@ void RunDriver::log_start_up_report() {
                  " of the critical step); a point whose lopsided family would need a step below " + log_number(dt) +
                  " s is detached (stiffness block limit " + log_number(m.block_eigenvalue_limit) + " 1/s^2)");
   if (m.fluid) writer().log(fluid_report(*m.fluid, plan_.flow, dt));
+  if (m.fluid) log_fluid_boundaries();
   if (m.viscoplastic_model)
     writer().log("viscoplastic model " + m.viscoplastic_model->name() +
                  " (return map once per step; the critical step above is the elastic bound, which "
                  "plastic flow does not lower)");
   for (const auto& w : scene_.warnings) writer().log("warning: " + w);
+}
+
+// The pore fluid's boundaries: where each drained and fed condition acts (docs/theory.md section 12).
+void RunDriver::log_fluid_boundaries() {
+  const BoundaryConditions& c = *conditions_;
+  if (c.drained().empty() && c.fed().empty()) {
+    writer().log("fluid boundaries: none (every face is impermeable)");
+    return;
+  }
+  std::string line = "fluid boundaries:";
+  for (const DrainedLayer& layer : c.drained())
+    line += " drained '" + layer.name + "' (" + std::to_string(layer.points.size()) + " layer points, " +
+            (layer.inert ? "a layer of its own, out of the mechanics" : "a kinematic layer") + ");";
+  for (const FedSurface& s : c.fed())
+    line += " fed '" + s.name + "' (" + std::to_string(s.points.size()) + " body points, area " + log_number(s.area) +
+            " m^2);";
+  line += " " + std::to_string(model().drains.bond_count()) + " drain bonds; every other face is impermeable";
+  writer().log(line);
 }
 
 // The fault hooks armed for this run (solver/test_hooks.hpp).
@@ -703,9 +728,15 @@ SolveResult RunDriver::result() const {
 void RunDriver::record_rows() {
   const double t = dynamics().time();
   std::vector<double> row{t};
-  for (const auto& v : conditions_->load_values(model().points, t)) {
-    row.insert(row.end(), v.displacement.begin(), v.displacement.end());
-    row.insert(row.end(), v.force.begin(), v.force.end());
+  const auto values = conditions_->load_values(model().points, t);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (is_fluid(scene_.boundary_conditions[k].type)) {
+      const auto flow = dynamics().fluid_boundary_flow(k);
+      row.insert(row.end(), {flow.rate, flow.volume});
+      continue;
+    }
+    row.insert(row.end(), values[k].displacement.begin(), values[k].displacement.end());
+    row.insert(row.end(), values[k].force.begin(), values[k].force.end());
   }
   writer().add_load_row(row);
   const EnergyState& e = dynamics().energy();

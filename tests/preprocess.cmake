@@ -5,6 +5,7 @@ set(MPPM_TEST_LIBS mppm_preprocess mppm_common OpenMP::OpenMP_CXX)
 mppm_add_gtest(test_preprocess unit
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_lattice.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_layers.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_fluid_layers.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_precrack.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_boundary.cpp
 )

@@ -16,6 +16,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_cosserat_law.cpp
   unit/test_solver_pore_fluid.cpp
   unit/test_run_estimate.cpp
+  unit/test_solver_fluid_boundaries.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
@@ -25,6 +26,7 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_solver_crack_energy.cpp
   verification/test_solver_crack_initiation.cpp
   verification/test_solver_pore_fluid_flow.cpp
+  verification/test_solver_pore_fluid_boundaries.cpp
 )
 # The energies are computed without the force kernel's fused multiply-adds only if the two files
 # share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).

@@ -1,7 +1,8 @@
 // Checkpoint and restart in-process (README "Checkpoints and restart"): a run stopped after a
 // checkpoint and continued with restart() ends with the same bytes (every snapshot, load.csv,
 // energy.csv) as the run that was never stopped, for an elastic micropolar case, a damage case
-// with bonds breaking and a softening viscoplastic case, on 2 threads after 1; a failed checkpoint
+// with bonds breaking, a softening viscoplastic case, a saturated bar and a saturated column with
+// a drained and a fed boundary, a 3-D damage run with its crack area, on 2 threads after 1; a failed checkpoint
 // write leaves the previous checkpoint intact and readable; a corrupted checkpoint, a changed scene,
 // changed points or changed tables are refused.
 #include <gtest/gtest.h>
@@ -22,6 +23,7 @@
 #include "solver/checkpoint.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/solve_run.hpp"
+#include "tests/verification/solver_fluid_column.hpp"
 #include "tests/verification/solver_viscoplastic_cases.hpp"
 
 namespace mppm::solver {
@@ -110,6 +112,35 @@ Case damage_bar_3d() {
   c.scene.time.end = 60e-6;
   c.scene.output.interval = 10e-6;
   c.scene.output.fields = {"displacement", "damage", "crack_area"};
+  return c;
+}
+
+// A saturated column pressed on top and drained there, fed through its bottom row (docs/theory.md
+// section 12): fluid leaves through the top layer and enters through the bottom at every step, so
+// the volumes through both boundaries and their last rates are carried across the restart.
+Case drained_column() {
+  Case c;
+  c.scene = testing::saturated_scene(kDx, 3.05, 1e-10, 2e9);
+  c.scene.material.pore_fluid->initial_pressure = 1e5;
+  const double area = 8 * kDx * c.scene.thickness;
+  c.cloud = testing::column_cloud(8, 12, 3, kDx, c.scene.thickness, testing::ColumnTags{3, 2, 4});
+  c.cloud.horizon = 3.05 * kDx;
+  BoundaryCondition load = testing::condition("top", BoundaryType::traction, {0.0, -1e6}, "top", 10e-6);
+  load.traction_depth = kDx;
+  BoundaryCondition feed = testing::condition("feed", BoundaryType::fluid_flux, {1e-4}, "feed");
+  feed.traction_depth = kDx;
+  c.scene.boundary_conditions = {testing::condition("base", BoundaryType::velocity, {0.0, 0.0}, "base"), load,
+                                 testing::condition("drain", BoundaryType::pore_pressure, {0.0}, "drain"), feed};
+  const std::int64_t counts[] = {testing::count_tagged(c.cloud, 1, 0), testing::count_tagged(c.cloud, 0, 2),
+                                 testing::count_tagged(c.cloud, 3, 0), testing::count_tagged(c.cloud, 0, 4)};
+  const double depths[] = {c.cloud.horizon, kDx, c.cloud.horizon, kDx};
+  for (std::size_t k = 0; k < 4; ++k)
+    c.cloud.boundaries.push_back(BoundaryInfo{c.scene.boundary_conditions[k].name,
+                                              to_string(c.scene.boundary_conditions[k].type), area, counts[k], "",
+                                              depths[k]});
+  c.scene.time.end = 40e-6;
+  c.scene.output.interval = 10e-6;
+  c.scene.output.fields = {"displacement", "pore_pressure", "darcy_velocity"};
   return c;
 }
 
@@ -256,6 +287,25 @@ TEST(CheckpointRestart, ThreeDimensionalDamageRunWithCrackAreaContinuesBitForBit
   EXPECT_GT(totals.front(), 0.0);  // the pre-crack
   EXPECT_GT(totals[totals.size() / 2], totals.front());
   EXPECT_GT(totals.back(), totals[totals.size() / 2]);
+}
+
+TEST(CheckpointRestart, DrainedRunContinuesBitForBit) {
+  check_restart_is_bit_for_bit(drained_column(), "drained");
+  // The comparison is on a run whose fluid crossed both boundaries before and after the stop near
+  // the middle (load.csv: ..., drain_outflow_m3_per_s, drain_outflow_m3, feed_inflow_m3_per_s,
+  // feed_inflow_m3), and whose books balance (energy.csv: fluid_mass_balance).
+  const auto load = read_csv_rows(directory_of("drained_reference") + "/" + run_layout::load);
+  ASSERT_GT(load.size(), 4u);
+  const auto& middle = load[load.size() / 2];
+  const auto& last = load.back();
+  ASSERT_EQ(last.size(), 1u + 4u + 4u + 2u + 2u);
+  EXPECT_NE(middle[9], 0.0);
+  EXPECT_NE(last[9], 0.0);
+  EXPECT_GT(std::abs(last[10] - middle[10]), 1e-3 * std::abs(last[10]));
+  EXPECT_GT(middle[12], 0.0);  // a constant inflow: q A t
+  EXPECT_NEAR(last[12], 1e-4 * 8 * kDx * 1e-3 * 40e-6, 1e-9 * last[12]);
+  const auto energy = read_csv_rows(directory_of("drained_reference") + "/" + run_layout::energy);
+  EXPECT_LT(std::abs(energy.back()[11]), 1e-12);
 }
 
 TEST(CheckpointRestart, ViscoplasticRunContinuesBitForBit) {

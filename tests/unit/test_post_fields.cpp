@@ -102,6 +102,26 @@ TEST_F(PostLoadCurve, IncompleteLastLineIsDroppedBadRowIsAnError) {
   EXPECT_THROW(read_load_table("/nonexistent/load.csv"), mppm::InputError);
 }
 
+// The pore fluid's boundaries have volume columns in load.csv (NAME_outflow_m3_per_s, NAME_outflow_m3,
+// NAME_inflow_m3_per_s, NAME_inflow_m3; docs/stages.md): they are no load curves, and the load
+// curves of the other boundaries are those of a table without them.
+TEST_F(PostLoadCurve, FluidBoundaryColumnsAreNotLoadCurves) {
+  const auto path = write("fluid",
+                          "time_s,top_ux_m,top_uy_m,top_Fx_N,top_Fy_N,top_pore_pressure_outflow_m3_per_s,"
+                          "top_pore_pressure_outflow_m3,left_fluid_flux_inflow_m3_per_s,left_fluid_flux_inflow_m3\n"
+                          "0,0,0,0,0,0,0,0,0\n"
+                          "1,0,-1e-5,0,-100,2e-9,2e-9,1e-9,1e-9\n"
+                          "2,0,-2e-5,0,-100,1e-9,3e-9,1e-9,2e-9\n");
+  const auto curve = make_load_curve(read_load_table(path));
+  ASSERT_EQ(curve.boundaries.size(), 1u);
+  EXPECT_EQ(curve.boundaries[0].name, "top");
+  EXPECT_EQ(curve.boundaries[0].axis, 1);
+  EXPECT_EQ(curve.force[0][1], -100.0);
+  const std::string csv = load_curve_csv(curve);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time_s,top_uy_m,top_Fy_N");
+  EXPECT_EQ(find_peak_load(curve, {}).boundary, "top");
+}
+
 TEST(PostResolvedBlocks, QuantitiesBecomeSINumbersAnglesDegrees) {
   const YAML::Node node = YAML::Load(
       "{density: 2650, lambda: 14000000000, friction_angle: 35 deg, cohesion: 0.35 MPa, model: "

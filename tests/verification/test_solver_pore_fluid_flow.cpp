@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "solver/explicit_dynamics.hpp"
 #include "solver/pore_fluid.hpp"
@@ -111,7 +112,7 @@ TEST(SolverPoreFluidFlow, StableJustBelowTheLimitAndGrowingJustAbove) {
 // A sealed, free 2-D block with a bump of fluid in its middle: the fluid spreads, the skeleton
 // swells and vibrates. No fluid crosses a face, so sum V zeta is kept to round-off; and the energy
 // balance (kinetic + stored + the fluid's stored energy + the flow's dissipation) closes up to the
-// fractional step's splitting error, which is first order: it halves with the time step.
+// fractional step's splitting error, which is second order: it falls fourfold when the step halves.
 struct BumpRun {
   double worst_balance = 0.0;
   double volume_change = 0.0;  // relative
@@ -151,13 +152,16 @@ TEST(SolverPoreFluidFlow, CoupledRunKeepsItsFluidAndClosesItsEnergy) {
   // 400 updates of sums of ~200 terms, each rounded at 1e-16 of the pore volume.
   EXPECT_LT(std::abs(coarse.volume_change), 1e-13);
   EXPECT_LT(std::abs(fine.volume_change), 1e-13);
-  RecordProperty("worst_balance_error_2e-8", std::to_string(coarse.worst_balance));
-  RecordProperty("worst_balance_error_1e-8", std::to_string(fine.worst_balance));
-  // Measured 1.0e-3 and 5.4e-4: first order in dt (a splitting error, not a missing term, which
-  // would not shrink with the step).
-  EXPECT_LT(coarse.worst_balance, 2e-3);
-  EXPECT_GT(fine.worst_balance / coarse.worst_balance, 0.4);
-  EXPECT_LT(fine.worst_balance / coarse.worst_balance, 0.65);
+  std::ostringstream measured;
+  measured << coarse.worst_balance << " " << fine.worst_balance;
+  RecordProperty("worst_balance_error_2e-8_1e-8", measured.str());
+  // Measured 1.2e-5 and 3.0e-6: second order in dt, the splitting error of the fractional step
+  // with the forces refreshed after the flow (docs/theory.md section 12; not a missing term, which
+  // would not shrink with the step). With the kick using the forces of before the flow it was first
+  // order, 1.0e-3 and 5.4e-4.
+  EXPECT_LT(coarse.worst_balance, 5e-5);
+  EXPECT_GT(fine.worst_balance / coarse.worst_balance, 0.2);
+  EXPECT_LT(fine.worst_balance / coarse.worst_balance, 0.32);
 }
 
 }  // namespace
