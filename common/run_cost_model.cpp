@@ -34,6 +34,9 @@ constexpr double kEfficiencyPerDoubling = 0.95;
 // reading the points and writing the reference, about 2 us per point (3-D block: 52 s of start-up).
 constexpr double kStartUpEvaluations = 90.0;
 constexpr double kStartUpSecondsPerPoint = 2e-6;
+// What every run costs whatever its size: loading the libraries, the run directory's files and
+// their fsyncs (the quickstart plate: 0.21 s for 0.11 s of the terms above).
+constexpr double kFixedSeconds = 0.1;
 // A snapshot: each value computed (a stress or damage is a small loop per point), checksummed and
 // written: about 10 ns per value (the crack-branching case writes 665 MB of snapshots in a run
 // whose loop alone takes 15 s of its 24 s).
@@ -63,7 +66,7 @@ RunCostEstimate estimate_run_cost(const RunCostInput& in) {
       kSnapshotSecondsPerValue * static_cast<double>(in.points) * static_cast<double>(in.snapshot_values_per_point);
   e.loop_seconds = static_cast<double>(std::max<std::int64_t>(0, in.steps)) * e.seconds_per_step +
                    static_cast<double>(std::max<std::int64_t>(0, in.snapshots)) * e.snapshot_seconds;
-  e.start_up_seconds = kStartUpEvaluations * bonds * elastic / e.thread_speed_up +
+  e.start_up_seconds = kFixedSeconds + kStartUpEvaluations * bonds * elastic / e.thread_speed_up +
                        kStartUpSecondsPerPoint * static_cast<double>(in.points);
   e.total_seconds = e.start_up_seconds + e.loop_seconds;
   return e;

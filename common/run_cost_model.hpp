@@ -25,7 +25,7 @@ struct RunCostEstimate {
   double seconds_per_bond_update = 0.0;  // one thread
   double thread_speed_up = 1.0;          // of `threads` over one
   double seconds_per_step = 0.0;
-  double start_up_seconds = 0.0;  // reading, families, critical step, first snapshot
+  double start_up_seconds = 0.0;  // loading, reading, families, critical step, first snapshot
   double snapshot_seconds = 0.0;  // of one snapshot (its fields computed, checksummed and written)
   double loop_seconds = 0.0;      // the steps and the snapshots
   double total_seconds = 0.0;
