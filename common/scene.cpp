@@ -67,7 +67,8 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
       "cone_match", "region"}},
     {"material.viscoplasticity.region", kRegionKeys},
     {"material.pore_fluid",
-     {"permeability", "fluid_viscosity", "fluid_density", "biot_coefficient", "biot_modulus", "initial_pressure"}},
+     {"permeability", "fluid_viscosity", "fluid_density", "biot_coefficient", "biot_modulus", "initial_pressure",
+      "free_surface"}},
     {"boundary_conditions[]",
      {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation", "rotation_rate",
       "rotation_history", "depth"}},
@@ -698,8 +699,7 @@ class SceneReader {
   }
 
   // The saturated pore fluid (docs/theory.md section 12). What is not built yet, the unsaturated
-  // model (`retention`) and a hydrostatic initial pressure, is refused by name: ignoring it would
-  // run another model than the one asked for.
+  // model (`retention`), is refused by name: ignoring it would run another model than the one asked for.
   void read_pore_fluid(const YAML::Node& m) {
     const YAML::Node node = m["pore_fluid"];
     const std::string p = "material.pore_fluid";
@@ -727,7 +727,7 @@ class SceneReader {
     fluid.biot_modulus =
         quantity(require(node, p, "biot_modulus", "M, e.g. 2 GPa"), p + ".biot_modulus", dim::pressure);
     positive(node["biot_modulus"], p + ".biot_modulus", fluid.biot_modulus);
-    fluid.initial_pressure = read_initial_pressure(node["initial_pressure"], p + ".initial_pressure");
+    read_initial_pressure(node, p, fluid);
     scene_.material.pore_fluid = fluid;
   }
 
@@ -741,13 +741,23 @@ class SceneReader {
              "material.solid_fraction = " + format_number(porosity) + ")");
   }
 
-  // A constant pressure (compression positive); 0 Pa unless given.
-  double read_initial_pressure(const YAML::Node& node, const std::string& path) {
-    if (!node.IsDefined() || node.IsNull()) return 0.0;
-    if (node.IsScalar() && node.Scalar() == "hydrostatic") {
-      fail(node, path, "a hydrostatic initial pressure is not supported yet (expected a constant pressure, e.g. 0 Pa)");
+  // A constant pressure (compression positive; 0 Pa unless given), or `hydrostatic` under gravity
+  // below the level `free_surface` (the fluid at rest: docs/theory.md section 12).
+  void read_initial_pressure(const YAML::Node& block, const std::string& p, PoreFluidParameters& fluid) {
+    const YAML::Node node = block["initial_pressure"];
+    const YAML::Node surface = block["free_surface"];
+    const std::string path = p + ".initial_pressure";
+    if (node.IsDefined() && node.IsScalar() && node.Scalar() == "hydrostatic") {
+      if (!scene_.effects.gravity)
+        fail(node, path, "hydrostatic needs the effect 'gravity' (the fluid's weight sets the pressure)");
+      fluid.free_surface = quantity(require(block, p, "free_surface", "the level of the water table, e.g. 1 m"),
+                                    p + ".free_surface", dim::length);
+      return;
     }
-    return quantity(node, path, dim::pressure);  // finite: the quantity parser refuses inf and nan
+    if (surface.IsDefined())
+      fail(surface, p + ".free_surface", "goes with initial_pressure: hydrostatic (the constant pressure has none)");
+    if (!node.IsDefined() || node.IsNull()) return;
+    fluid.initial_pressure = quantity(node, path, dim::pressure);  // finite: the quantity parser refuses inf and nan
   }
 
   void read_gravity(const YAML::Node& root) {

@@ -165,7 +165,10 @@ struct PoreFluidParameters {
   double fluid_density = 0.0;     // rho_f [kg/m^3]
   double biot_coefficient = 1.0;  // b, in (porosity, 1]
   double biot_modulus = 0.0;      // M [Pa]
-  double initial_pressure = 0.0;  // p at t = 0 [Pa], compression positive
+  double initial_pressure = 0.0;  // p at t = 0 [Pa], compression positive (constant)
+  // initial_pressure: hydrostatic: the level of the free surface (water table) along the up
+  // direction -g [m]; p = rho_f |g| (free_surface - up . x) at t = 0. Empty: the constant pressure.
+  std::optional<double> free_surface;
 
   double mobility() const { return permeability / fluid_viscosity; }  // k' = k / mu_f [m^2/(Pa s)]
 };

@@ -122,7 +122,12 @@ void emit_pore_fluid(YAML::Emitter& out, const PoreFluidParameters& fluid) {
   out << YAML::Key << "fluid_density" << YAML::Value << Num{fluid.fluid_density};
   out << YAML::Key << "biot_coefficient" << YAML::Value << Num{fluid.biot_coefficient};
   out << YAML::Key << "biot_modulus" << YAML::Value << Num{fluid.biot_modulus};
-  out << YAML::Key << "initial_pressure" << YAML::Value << Num{fluid.initial_pressure};
+  if (fluid.free_surface) {
+    out << YAML::Key << "initial_pressure" << YAML::Value << "hydrostatic";
+    out << YAML::Key << "free_surface" << YAML::Value << Num{*fluid.free_surface};
+  } else {
+    out << YAML::Key << "initial_pressure" << YAML::Value << Num{fluid.initial_pressure};
+  }
   out << YAML::EndMap;
 }
 

@@ -103,6 +103,7 @@ ModelOptions model_options(const Scene& scene) {
   if (scene.effects.pore_fluid && scene.material.pore_fluid) {
     mo.fluid = fluid_constants(scene);
     mo.initial_pressure = scene.material.pore_fluid->initial_pressure;
+    mo.free_surface = scene.material.pore_fluid->free_surface;
   }
   return mo;
 }
@@ -160,7 +161,7 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   if (o.effects.pore_fluid) {
     if (!o.fluid) throw std::logic_error("build_model: the pore_fluid effect needs ModelOptions::fluid");
     m.fluid = o.fluid;
-    start_fluid(m.points, *o.fluid, o.initial_pressure);
+    start_fluid(m.points, *o.fluid, o.initial_pressure, o.free_surface);
     m.drains = make_drain_bonds(m.points, m.bonds, o.fluid_boundaries, std::move(inert_drains));
     for (const DrainedPoints& layer : o.fluid_boundaries.drained)
       if (layer.inert)

@@ -36,6 +36,7 @@ struct ModelOptions {
   // Required with the pore_fluid effect (fluid_constants of the scene), and the pressure at t = 0.
   std::optional<FluidConstants> fluid;
   double initial_pressure = 0.0;
+  std::optional<double> free_surface;  // hydrostatic start (PoreFluidParameters::free_surface)
   // Pore fluid: the drained layers and the fluid's own boundary ids (BoundaryConditions::fluid_layout);
   // empty: every face impermeable.
   FluidBoundaryLayout fluid_boundaries;

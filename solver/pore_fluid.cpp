@@ -152,11 +152,21 @@ FluidConstants fluid_constants(const Scene& scene) {
   return fl;
 }
 
-void start_fluid(PointData& p, const FluidConstants& fl, double initial_pressure) {
+void start_fluid(PointData& p, const FluidConstants& fl, double initial_pressure, std::optional<double> free_surface) {
+  const int D = p.dimension;
+  const double g =
+      std::sqrt(fl.gravity[0] * fl.gravity[0] + fl.gravity[1] * fl.gravity[1] + fl.gravity[2] * fl.gravity[2]);
   for (std::size_t i = 0; i < p.total(); ++i) {
     const bool body = carries_fluid(p, i);
-    p.pore_pressure[i] = body ? initial_pressure : 0.0;
-    p.fluid_content_change[i] = body ? initial_pressure / fl.biot_modulus : 0.0;
+    double p0 = initial_pressure;
+    if (free_surface && g > 0.0) {
+      // rho_f |g| (H - up . x) = rho_f (|g| H + g . x): the potential p - rho_f g . x is rho_f |g| H.
+      double gx = 0.0;
+      for (int a = 0; a < D; ++a) gx += fl.gravity[a] * p.position[i * D + a];
+      p0 = fl.fluid_density * (g * *free_surface + gx);
+    }
+    p.pore_pressure[i] = body ? p0 : 0.0;
+    p.fluid_content_change[i] = body ? p0 / fl.biot_modulus : 0.0;
     p.fluid_rate[i] = 0.0;
   }
 }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "common/scene.hpp"
@@ -35,8 +36,11 @@ double lattice_micro_conductivity(int dimension, double spacing, double horizon,
 FluidConstants fluid_constants(const Scene& scene);
 
 // Sets every body point's fluid content to the initial pressure's at zero strain,
-// zeta - n0 = p0 / M, and its pressure to p0 (fictitious layer points: none, p = 0).
-void start_fluid(PointData& points, const FluidConstants& fluid, double initial_pressure);
+// zeta - n0 = p0 / M, and its pressure to p0 (fictitious layer points: none, p = 0): the constant
+// initial_pressure, or with a free surface the hydrostatic p0 = rho_f |g| (free_surface - up . x),
+// up = -g / |g|, at which the potential p - rho_f g . x is the same everywhere (no flow).
+void start_fluid(PointData& points, const FluidConstants& fluid, double initial_pressure,
+                 std::optional<double> free_surface = std::nullopt);
 
 // The fluid-content rate of every body point from the pressures of the last force evaluation,
 // Phi_i = sum_j kappa0 (psi_j - psi_i) / |xi| V_j over the acting bonds to body points, with the

@@ -166,10 +166,12 @@ TEST(ScenePoreFluid, MissingAndUnknownKeysAreNamed) {
     EXPECT_EQ(e.rfind(kPath + ":15: " + kBlock + "." + key + ": missing required key (", 0), 0u) << key << ": " << e;
   }
   auto e = error_of(replace(kScene, "    permeability:", "    permeabilty:"));
-  EXPECT_EQ(e, kPath +
-                   ":15: material.pore_fluid.permeabilty: unknown key (expected one of: permeability, "
-                   "fluid_viscosity, fluid_density, biot_coefficient, biot_modulus, initial_pressure); did you mean "
-                   "'permeability'?");
+  EXPECT_EQ(e,
+            kPath +
+                ":15: material.pore_fluid.permeabilty: unknown key (expected one of: permeability, "
+                "fluid_viscosity, fluid_density, biot_coefficient, biot_modulus, initial_pressure, free_surface); did "
+                "you mean "
+                "'permeability'?");
   e = error_of(kScene, {"material.pore_fluid=water"});
   EXPECT_NE(e.find("material.pore_fluid: expected a map of keys (permeability, "), std::string::npos) << e;
   // The effect without its block.
@@ -186,9 +188,10 @@ TEST(ScenePoreFluid, MissingAndUnknownKeysAreNamed) {
       << e;
 }
 
-// The unsaturated model and a hydrostatic start are not built: a scene asking for them must not
-// run as saturated or at p = 0 without saying so.
-TEST(ScenePoreFluid, UnsaturatedAndHydrostaticAreRefusedNotIgnored) {
+// The unsaturated model is not built: a scene asking for it must not run as saturated without
+// saying so. A hydrostatic start needs gravity and the free surface's level, and the level goes
+// with it only.
+TEST(ScenePoreFluid, UnsaturatedIsRefusedAndHydrostaticNeedsGravityAndItsLevel) {
   auto e = error_of(replace(kScene, "    initial_pressure: -10 kPa\n",
                             "    initial_pressure: -10 kPa\n"
                             "    retention: {model: van_genuchten, air_entry_pressure: 10 kPa, n: 2}\n"));
@@ -197,8 +200,21 @@ TEST(ScenePoreFluid, UnsaturatedAndHydrostaticAreRefusedNotIgnored) {
                    "retention: without it the pores are taken as saturated)");
   e = error_of(replace(kScene, "initial_pressure: -10 kPa", "initial_pressure: hydrostatic"));
   EXPECT_EQ(e, kPath +
-                   ":20: material.pore_fluid.initial_pressure: a hydrostatic initial pressure is not supported yet "
-                   "(expected a constant pressure, e.g. 0 Pa)");
+                   ":20: material.pore_fluid.initial_pressure: hydrostatic needs the effect 'gravity' (the fluid's "
+                   "weight sets the pressure)");
+  const std::string wet = replace(kScene, "effects: [pore_fluid]", "effects: [pore_fluid, gravity]");
+  e = error_of(replace(wet, "initial_pressure: -10 kPa", "initial_pressure: hydrostatic"));
+  EXPECT_NE(e.find("material.pore_fluid.free_surface: missing required key"), std::string::npos) << e;
+  e = error_of(replace(wet, "initial_pressure: -10 kPa", "initial_pressure: -10 kPa\n    free_surface: 1 m"));
+  EXPECT_NE(e.find("material.pore_fluid.free_surface: goes with initial_pressure: hydrostatic"), std::string::npos)
+      << e;
+  const Scene s = parse_scene(
+      replace(wet, "initial_pressure: -10 kPa", "initial_pressure: hydrostatic\n    free_surface: 80 cm"), kPath);
+  ASSERT_TRUE(s.material.pore_fluid->free_surface.has_value());
+  EXPECT_DOUBLE_EQ(*s.material.pore_fluid->free_surface, 0.8);
+  // The resolved scene writes it back.
+  const Scene back = parse_scene(resolved_scene_yaml(s), "/elsewhere/scene.resolved.yaml");
+  EXPECT_EQ(back.material.pore_fluid->free_surface, s.material.pore_fluid->free_surface);
 }
 
 TEST(ScenePoreFluid, BlockIsIgnoredWithAWarningWhileTheEffectIsOff) {

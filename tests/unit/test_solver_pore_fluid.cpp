@@ -139,6 +139,37 @@ TEST(SolverPoreFluid, FlowConservesTheFluidAndDissipatesItsEnergy) {
   EXPECT_NEAR(fluid_volume(m.points, *m.fluid), volume0, 1e-13 * volume0);
 }
 
+// A hydrostatic start (docs/theory.md section 12) is the fluid at rest: its potential p - rho_f g . x
+// is the same at every point, so no point has a rate (to round-off of p), near the faces too.
+TEST(SolverPoreFluid, HydrostaticStartHasNoFlow) {
+  Scene scene = fluid_scene(2, false, 3.05);
+  scene.effects.gravity = true;
+  scene.gravity = {0.0, -9.81, 0.0};
+  const double level = 0.02;  // above the 9 mm block: p > 0 everywhere
+  scene.material.pore_fluid->free_surface = level;
+  Model m = make_model(make_lattice(2, {12, 9, 1}, kDx, scene.thickness), scene);
+  double largest_p = 0.0, conductance = 0.0;
+  for (std::size_t i = 0; i < m.points.owned; ++i) {
+    const double y = m.points.position[2 * i + 1];
+    EXPECT_NEAR(m.points.pore_pressure[i], 1000.0 * 9.81 * (level - y), 1e-9);
+    largest_p = std::max(largest_p, m.points.pore_pressure[i]);
+  }
+  for (std::int64_t b = m.bonds.offset[0]; b < m.bonds.offset[1]; ++b) conductance += 1e-9 / kDx;  // V / |xi| <= this
+  fluid_rates(m.points, m.bonds, *m.fluid);
+  // Sums of ~30 potential differences, each the difference of two ~200 Pa values rounded at 1e-16.
+  for (std::size_t i = 0; i < m.points.owned; ++i)
+    EXPECT_LT(std::abs(m.points.fluid_rate[i]), 1e-13 * m.fluid->micro_conductivity * conductance * largest_p) << i;
+  // A constant start of the same mean pressure is not at rest: the check can fail.
+  Scene constant = scene;
+  constant.material.pore_fluid->free_surface.reset();
+  constant.material.pore_fluid->initial_pressure = largest_p;
+  Model c = make_model(make_lattice(2, {12, 9, 1}, kDx, scene.thickness), constant);
+  fluid_rates(c.points, c.bonds, *c.fluid);
+  double moving = 0.0;
+  for (double r : c.points.fluid_rate) moving = std::max(moving, std::abs(r));
+  EXPECT_GT(moving, 1e-6 * m.fluid->micro_conductivity * conductance * largest_p);
+}
+
 // A detached point (every bond broken, as damage leaves it) keeps its fluid through the flow updates,
 // its pressure relaxes to that of its own fluid at no strain, and the update books nothing for it:
 // it stores no energy (the energy rows leave it out).
