@@ -11,6 +11,7 @@
 
 #include "solver/ordered_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
+#include "solver/pressure_change_forces.hpp"
 
 namespace mppm::solver {
 
@@ -174,9 +175,9 @@ void ExplicitDynamics::evaluate_energy() {
   }
 }
 
-bool ExplicitDynamics::advance_flow() {
-  if (!model_.fluid) return false;
-  if (flow_.substeps <= 1 && steps_ % flow_.interval != 0) return false;
+bool ExplicitDynamics::flow_due() const { return model_.fluid && (flow_.substeps > 1 || steps_ % flow_.interval == 0); }
+
+void ExplicitDynamics::advance_flow() {
   if (!has_fluid_boundaries()) {  // every face impermeable
     if (flow_.substeps > 1) {
       const double sub = dt_ / static_cast<double>(flow_.substeps);
@@ -186,7 +187,7 @@ bool ExplicitDynamics::advance_flow() {
       energy_.flow_dissipation +=
           flow_update(model_.points, model_.bonds, *model_.fluid, dt_ * static_cast<double>(flow_.interval));
     }
-    return true;
+    return;
   }
   // The boundaries at the step's end, the time of the state the updates start from.
   conditions_.prescribe_pore_pressure(model_.points, time_);
@@ -202,7 +203,6 @@ bool ExplicitDynamics::advance_flow() {
   const double span = h * static_cast<double>(updates);
   for (std::size_t c = 0; c < boundary_volume_.size(); ++c)
     boundary_rate_[c] = (boundary_volume_[c] - boundary_volume_start_[c]) / span;
-  return true;
 }
 
 void ExplicitDynamics::flow_update_with_boundaries(double h) {
@@ -302,8 +302,13 @@ void ExplicitDynamics::complete_step(bool with_energy) {
   // The flow at the skeleton's new configuration, before the energies of the step's end
   // (docs/theory.md section 12: the fractional step), and the forces again at the fluid content it
   // left: the next step's first half kick must see that pressure (a kick with the forces of before
-  // the flow can pump energy into the fastest modes of the skeleton).
-  if (advance_flow()) model_.compute_internal_forces(false);
+  // the flow can pump energy into the fastest modes of the skeleton). The forces are linear in the
+  // pressure: corrected by its change (solver/pressure_change_forces.hpp), not evaluated again.
+  if (flow_due()) {
+    pressure_before_flow_ = model_.points.pore_pressure;  // (the vector keeps its capacity)
+    advance_flow();
+    add_pressure_change_forces(model_.points, model_.bonds, model_.constants, pressure_before_flow_);
+  }
   if (with_energy) evaluate_energy();
 }
 

@@ -170,10 +170,11 @@ class ExplicitDynamics {
   int second_half_kick_untracked(const StepConstants& sc, double damp_factor, std::size_t i);
   int second_half_kick_tracked(const StepConstants& sc, double damp_factor, std::size_t i, std::size_t t);
   void book_step_energy(const BreakageEnergy& breakage);
-  // Pore fluid: the flow updates due after step steps_ (flow_), their dissipation booked, the
-  // drained layers' pressure prescribed first and the volumes through the fluid boundaries booked.
-  // True when updates ran.
-  bool advance_flow();
+  // Pore fluid: whether flow updates are due after step steps_ (flow_), and those updates, their
+  // dissipation booked, the drained layers' pressure prescribed first and the volumes through the
+  // fluid boundaries booked.
+  bool flow_due() const;
+  void advance_flow();
   // One flow update of length h with the fluid boundaries at time_; the volumes through them added
   // to boundary_volume_.
   void flow_update_with_boundaries(double h);
@@ -227,6 +228,7 @@ class ExplicitDynamics {
   // the boundaries of the flow updates (its source list reused from update to update).
   std::vector<double> boundary_volume_, boundary_rate_, boundary_volume_start_;
   FlowBoundaries flow_boundaries_;
+  std::vector<double> pressure_before_flow_;  // the pressures a batch of flow updates starts from
 };
 
 }  // namespace mppm::solver

@@ -13,6 +13,7 @@
 #include "solver/critical_time_step.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/pore_fluid.hpp"
+#include "solver/pressure_change_forces.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 
 namespace mppm::solver {
@@ -137,6 +138,55 @@ TEST(SolverPoreFluid, FlowConservesTheFluidAndDissipatesItsEnergy) {
   }
   // 200 updates of sums of ~100 terms of size V zeta: round-off ~1e-16 each, relative.
   EXPECT_NEAR(fluid_volume(m.points, *m.fluid), volume0, 1e-13 * volume0);
+}
+
+// After a batch of flow updates the forces are corrected by the pressure change alone
+// (solver/pressure_change_forces.hpp): the same forces, moments and force tensors as a whole force
+// evaluation at the new fluid content, to round-off (1e-10 of the largest: sums of a few hundred
+// terms in another order), near the faces and with a broken bond too.
+void check_pressure_change_forces(int dimension, std::array<int, 3> n, double horizon_factor) {
+  Scene scene = fluid_scene(dimension, true, horizon_factor);
+  scene.effects.damage = true;
+  scene.material.damage = DamageParameters{};
+  Model m = make_model(make_lattice(dimension, n, kDx, scene.thickness), scene);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> g(-1.0, 1.0);
+  for (auto& u : m.points.displacement) u = 1e-4 * kDx * g(rng);
+  for (auto& w : m.points.rotation) w = 1e-4 * g(rng);
+  for (auto& z : m.points.fluid_content_change) z = 1e-5 * g(rng);
+  const std::size_t k = 7;  // a bond broken at point 7
+  m.bonds.break_bond(mirror_bond(m.bonds, k, static_cast<std::size_t>(m.bonds.neighbor[m.bonds.offset[k]])));
+  m.bonds.break_bond(m.bonds.offset[k]);
+  m.compute_internal_forces(false);
+  const std::vector<double> before = m.points.pore_pressure;
+  flow_update(m.points, m.bonds, *m.fluid, 0.5 * fluid_step_limit(m.points, m.bonds, *m.fluid));
+  add_pressure_change_forces(m.points, m.bonds, m.constants, before);
+  const PointData corrected = m.points;
+  m.compute_internal_forces(false);
+  auto expect_close = [&](const std::vector<double>& a, const std::vector<double>& b, const char* what) {
+    double scale = 0.0, worst = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      scale = std::max(scale, std::abs(b[i]));
+      worst = std::max(worst, std::abs(a[i] - b[i]));
+    }
+    EXPECT_LT(worst, 1e-10 * scale) << dimension << "-D " << what;
+  };
+  expect_close(corrected.force, m.points.force, "force");
+  expect_close(corrected.moment, m.points.moment, "moment");
+  expect_close(corrected.force_tensor, m.points.force_tensor, "force tensor");
+  // The check can fail: the pressure change moved the forces by far more than that.
+  double moved = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i)
+    moved = std::max(moved, std::abs(m.points.pore_pressure[i] - before[i]));
+  for (double p : before) scale = std::max(scale, std::abs(p));
+  EXPECT_GT(moved, 1e-3 * scale);
+}
+
+TEST(SolverPoreFluid, PressureChangeCorrectsTheForcesAsAnEvaluation2D) {
+  check_pressure_change_forces(2, {10, 8, 1}, 3.05);
+}
+TEST(SolverPoreFluid, PressureChangeCorrectsTheForcesAsAnEvaluation3D) {
+  check_pressure_change_forces(3, {6, 5, 5}, 2.05);
 }
 
 // A hydrostatic start (docs/theory.md section 12) is the fluid at rest: its potential p - rho_f g . x
