@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/lattice_offsets.hpp"
 #include "common/snapshot_file.hpp"
 
 namespace mppm {
@@ -42,15 +43,7 @@ std::uint64_t snapshot_field_components(const std::string& name, std::uint64_t D
 
 std::uint64_t estimated_bond_entries(std::uint64_t points, double horizon_factor, int dimension) {
   if (!(horizon_factor > 0) || horizon_factor > 50) return 0;
-  const double r2 = horizon_factor * horizon_factor * (1 + 1e-9);
-  const int m = static_cast<int>(std::floor(horizon_factor));
-  std::uint64_t family = 0;
-  const int k_range = dimension == 3 ? m : 0;
-  for (int i = -m; i <= m; ++i)
-    for (int j = -m; j <= m; ++j)
-      for (int k = -k_range; k <= k_range; ++k)
-        if ((i || j || k) && double(i * i + j * j + k * k) <= r2) ++family;
-  return points * family;
+  return points * static_cast<std::uint64_t>(family_offset_count(dimension, horizon_factor));
 }
 
 MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/lattice_offsets.hpp"
 #include "common/memory_estimate.hpp"
 #include "common/progress.hpp"  // format_bytes
 #include "preprocess/boundary_layers.hpp"
@@ -413,15 +414,7 @@ PreprocessResult preprocess(const Scene& scene, const PreprocessOptions& options
 }
 
 std::int64_t lattice_neighbour_count(int dimension, double horizon_factor) {
-  const auto reach = static_cast<std::int64_t>(std::floor(horizon_factor + 1e-9));
-  const double limit = (horizon_factor + 1e-9) * (horizon_factor + 1e-9);
-  std::int64_t count = 0;
-  const std::int64_t kz = dimension == 3 ? reach : 0;
-  for (std::int64_t k = -kz; k <= kz; ++k)
-    for (std::int64_t j = -reach; j <= reach; ++j)
-      for (std::int64_t i = -reach; i <= reach; ++i)
-        if ((i || j || k) && static_cast<double>(i * i + j * j + k * k) <= limit) ++count;
-  return count;
+  return family_offset_count(dimension, horizon_factor);
 }
 
 std::string format_report(const Scene& scene, const PreprocessResult& result, const std::string& output_path) {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/lattice_offsets.hpp"
 #include "solver/bond_kinematics.hpp"
 #include "solver/damage_calibration.hpp"
 #include "solver/parallel_policy.hpp"
@@ -32,13 +33,10 @@ double lattice_crossing_sum(int dimension, double horizon_factor) {
   // A plane between two lattice rows is crossed, per lattice cell of it, by b bonds of every
   // lattice offset (a, b[, c]) with b > 0 within the horizon (the same reach as the families:
   // |xi| <= delta + 1e-9 dx).
-  const double reach = horizon_factor + 1e-9;
-  const int n = static_cast<int>(std::floor(reach));
   double sum = 0.0;
-  for (int a = -n; a <= n; ++a)
-    for (int b = 1; b <= n; ++b)
-      for (int c = dimension == 3 ? -n : 0; c <= (dimension == 3 ? n : 0); ++c)
-        if (a * a + b * b + c * c <= reach * reach) sum += b;
+  for_each_family_offset(dimension, horizon_factor, [&](int, int b, int) {
+    if (b > 0) sum += b;
+  });
   return sum;
 }
 

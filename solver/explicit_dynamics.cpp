@@ -178,18 +178,8 @@ void ExplicitDynamics::evaluate_energy() {
 bool ExplicitDynamics::flow_due() const { return model_.fluid && (flow_.substeps > 1 || steps_ % flow_.interval == 0); }
 
 void ExplicitDynamics::advance_flow() {
-  if (!has_fluid_boundaries()) {  // every face impermeable
-    if (flow_.substeps > 1) {
-      const double sub = dt_ / static_cast<double>(flow_.substeps);
-      for (std::int64_t k = 0; k < flow_.substeps; ++k)
-        energy_.flow_dissipation += flow_update(model_.points, model_.bonds, *model_.fluid, sub);
-    } else {
-      energy_.flow_dissipation +=
-          flow_update(model_.points, model_.bonds, *model_.fluid, dt_ * static_cast<double>(flow_.interval));
-    }
-    return;
-  }
-  // The boundaries at the step's end, the time of the state the updates start from.
+  // The boundaries at the step's end, the time of the state the updates start from (without fluid
+  // boundaries their lists are empty: the plain flow).
   conditions_.prescribe_pore_pressure(model_.points, time_);
   flow_boundaries_.drains = &model_.drains;
   flow_boundaries_.sources.clear();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/lattice_offsets.hpp"
 #include "solver/ordered_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
 
@@ -123,18 +124,11 @@ double volumetric_strain(const PointData& p, std::size_t i) {
 }  // namespace
 
 double lattice_micro_conductivity(int dimension, double spacing, double horizon, double thickness, double mobility) {
-  const double reach = horizon + 1e-9 * spacing;
-  const int m = static_cast<int>(std::floor(reach / spacing));
   const double cell = dimension == 3 ? spacing * spacing * spacing : spacing * spacing * thickness;
   double sum = 0.0;
-  const int mz = dimension == 3 ? m : 0;
-  for (int z = -mz; z <= mz; ++z)
-    for (int y = -m; y <= m; ++y)
-      for (int x = -m; x <= m; ++x) {
-        if (x == 0 && y == 0 && z == 0) continue;
-        const double r = spacing * std::sqrt(static_cast<double>(x * x + y * y + z * z));
-        if (r <= reach) sum += r * cell;
-      }
+  for_each_family_offset(dimension, horizon / spacing, [&](int x, int y, int z) {
+    sum += spacing * std::sqrt(static_cast<double>(x * x + y * y + z * z)) * cell;
+  });
   return 2.0 * dimension * mobility / sum;
 }
 

@@ -107,9 +107,12 @@ std::string format_run_estimate(const Scene& scene, const RunEstimate& e) {
     << (effects.empty() ? "none" : effects) << ", " << e.threads << " thread" << (e.threads > 1 ? "s" : "") << "):\n";
   s << "  points       " << e.points << "\n";
   s << "  bonds        " << e.bonds << (e.bonds_counted ? "" : " (lattice estimate)") << " (stored from both ends)\n";
-  s << "  time step    " << e.time_step << " s ("
-    << (e.step_given ? "given" : "auto: safety " + std::to_string(scene.time.safety).substr(0, 4)) << "; critical "
-    << e.critical_step << " s of a sample block)\n";
+  s << "  time step    " << e.time_step << " s (";
+  if (e.step_given)
+    s << "given";
+  else
+    s << "auto: safety " << scene.time.safety;
+  s << "; critical " << e.critical_step << " s of a sample block)\n";
   s << "  steps        " << e.steps << " to " << scene.time.end << " s\n";
   s << "  wall time    ~" << seconds_text(e.cost.total_seconds) << " (start-up ~"
     << seconds_text(e.cost.start_up_seconds) << ", " << e.steps << " steps x " << e.cost.seconds_per_step * 1e3
