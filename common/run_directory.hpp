@@ -30,10 +30,11 @@
 
 namespace mppm::run_files {
 
-// With the pore fluid, three more columns at the end: fluid_stored_J (V p^2 / (2 M)),
+// With the pore fluid, four more columns at the end: fluid_stored_J (V p^2 / (2 M)),
 // flow_dissipation_J (the stored fluid energy the flow removed so far, the energy the fluid carried
-// out through the boundaries included) and fluid_mass_balance ((fluid volume - initial + outflow -
-// inflow) / initial: round-off).
+// out through the boundaries included), fluid_mass_balance ((fluid volume - initial + outflow -
+// inflow) / initial: round-off) and flow_splitting_J (the scheme's kinetic energy the flow's force
+// corrections removed so far: the fractional step's O(dt^2) splitting term, in the balance).
 inline std::vector<std::string> energy_columns(bool pore_fluid = false) {
   std::vector<std::string> columns{"time_s",
                                    "kinetic_J",
@@ -44,7 +45,8 @@ inline std::vector<std::string> energy_columns(bool pore_fluid = false) {
                                    "fracture_dissipation_J",
                                    "external_work_J",
                                    "balance_error"};
-  if (pore_fluid) columns.insert(columns.end(), {"fluid_stored_J", "flow_dissipation_J", "fluid_mass_balance"});
+  if (pore_fluid)
+    columns.insert(columns.end(), {"fluid_stored_J", "flow_dissipation_J", "fluid_mass_balance", "flow_splitting_J"});
   return columns;
 }
 

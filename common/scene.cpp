@@ -76,7 +76,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
     {"output", {"interval", "load_interval", "fields", "checkpoint_interval"}},
     {"numerics",
      {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step", "detach_energy_rise",
-      "overload_factor", "damaged_frequency_ratio"}},
+      "overload_factor", "damaged_frequency_ratio", "flow_integration"}},
 };
 
 // "boundary_conditions[2]" -> "boundary_conditions[]"
@@ -1166,6 +1166,10 @@ class SceneReader {
       fail(n["damaged_frequency_ratio"], "numerics.damaged_frequency_ratio",
            format_number(num.damaged_frequency_ratio) +
                " must be >= 1 (omega_max^2 is at least the largest point block)");
+    }
+    if (n["flow_integration"].IsDefined()) {
+      num.flow_integration =
+          enum_value(n["flow_integration"], "numerics.flow_integration", kFlowIntegrationNames, "flow integration");
     }
   }
 };

@@ -131,8 +131,17 @@ constexpr const char* enum_name(const std::array<EnumName<E>, N>& table, E value
 }
 // Inline, so that libraries which only see the scene's types (solver/plasticity) need not link it.
 inline const char* to_string(DamageCalibration calibration) { return enum_name(kDamageCalibrationNames, calibration); }
+// How the pore fluid's flow is advanced when its stability limit is below the time step
+// (docs/theory.md section 12): auto takes the RKL2 super step when it needs fewer flow evaluations
+// than explicit substeps; explicit always subcycles.
+enum class FlowIntegration { automatic, explicit_substeps };
+inline constexpr std::array<EnumName<FlowIntegration>, 2> kFlowIntegrationNames{{
+    {FlowIntegration::automatic, "auto"},
+    {FlowIntegration::explicit_substeps, "explicit"},
+}};
 inline const char* to_string(ConeMatch match) { return enum_name(kConeMatchNames, match); }
 inline const char* to_string(CompressedBonds bonds) { return enum_name(kCompressedBondsNames, bonds); }
+inline const char* to_string(FlowIntegration f) { return enum_name(kFlowIntegrationNames, f); }
 
 struct DamageParameters {
   double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
@@ -227,6 +236,7 @@ struct Numerics {
   double overload_factor = 1.5;          // above this multiple of its family's breaking energy, any
                                          // rise detaches the point
   double damaged_frequency_ratio = 3.5;  // allowed omega_max^2 / largest point block of a damaged lattice
+  FlowIntegration flow_integration = FlowIntegration::automatic;  // pore fluid: solver/pore_fluid.cpp
 };
 
 struct Scene {

@@ -227,6 +227,7 @@ void emit_numerics(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "detach_energy_rise" << YAML::Value << Num{scene.numerics.detach_energy_rise};
   out << YAML::Key << "overload_factor" << YAML::Value << Num{scene.numerics.overload_factor};
   out << YAML::Key << "damaged_frequency_ratio" << YAML::Value << Num{scene.numerics.damaged_frequency_ratio};
+  out << YAML::Key << "flow_integration" << YAML::Value << to_string(scene.numerics.flow_integration);
   out << YAML::EndMap;
 }
 

@@ -78,13 +78,14 @@ std::vector<double> energy_values(const EnergyState& e) {
 
 // The fluid's items of the energy state (pore fluid runs only: the file of a dry run is unchanged).
 std::vector<double> fluid_energy_values(const EnergyState& e) {
-  return {e.fluid_stored, e.flow_dissipation, e.initial_fluid_volume, e.fluid_volume};
+  return {e.fluid_stored, e.flow_dissipation, e.initial_fluid_volume, e.fluid_volume, e.flow_splitting};
 }
 void restore_fluid_energy(const std::vector<double>& v, EnergyState& e) {
   e.fluid_stored = v[0];
   e.flow_dissipation = v[1];
   e.initial_fluid_volume = v[2];
   e.fluid_volume = v[3];
+  e.flow_splitting = v[4];
 }
 
 EnergyState energy_from(const std::vector<double>& v) {
@@ -247,7 +248,7 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
   carried.time = integrator[0];
   carried.initial_total = integrator[1];
   carried.energy = energy_from(energy);
-  if (model.effects.pore_fluid) restore_fluid_energy(scalars<double>(file, "fluid_energy", 4), carried.energy);
+  if (model.effects.pore_fluid) restore_fluid_energy(scalars<double>(file, "fluid_energy", 5), carried.energy);
   if (dynamics.has_fluid_boundaries())
     carried.fluid_boundary_flows =
         scalars<double>(file, kFluidBoundaries, dynamics.carried().fluid_boundary_flows.size());

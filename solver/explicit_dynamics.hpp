@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "solver/boundary_conditions.hpp"
+#include "solver/flow_super_step.hpp"
 #include "solver/model.hpp"
 #include "solver/pore_fluid.hpp"
 
@@ -33,6 +34,10 @@ struct EnergyState {
   // the fed ones).
   double fluid_stored = 0.0;
   double flow_dissipation = 0.0;
+  // The scheme's kinetic energy the flow updates removed so far by changing the accelerations at
+  // fixed velocities (the pressure change's force correction): the fractional step's splitting
+  // term, O(dt^2) (docs/theory.md section 12).
+  double flow_splitting = 0.0;
   double initial_fluid_volume = 0.0;
   double fluid_volume = 0.0;
   double fluid_net_outflow = 0.0;
@@ -44,7 +49,9 @@ struct EnergyState {
   // Kinetic + stored energy.
   double total() const { return kinetic + rotational_kinetic + elastic + stabilization + fluid_stored; }
   // What the balance accounts for: total plus the energy already dissipated.
-  double accounted() const { return total() + plastic_dissipation + fracture_dissipation + flow_dissipation; }
+  double accounted() const {
+    return total() + plastic_dissipation + fracture_dissipation + flow_dissipation + flow_splitting;
+  }
   // (fluid volume now - at the start + net outflow) / the start's (the pore volume the fluid
   // filled): the fluid mass balance (pore fluid only), round-off.
   double fluid_mass_balance() const {
@@ -176,11 +183,15 @@ class ExplicitDynamics {
   bool flow_due() const;
   void advance_flow();
   // One flow update of length h with the fluid boundaries at time_; the volumes through them added
-  // to boundary_volume_.
+  // to boundary_volume_ (book_boundary_volumes: the drains' outflow and the sources' inflow over h).
   void flow_update_with_boundaries(double h);
+  void book_boundary_volumes(double h);
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
+  // The scheme's translational and rotational kinetic energies and the size of their terms
+  // (evaluate_energy), summed in chunks fixed by the point count.
+  std::array<double, 3> kinetic_sums() const;
   // Chooses the tracked points and sizes the per-tracked-point arrays.
   void lay_out_tracked_points();
   std::size_t tracked_count() const;
@@ -229,6 +240,7 @@ class ExplicitDynamics {
   std::vector<double> boundary_volume_, boundary_rate_, boundary_volume_start_;
   FlowBoundaries flow_boundaries_;
   std::vector<double> pressure_before_flow_;  // the pressures a batch of flow updates starts from
+  FlowSuperStepWork super_step_work_;         // the RKL2 super step's arrays (FlowSchedule::stages > 1)
 };
 
 }  // namespace mppm::solver

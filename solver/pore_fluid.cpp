@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "common/lattice_offsets.hpp"
+#include "solver/flow_super_step.hpp"
 #include "solver/ordered_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
 
@@ -106,14 +107,6 @@ void add_sources(PointData& p, const std::vector<FluidSource>& sources) {
     for (const std::int32_t i : *s.points) p.fluid_rate[static_cast<std::size_t>(i)] += s.rate;
 }
 
-// The volume each drained condition let out over an update of dt: dt sum of its bonds' volume
-// rates, in bond order.
-void book_outflow(DrainBonds& d, double dt) {
-  std::fill(d.outflow.begin(), d.outflow.end(), 0.0);
-  for (std::size_t b = 0; b < d.bond_count(); ++b) d.outflow[static_cast<std::size_t>(d.drain[b])] += d.pair_flux[b];
-  for (double& v : d.outflow) v *= dt;
-}
-
 double volumetric_strain(const PointData& p, std::size_t i) {
   const int D = p.dimension;
   double trace = 0.0;
@@ -121,7 +114,34 @@ double volumetric_strain(const PointData& p, std::size_t i) {
   return trace;
 }
 
+// p = M (zeta - n0 - b tr eps) of body point i at its fluid content and last strain.
+double pressure_from_content(const PointData& p, const FluidConstants& fl, std::size_t i) {
+  return fl.biot_modulus * (p.fluid_content_change[i] - fl.biot_coefficient * volumetric_strain(p, i));
+}
+
 }  // namespace
+
+void update_pressures(PointData& p, const FluidConstants& fl) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    if (carries_fluid(p, i)) p.pore_pressure[i] = pressure_from_content(p, fl, i);
+  }
+}
+
+double stored_energy_released(const PointData& p, const FluidConstants& fl, const std::vector<double>& before) {
+  const double inv_2m = 0.5 / fl.biot_modulus;
+  const auto sums = ordered_point_sums<1>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
+                                            for (std::size_t i = lo; i < hi; ++i) {
+                                              if (!carries_fluid(p, i) || p.detached[i]) continue;  // as in flow_update
+                                              const double after = p.pore_pressure[i];
+                                              acc[0] += p.volume[i] * inv_2m * (before[i] * before[i] - after * after);
+                                            }
+                                          });
+  return sums[0];
+}
 
 double lattice_micro_conductivity(int dimension, double spacing, double horizon, double thickness, double mobility) {
   const double cell = dimension == 3 ? spacing * spacing * spacing : spacing * spacing * thickness;
@@ -172,8 +192,7 @@ void fluid_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl) 
     fluid_rates_d<3>(p, f, fl);
 }
 
-double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl, double dt,
-                   FlowBoundaries* boundaries) {
+void flow_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl, FlowBoundaries* boundaries) {
   fluid_rates(p, f, fl);
   DrainBonds* drains = boundaries ? boundaries->drains : nullptr;
   if (drains) {
@@ -181,24 +200,38 @@ double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl
       add_drain_rates<2>(p, f, *drains, fl);
     else
       add_drain_rates<3>(p, f, *drains, fl);
-    book_outflow(*drains, dt);
   }
   if (boundaries) add_sources(p, boundaries->sources);
+}
+
+void drained_outflow_rates(const DrainBonds& d, std::vector<double>& rates) {
+  rates.assign(d.drain_count, 0.0);
+  for (std::size_t b = 0; b < d.bond_count(); ++b) rates[static_cast<std::size_t>(d.drain[b])] += d.pair_flux[b];
+}
+
+double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl, double dt,
+                   FlowBoundaries* boundaries) {
+  flow_rates(p, f, fl, boundaries);
+  if (DrainBonds* drains = boundaries ? boundaries->drains : nullptr) {
+    drained_outflow_rates(*drains, drains->outflow);
+    for (double& v : drains->outflow) v *= dt;
+  }
   const double inv_2m = 0.5 / fl.biot_modulus;
-  const auto sums = ordered_point_sums<1>(
-      p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i)) continue;
-          const double before = p.pore_pressure[i];
-          p.fluid_content_change[i] += dt * p.fluid_rate[i];
-          const double after =
-              fl.biot_modulus * (p.fluid_content_change[i] - fl.biot_coefficient * volumetric_strain(p, i));
-          p.pore_pressure[i] = after;
-          // A detached point keeps its fluid (the mass balance counts it) but stores no energy
-          // (kernel::elastic_energy_of_point; its strain is zero): its change is not the flow's.
-          if (!p.detached[i]) acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
-        }
-      });
+  const auto sums = ordered_point_sums<1>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
+                                            for (std::size_t i = lo; i < hi; ++i) {
+                                              if (!carries_fluid(p, i)) continue;
+                                              const double before = p.pore_pressure[i];
+                                              p.fluid_content_change[i] += dt * p.fluid_rate[i];
+                                              const double after = pressure_from_content(p, fl, i);
+                                              p.pore_pressure[i] = after;
+                                              // A detached point keeps its fluid (the mass balance counts it) but
+                                              // stores no energy (kernel::elastic_energy_of_point; its strain is zero):
+                                              // its change is not the flow's.
+                                              if (!p.detached[i])
+                                                acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
+                                            }
+                                          });
   return sums[0];
 }
 
@@ -235,7 +268,7 @@ double fluid_volume(const PointData& p, const FluidConstants& fl) {
   return fl.porosity * sums[0] + sums[1];
 }
 
-FlowSchedule flow_schedule(double fluid_step, double dt) {
+FlowSchedule flow_schedule(double fluid_step, double dt, FlowIntegration integration) {
   FlowSchedule s;
   s.fluid_step = fluid_step;
   const double usable = 0.9 * fluid_step;
@@ -244,6 +277,11 @@ FlowSchedule flow_schedule(double fluid_step, double dt) {
     s.interval = steps >= 1e9 ? std::int64_t{1000000000} : std::max<std::int64_t>(1, static_cast<std::int64_t>(steps));
   } else {
     s.substeps = static_cast<std::int64_t>(std::ceil(dt / usable));
+    const std::int64_t stages = rkl2_stages(dt, fluid_step);
+    if (integration == FlowIntegration::automatic && stages < s.substeps) {
+      s.stages = stages;
+      s.substeps = 1;
+    }
   }
   return s;
 }

@@ -60,6 +60,22 @@ struct FlowBoundaries {
   std::vector<FluidSource> sources;
 };
 
+// The rates of a flow update into points.fluid_rate: fluid_rates, then the drain bonds' share of
+// Phi (each bond's volume rate into its layer into drains->pair_flux) and the sources of `boundaries`.
+void flow_rates(PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, FlowBoundaries* boundaries);
+
+// Per drained condition the volume rate its bonds let out at the last flow_rates [m^3/s], summed in
+// bond order, into `rates` (resized to the drained conditions).
+void drained_outflow_rates(const DrainBonds& drains, std::vector<double>& rates);
+
+// p = M (zeta - n0 - b tr eps) of every body point at its fluid content and last strain.
+void update_pressures(PointData& points, const FluidConstants& fluid);
+
+// The stored fluid energy sum V (p_before^2 - p^2) / (2M) over the attached body points (a detached
+// point keeps its fluid but stores no energy), summed in point chunks fixed by the point count.
+double stored_energy_released(const PointData& points, const FluidConstants& fluid,
+                              const std::vector<double>& pressure_before);
+
 // One flow update of length dt at the skeleton's last strain: zeta += dt (Phi + s) (fluid_rates
 // first, then the drain bonds' share of Phi and the sources of `boundaries`), then
 // p = M (zeta - n0 - b tr eps) (a detached point's strain is zero). With drain bonds, drains->outflow gets the volume
@@ -79,15 +95,20 @@ double fluid_step_limit(const PointData& points, const BondFamilies& bonds, cons
 double fluid_volume(const PointData& points, const FluidConstants& fluid);
 
 // How the flow is scheduled against the mechanical step dt: every `interval` steps one update of
-// `interval` dt (the fluid step is the larger), or `substeps` updates of dt / substeps per step.
+// `interval` dt (the fluid step is the larger); else each step either `substeps` updates of
+// dt / substeps, or one RKL2 super step of `stages` stages (solver/flow_super_step.hpp).
 struct FlowSchedule {
   std::int64_t interval = 1;
   std::int64_t substeps = 1;
+  std::int64_t stages = 1;  // > 1: the RKL2 super step
   double fluid_step = 0.0;  // the stability limit it was chosen from [s]
+  // The flow rates evaluated per mechanical step (its cost in bond loops).
+  std::int64_t rate_evaluations_per_step() const { return stages > 1 ? stages : substeps; }
 };
-// With the margin 0.9: interval = floor(0.9 dt_f / dt) when dt_f >= dt, else substeps =
-// ceil(dt / (0.9 dt_f)).
-FlowSchedule flow_schedule(double fluid_step, double dt);
+// With the margin 0.9: interval = floor(0.9 dt_f / dt) when dt_f >= dt; else the cheaper of
+// ceil(dt / (0.9 dt_f)) substeps and the RKL2 super step of rkl2_stages(dt, dt_f) stages (the
+// substeps when they cost no more, or always with FlowIntegration::explicit_substeps).
+FlowSchedule flow_schedule(double fluid_step, double dt, FlowIntegration integration = FlowIntegration::automatic);
 
 // The Darcy velocity of body point i, q = -k' (grad p - rho_f g), with the nonlocal gradient
 // grad p = K_i^-1 sum_j V_j (p_j - p_i) xi over its acting bonds to body points and its conducting

@@ -181,6 +181,7 @@ void RunWriter::flush(const RunInfo& info) {
     j += "  \"fluid_time_step_s\": " + format_number(info.flow->fluid_step) + ",\n";
     j += "  \"flow_update_interval_steps\": " + std::to_string(info.flow->interval) + ",\n";
     j += "  \"flow_substeps\": " + std::to_string(info.flow->substeps) + ",\n";
+    j += "  \"flow_rkl2_stages\": " + std::to_string(info.flow->stages > 1 ? info.flow->stages : 0) + ",\n";
   }
   j += "  \"snapshots\": [";
   for (std::size_t k = 0; k < snapshots_.size(); ++k)

@@ -421,8 +421,8 @@ void RunDriver::fit_time_step() {
   scene_.time.step = plan_.dt;
   start_up_.mark("damage step limit");
   if (model().fluid) {
-    plan_.flow =
-        flow_schedule(fluid_step_limit(model().points, model().bonds, *model().fluid, &model().drains), plan_.dt);
+    plan_.flow = flow_schedule(fluid_step_limit(model().points, model().bonds, *model().fluid, &model().drains),
+                               plan_.dt, scene_.numerics.flow_integration);
     start_up_.mark("fluid step limit");
   }
 }
@@ -470,12 +470,17 @@ void RunDriver::fill_run_info() {
 }
 
 // The pore fluid's line of the start-up report: its constants and how the flow is scheduled.
-std::string fluid_report(const FluidConstants& fluid, const FlowSchedule& flow, double dt) {
-  const std::string schedule = flow.substeps > 1
-                                   ? std::to_string(flow.substeps) + " flow updates per step (of " +
-                                         log_number(dt / static_cast<double>(flow.substeps)) + " s)"
-                                   : "a flow update every " + std::to_string(flow.interval) + " steps (of " +
-                                         log_number(dt * static_cast<double>(flow.interval)) + " s)";
+std::string fluid_report(const FluidConstants& fluid, const FlowSchedule& flow, double dt,
+                         FlowIntegration integration) {
+  std::string schedule = "a flow update every " + std::to_string(flow.interval) + " steps (of " +
+                         log_number(dt * static_cast<double>(flow.interval)) + " s)";
+  if (flow.substeps > 1)
+    schedule = std::to_string(flow.substeps) + " flow updates per step (of " +
+               log_number(dt / static_cast<double>(flow.substeps)) + " s" +
+               (integration == FlowIntegration::explicit_substeps ? ", numerics.flow_integration: explicit)" : ")");
+  if (flow.stages > 1)
+    schedule = "one RKL2 super step of " + std::to_string(flow.stages) + " stages per step (instead of " +
+               std::to_string(static_cast<std::int64_t>(std::ceil(dt / (0.9 * flow.fluid_step)))) + " flow updates)";
   return "pore fluid (saturated): Biot coefficient " + log_number(fluid.biot_coefficient) + ", Biot modulus " +
          log_number(fluid.biot_modulus) + " Pa, mobility k/mu_f " + log_number(fluid.mobility) +
          " m^2/(Pa s), micro-conductivity " + log_number(fluid.micro_conductivity) +
@@ -534,7 +539,7 @@ void RunDriver::log_start_up_report() {
                  log_number(plan_.damage_step) + " s (" + log_number(plan_.damage_step / critical.step) +
                  " of the critical step); a point whose lopsided family would need a step below " + log_number(dt) +
                  " s is detached (stiffness block limit " + log_number(m.block_eigenvalue_limit) + " 1/s^2)");
-  if (m.fluid) writer().log(fluid_report(*m.fluid, plan_.flow, dt));
+  if (m.fluid) writer().log(fluid_report(*m.fluid, plan_.flow, dt, scene_.numerics.flow_integration));
   if (m.fluid) log_fluid_boundaries();
   if (m.viscoplastic_model)
     writer().log("viscoplastic model " + m.viscoplastic_model->name() +
@@ -749,7 +754,8 @@ void RunDriver::record_rows() {
                                  e.fracture_dissipation,
                                  e.external_work,
                                  dynamics().balance_error()};
-  if (model().fluid) energy_row.insert(energy_row.end(), {e.fluid_stored, e.flow_dissipation, e.fluid_mass_balance()});
+  if (model().fluid)
+    energy_row.insert(energy_row.end(), {e.fluid_stored, e.flow_dissipation, e.fluid_mass_balance(), e.flow_splitting});
   writer().add_energy_row(energy_row);
 }
 
