@@ -167,12 +167,6 @@ TerzaghiRun consolidate(const TerzaghiColumn& col, const std::vector<double>& tv
   return run;
 }
 
-double TerzaghiRun::degree_error() const {
-  double e = 0.0;
-  for (const TerzaghiSample& s : samples) e = std::max(e, std::abs(s.degree - s.degree_series));
-  return e;
-}
-
 double TerzaghiRun::base_pressure_error() const {
   double e = 0.0;
   for (const TerzaghiSample& s : samples) e = std::max(e, std::abs(s.base_pressure - s.base_series));

@@ -65,8 +65,7 @@ struct TerzaghiRun {
   std::int64_t steps = 0;      // mechanical steps of the two static runs and of the consolidation
   double time_step = 0.0;      // of the consolidation [s]
   double solve_seconds = 0.0;  // the three time integrations (model builds excluded)
-  // max over the samples of |U - series| and of |p_base / p0 - series|
-  double degree_error() const;
+  // max over the samples of |p_base / p0 - series|
   double base_pressure_error() const;
 };
 
