@@ -12,6 +12,7 @@
 #include "tests/verification/problems/crack_energy.hpp"
 #include "tests/verification/problems/layer_shear.hpp"
 #include "tests/verification/problems/periodic_lattice.hpp"
+#include "tests/verification/problems/terzaghi_consolidation.hpp"
 #include "tests/verification/problems/wave_problems.hpp"
 
 namespace mppm::accuracy {
@@ -178,11 +179,47 @@ StudyResult run_crack(const StudyParameters& p) {
   return r;
 }
 
+// Terzaghi's consolidation (tests/verification/problems/terzaghi_consolidation.hpp): the column of
+// the pore-fluid test, 80 mm high, resolved by `resolution` rows. The error is max |U - U_series|
+// of the degree of consolidation from the settlement over T_v = 0.1, 0.15, ..., 1 (absolute: U is
+// a fraction); measured and analytic are U and the series where it is largest. The second error is
+// max |p_base / p0 - series| of the bottom row's pressure over the same samples.
+StudyResult run_terzaghi(const StudyParameters& p) {
+  constexpr double kColumnHeight = 0.08;  // [m]
+  const double dx = kColumnHeight / p.resolution;
+  verification::TerzaghiColumn column = verification::terzaghi_column(p.resolution, dx, p.horizon_factor);
+  column.scene.numerics.stabilization = p.stabilization;
+  std::vector<double> targets;
+  for (int k = 2; k <= 20; ++k) targets.push_back(0.05 * k);
+  const auto start = std::chrono::steady_clock::now();
+  const verification::TerzaghiRun run = verification::consolidate(column, targets, p.safety);
+  const double total = seconds_since(start);
+  StudyResult r;
+  r.spacing = dx;
+  for (const verification::TerzaghiSample& s : run.samples)
+    if (std::abs(s.degree - s.degree_series) >= r.error) {
+      r.error = std::abs(s.degree - s.degree_series);
+      r.signed_error = s.degree - s.degree_series;
+      r.measured = s.degree;
+      r.analytic = s.degree_series;
+    }
+  r.second_error = run.base_pressure_error();
+  r.points = run.points;
+  r.bonds = run.bonds;
+  r.steps = run.steps;
+  r.time_step = run.time_step;
+  r.wall_seconds = run.solve_seconds;
+  r.setup_seconds = total - run.solve_seconds;
+  r.kernel_seconds = run.solve_seconds;
+  r.bond_updates = static_cast<double>(run.bonds) * static_cast<double>(run.steps);
+  return r;
+}
+
 }  // namespace
 
 const std::vector<std::string>& problem_names() {
-  static const std::vector<std::string> names{"p_wave", "shear_rotation_wave", "cutoff_frequency", "layer_shear",
-                                              "crack_energy"};
+  static const std::vector<std::string> names{"p_wave",      "shear_rotation_wave", "cutoff_frequency",
+                                              "layer_shear", "crack_energy",        "terzaghi"};
   return names;
 }
 
@@ -195,13 +232,16 @@ std::string validate_parameters(const StudyParameters& p) {
     e << ")";
   } else if (p.dimension != 2 && p.dimension != 3) {
     e << "--dimension: expected 2 or 3, got " << p.dimension;
-  } else if (p.problem == "layer_shear" && p.dimension != 2) {
-    e << "--dimension: the layer_shear problem is 2-D (plane strain) only";
+  } else if ((p.problem == "layer_shear" || p.problem == "terzaghi") && p.dimension != 2) {
+    e << "--dimension: the " << p.problem << " problem is 2-D (plane strain) only";
   } else if (p.resolution < 4 || p.resolution > (p.dimension == 2 ? 2000 : 200)) {
     e << "--resolution: expected points per wavelength (or layer rows) from 4 to " << (p.dimension == 2 ? 2000 : 200)
       << " in " << p.dimension << "-D, got " << p.resolution;
   } else if (!(p.horizon_factor >= 1.0 && p.horizon_factor <= 8.0)) {
     e << "--horizon-factor: expected a number from 1 to 8 (delta = factor x dx), got " << p.horizon_factor;
+  } else if (p.problem == "terzaghi" && 2 * p.horizon_factor >= p.resolution) {
+    e << "--resolution: the Terzaghi column of " << p.resolution << " rows must exceed two horizons ("
+      << 2 * p.horizon_factor << " rows)";
   } else if (p.problem != "layer_shear" && p.problem != "crack_energy" && 2 * p.horizon_factor >= p.resolution) {
     e << "--horizon-factor: a wavelength of " << p.resolution << " points must exceed two horizons ("
       << 2 * p.horizon_factor << " points)";
@@ -214,6 +254,7 @@ std::string validate_parameters(const StudyParameters& p) {
 }
 
 StudyResult run_problem(const StudyParameters& p) {
+  if (p.problem == "terzaghi") return run_terzaghi(p);
   if (p.problem == "crack_energy") return run_crack(p);
   if (p.problem == "layer_shear") return run_layer(p);
   return run_wave(p);

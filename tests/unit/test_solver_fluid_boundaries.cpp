@@ -29,6 +29,7 @@ namespace {
 
 using testing::boundary_info;
 using testing::column_cloud;
+using testing::ColumnModel;
 using testing::ColumnTags;
 using testing::condition;
 using testing::count_tagged;
@@ -37,20 +38,6 @@ using testing::saturated_scene;
 constexpr double kDx = 1e-3;
 constexpr int kNx = 8;  // the period along x exceeds twice the horizon (3.05 dx)
 constexpr int kRows = 3;
-
-// The conditions and the model of a column, built as mppm-solve builds them (periodic along x).
-struct ColumnModel {
-  BoundaryConditions conditions;
-  Model model;
-  ColumnModel(const Scene& scene, const PointCloud& cloud)
-      : conditions(scene, cloud, "column.vtp"), model(build(scene, cloud, conditions)) {}
-  static Model build(const Scene& scene, const PointCloud& cloud, const BoundaryConditions& conditions) {
-    ModelOptions o = model_options(scene);
-    o.period = {kNx * kDx, 0.0, 0.0};
-    o.fluid_boundaries = conditions.fluid_layout();
-    return build_model(cloud, o);
-  }
-};
 
 double width_area(const Scene& s) { return kNx * kDx * s.thickness; }
 
@@ -109,7 +96,7 @@ TEST(SolverFluidBoundaries, InertDrainedLayerLeavesTheMechanicsAsTheyWere) {
     c->scene.effects.gravity = true;
     c->scene.material.pore_fluid->biot_coefficient = 0.0;  // the reader refuses b = 0; the model takes it
   }
-  ColumnModel a(dry.scene, dry.cloud), b(wet.scene, wet.cloud);
+  ColumnModel a(dry.scene, dry.cloud, kNx * kDx), b(wet.scene, wet.cloud, kNx * kDx);
   const std::size_t shared = dry.cloud.size();
   ASSERT_EQ(b.model.inert_points, static_cast<std::size_t>(kRows * kNx));
   EXPECT_EQ(b.model.detached_points, a.model.detached_points);            // the inert points are not counted
@@ -132,7 +119,7 @@ TEST(SolverFluidBoundaries, InertDrainedLayerLeavesTheMechanicsAsTheyWere) {
 // F_ij = kappa0 (p_i - p_j) V_i V_j / |xi|, and W_in the work of the sources, sum V_i p_i s_i.
 TEST(SolverFluidBoundaries, DrainedAndFedBoundariesKeepTheFluidsBooks) {
   const ColumnCase c = loaded_column(10, true, true, 5e4);
-  ColumnModel cm(c.scene, c.cloud);
+  ColumnModel cm(c.scene, c.cloud, kNx * kDx);
   Model& m = cm.model;
   const FluidConstants& fl = *m.fluid;
   std::mt19937 rng(11);
@@ -261,7 +248,7 @@ TEST(SolverFluidBoundaries, SuperStepsKeepTheFluidsBooks) {
 // they set the limit.
 TEST(SolverFluidBoundaries, FlowStepLimitCountsTheDrainBonds) {
   const ColumnCase c = loaded_column(4, true, false);
-  ColumnModel cm(c.scene, c.cloud);
+  ColumnModel cm(c.scene, c.cloud, kNx * kDx);
   const Model& m = cm.model;
   const double reach = c.cloud.horizon + 1e-9 * kDx;
   double largest = 0.0;
@@ -299,7 +286,7 @@ TEST(SolverFluidBoundaries, DrainedKinematicLayerConductsThroughItsActingBonds) 
   platen.cloud.boundaries.push_back(
       boundary_info(moving, area, count_tagged(platen.cloud, 4, 0), platen.cloud.horizon));
   ASSERT_EQ(shared_boundary(platen.cloud.boundaries, 2), std::optional<std::size_t>(3));
-  ColumnModel a(inert.scene, inert.cloud), b(platen.scene, platen.cloud);
+  ColumnModel a(inert.scene, inert.cloud, kNx * kDx), b(platen.scene, platen.cloud, kNx * kDx);
   ASSERT_FALSE(b.conditions.drained().at(0).inert);
   EXPECT_EQ(b.model.inert_points, 0u);
   const DrainBonds &da = a.model.drains, &db = b.model.drains;

@@ -11,6 +11,7 @@
 #include "common/scene.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/model.hpp"
+#include "tests/verification/problems/generic_scene.hpp"
 #include "tests/verification/problems/periodic_lattice.hpp"
 
 namespace mppm::solver::testing {
@@ -18,32 +19,7 @@ namespace mppm::solver::testing {
 // The lattice and model builders are shared with the accuracy-cost study.
 using verification::make_lattice;
 using verification::make_model;
-
-// A scene with a generic Cosserat material (values of the order of a stiff soil/rock; the tests
-// only need them to be distinct and positive definite).
-inline Scene make_scene(int dimension, bool micropolar, double dx, double horizon_factor) {
-  Scene s;
-  s.path = "solver-test.yaml";
-  s.name = "solver-test";
-  s.dimension = dimension;
-  s.thickness = dimension == 2 ? 1e-3 : 1.0;
-  s.geometry.spacing = dx;
-  s.geometry.horizon_factor = horizon_factor;
-  s.material.density = 2000.0;
-  s.material.solid_fraction = 0.8;
-  s.material.lambda = 1.2e9;
-  s.material.mu = 0.9e9;
-  s.material.mu_c = 0.4e9;
-  s.material.length_scale = 2.0 * dx;
-  const double bending = s.material.mu * s.material.length_scale * s.material.length_scale;
-  // 2-D: B_w = a3; 3-D: a2 > a3 keeps the couple-stress energy positive definite.
-  s.material.couple_moduli = dimension == 2 ? std::array<double, 3>{0.0, 0.0, bending}
-                                            : std::array<double, 3>{0.2 * bending, bending, 0.3 * bending};
-  s.effects.micropolar = micropolar;
-  s.numerics.stabilization = 0.1;
-  s.time.end = 1e-3;
-  return s;
-}
+using verification::make_scene;
 
 // Water in the pores (docs/theory.md section 12): the pore-fluid tests' fluid, with their permeability,
 // Biot coefficient and initial pressure.

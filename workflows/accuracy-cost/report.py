@@ -103,7 +103,7 @@ def percent(value):
 
 
 def settings(r):
-    unit = "rows" if r["problem"] in ("layer_shear", "crack_energy") else "points/wavelength"
+    unit = "rows" if r["problem"] in ("layer_shear", "crack_energy", "terzaghi") else "points/wavelength"
     text = f"{r['resolution']} {unit} (dx = {fmt(r['spacing_m'] * 1e3)} mm), m = {fmt(r['horizon_factor'])}"
     if r["problem"] != "layer_shear":
         text += f", safety {fmt(r['safety'])}"
@@ -119,7 +119,7 @@ def convergence_section(rows, out):
     out += table_head("problem", "horizon factor", "resolution", "errors", "observed rate", "expected rate")
     groups = study.spacing_groups(rows)
     for (problem, dimension, threads), group in sorted(groups.items()):
-        if threads != 1 or len(group) < 2:
+        if threads != 1 or len(group) < 2 or problem == "terzaghi":  # its own section (absolute errors)
             continue
         rate = study.log_slope(group, "spacing_m", "error")
         out.append(f"| {study.label(problem, dimension)} | {fmt(group[0]['horizon_factor'])} | "
@@ -136,6 +136,51 @@ def convergence_section(rows, out):
             predicted = 2 / wdt * math.asin(wdt / 2) - 1
             out.append(f"| {r['resolution']} | {fmt(r['time_step_s'] * 1e6)} | {fmt(wdt)} | {percent(predicted)} | "
                        f"{percent(r['signed_error'])} |")
+    out.append("")
+
+
+def local_rates(group, key):
+    """log2 of the error ratio between successive levels (the spacing halves between them)."""
+    return [math.log(a[key] / b[key]) / math.log(b["resolution"] / a["resolution"]) for a, b in zip(group, group[1:])]
+
+
+def terzaghi_section(rows, out):
+    group = study.spacing_groups(rows).get(("terzaghi", 2, 1), [])
+    if len(group) < 2:
+        return
+    out += section_head("Terzaghi consolidation",
+                        "The 80 mm column of the pore-fluid test (periodic across, loaded and drained on top, fixed "
+                        "impermeable base) at 1 thread, errors against Terzaghi's series over T_v = 0.1, 0.15, ..., 1: "
+                        "the degree of consolidation from the settlement, max |U - U_series| (absolute: U is a fraction), "
+                        "and the base pressure, max |p_base / p0 - series|. The drained layer acts as a face a = "
+                        f"{study.TERZAGHI_FACE_OFFSET} dx beyond the body's top, which lowers U by about a / H at T_v = "
+                        "0.1 (first order in dx); what is left (U error - a / H) is the quasi-static run's lag (the load "
+                        "ramp over 0.002 t_c and the damping, fixed fractions of t_c at every spacing) on the finer "
+                        "columns: a floor that lowers the observed rate as the column is refined (README.md). Costs are "
+                        "counts (the wall times are in the figure).\n")
+    out += table_head("rows", "dx [mm]", "points", "bonds", "steps", "bond updates", "U error", "a / H",
+                      "U error - a / H", "base-pressure error")
+    for r in group:
+        offset = study.TERZAGHI_FACE_OFFSET / r["resolution"]
+        out.append(f"| {r['resolution']} | {fmt(r['spacing_m'] * 1e3)} | {r['points']} | {r['bonds']} | {r['steps']} | "
+                   f"{fmt(r['bond_updates'])} | {r['error']:.4f} | {offset:.4f} | {r['error'] - offset:+.4f} | "
+                   f"{r['second_error']:.4f} |")
+    levels = ", ".join(f"{a['resolution']}->{b['resolution']}" for a, b in zip(group, group[1:]))
+    out.append("\nObserved rates (least squares of log error against log dx over every level; between successive "
+               f"levels {levels}); expected {study.EXPECTED_RATE['terzaghi']:.0f} above the floor:\n")
+    out += table_head("error", "observed rate", "between levels")
+    for key, name in (("error", "degree of consolidation U"), ("second_error", "base pressure p / p0")):
+        rate = study.log_slope(group, "spacing_m", key)
+        out.append(f"| {name} | {rate:.2f} | {', '.join(f'{x:.2f}' for x in local_rates(group, key))} |")
+    exponent = -study.log_slope(group, "spacing_m", "bond_updates")
+    out.append(f"\nBond updates ~ dx^-{exponent:.2f} (expected {study.cost_exponent('terzaghi', 2):.0f}: the column is "
+               "8 points across, its steps grow like its rows at a fixed consolidation time; the 6 layer rows weigh "
+               "on the coarsest columns).")
+    finest = group[-1]
+    if finest["resolution"] >= study.TERZAGHI_TEST_ROWS:
+        out.append(f"At {finest['resolution']} rows: U error {finest['error']:.4f} (the test's tolerance "
+                   f"{study.TERZAGHI_TOLERANCE['error']}), base-pressure error {finest['second_error']:.4f} (tolerance "
+                   f"{study.TERZAGHI_TOLERANCE['second_error']}).")
     out.append("")
 
 
@@ -261,6 +306,7 @@ def main():
                    "(the runs record it). Wall times and the 2-thread speed-up "
                    "are only as clean as the machine was idle; bond updates are counts.\n")
     convergence_section(rows, out)
+    terzaghi_section(rows, out)
     cost_section(rows, out)
     sweep_section(rows, out)
     recommendation_section(rows, out)

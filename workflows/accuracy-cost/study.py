@@ -8,11 +8,26 @@ import math
 # crack: the work of each bond's last step before it breaks, O(dt) at a fixed dx / dt ratio
 # and, at a fixed safety factor, the same share of w_cr at every spacing (the tip crosses a
 # horizon in a fixed number of steps): rate 0 in dx, rate 1 in the safety factor.
+# terzaghi: the drained layer acts as a face 0.81 dx beyond the body's, an error O(dx / H) in U
+# and in the base pressure, above a floor set by the quasi-static run's lag (README.md).
 EXPECTED_RATE = {"p_wave": 2.0, "shear_rotation_wave": 2.0, "cutoff_frequency": 2.0, "layer_shear": 1.0,
-                 "crack_energy": 0.0}
+                 "crack_energy": 0.0, "terzaghi": 1.0}
+# Bond updates ~ dx^-COST_EXPONENT at a fixed horizon factor: d + 1 for the lattices refined in
+# every direction; the Terzaghi column is 8 points across whatever dx (a 1-D problem): its points
+# grow like dx^-1 and its steps like dx^-1.
+COST_EXPONENT = {"terzaghi": 2.0}
+# The pore-fluid test's tolerances on its 80-row column (tests/verification/
+# test_solver_pore_fluid_boundaries.cpp): |U - series| <= 0.02 and |p_base / p0 - series| <= 0.03
+# for T_v in [0.1, 1].
+TERZAGHI_TEST_ROWS = 80
+TERZAGHI_TOLERANCE = {"error": 0.02, "second_error": 0.03}
+# The distance beyond the body's top at which the drained layer's pressure acts, in dx, at horizon
+# factor 3.05 (measured by the test's steady Darcy flow between two drained faces): the column
+# drains as one a taller, which lowers U by about a / H at T_v = 0.1.
+TERZAGHI_FACE_OFFSET = 0.8144
 EXPECTED_SAFETY_RATE = {"crack_energy": 1.0}
 NUMBERS = ("spacing_m", "horizon_factor", "safety", "stabilization", "error", "signed_error", "measured", "analytic", "load_average",
-           "time_step_s", "setup_seconds", "wall_seconds", "bond_updates", "bond_updates_per_second")
+           "time_step_s", "setup_seconds", "wall_seconds", "bond_updates", "bond_updates_per_second", "second_error")
 INTEGERS = ("dimension", "resolution", "threads", "points", "bonds", "steps", "peak_memory_bytes")
 
 
@@ -57,7 +72,13 @@ def spacing_groups(rows):
     return groups
 
 
+def cost_exponent(problem, dimension):
+    """The expected p of bond updates ~ dx^-p over a spacing sweep."""
+    return COST_EXPONENT.get(problem, dimension + 1.0)
+
+
 def label(problem, dimension):
     names = {"p_wave": "P wave", "shear_rotation_wave": "shear-rotation wave", "cutoff_frequency": "cut-off frequency",
-             "layer_shear": "Cosserat layer in shear", "crack_energy": "energy per crack area"}
+             "layer_shear": "Cosserat layer in shear", "crack_energy": "energy per crack area",
+             "terzaghi": "Terzaghi consolidation"}
     return f"{names.get(problem, problem)} ({dimension}-D)"

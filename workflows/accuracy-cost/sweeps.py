@@ -2,7 +2,10 @@
 """Runs the sweeps of the accuracy-cost study with mppm-accuracy, one process per run, and
 writes every row to one CSV (atomically: a temporary file renamed at the end).
 
-usage: sweeps.py MPPM_ACCURACY OUTPUT.csv [--quick]
+usage: sweeps.py MPPM_ACCURACY OUTPUT.csv [--quick] [--problems NAME[,NAME...]]
+
+--problems keeps only the runs of the named problems (e.g. terzaghi): their rows can be made
+without rerunning the whole study.
 
 Defaults of every run: 2-D, horizon factor 3.05, time-step safety 0.8, stabilization G_s 0.1,
 1 thread; each sweep changes one of them (the spacing sweeps also run at 2 threads).
@@ -51,6 +54,10 @@ def full_study():
     runs += [run("crack_energy", "safety", 20, safety=s) for s in (0.1, 0.2, 0.4, 0.8)]
     runs += [run("crack_energy", "horizon_factor", 20, safety=0.2, horizon_factor=m) for m in (2.55, 3.05, 4.05)]
     runs += [run("crack_energy", "stabilization", 20, safety=0.2, stabilization=g) for g in (0.1, 0.2, 0.3)]
+    # Terzaghi's consolidation: the 80 mm column of the pore-fluid test (80 rows there) by 10..160
+    # rows; its steps grow like its rows (a fixed consolidation time); 1 thread (a column of at
+    # most 1300 points). 160 rows, a level finer than the test's, shows the floor of its error.
+    runs += [run("terzaghi", "spacing", n) for n in (10, 20, 40, 80, 160)]
     return runs
 
 
@@ -66,14 +73,38 @@ def quick_study():
     runs += [run("p_wave", "safety", 40, safety=s) for s in (0.4, 0.95)]
     runs += [run("p_wave", "stabilization", 40, stabilization=g) for g in (0.0, 0.5)]
     runs += [run("crack_energy", "safety", 20, safety=s) for s in (0.2, 0.4, 0.8)]
+    runs += [run("terzaghi", "spacing", n) for n in (10, 20, 40)]
     return runs
 
 
-def main():
-    if len(sys.argv) not in (3, 4) or (len(sys.argv) == 4 and sys.argv[3] != "--quick"):
+def parse(arguments):
+    """(program, output, quick, problems or None); exit 2 with the usage on anything else."""
+    if len(arguments) < 2:
         sys.exit(__doc__)
-    program, output = sys.argv[1], sys.argv[2]
-    runs = quick_study() if len(sys.argv) == 4 else full_study()
+    program, output, rest = arguments[0], arguments[1], arguments[2:]
+    quick, problems = False, None
+    while rest:
+        if rest[0] == "--quick":
+            quick, rest = True, rest[1:]
+        elif rest[0] == "--problems" and len(rest) >= 2 and rest[1]:
+            problems, rest = [p for p in rest[1].split(",") if p], rest[2:]
+        else:
+            print(__doc__, file=sys.stderr)
+            sys.exit(2)
+    return program, output, quick, problems
+
+
+def main():
+    program, output, quick, problems = parse(sys.argv[1:])
+    runs = quick_study() if quick else full_study()
+    if problems is not None:
+        known = sorted({r[0] for r in runs})
+        unknown = [p for p in problems if p not in known]
+        if unknown:
+            print(f"sweeps.py: --problems: unknown {', '.join(unknown)} (the study runs {', '.join(known)})",
+                  file=sys.stderr)
+            sys.exit(2)
+        runs = [r for r in runs if r[0] in problems]
     header = subprocess.run([program, "--header"], check=True, capture_output=True, text=True).stdout
     environment = dict(os.environ)
     environment.setdefault("OMP_WAIT_POLICY", "passive")
