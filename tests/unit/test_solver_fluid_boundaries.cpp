@@ -190,7 +190,7 @@ struct SuperStepRun {
 };
 SuperStepRun column_by_super_steps(double span_in_limits, int steps) {
   const ColumnCase c = loaded_column(10, true, true, 5e4);
-  ColumnModel cm(c.scene, c.cloud);
+  ColumnModel cm(c.scene, c.cloud, kNx * kDx);
   Model& m = cm.model;
   const FluidConstants& fl = *m.fluid;
   std::mt19937 rng(11);
