@@ -111,6 +111,26 @@ TEST(SolverFluidBoundaries, InertDrainedLayerLeavesTheMechanicsAsTheyWere) {
   }
 }
 
+// The loaded column of 10 rows, drained on top and fed, with a random fluid content (+-1e-4) on its
+// body points, its drained layer at p = 0 and the fed face's source of 2e-5 m/s.
+struct RandomFluidColumn {
+  ColumnCase c = loaded_column(10, true, true, 5e4);
+  ColumnModel cm{c.scene, c.cloud, kNx* kDx};
+  const FedSurface& fed = cm.conditions.fed().at(0);
+  FlowBoundaries boundaries{&cm.model.drains, {{&fed.points, 2e-5 * fed.area / fed.volume_sum}}};
+  RandomFluidColumn() {
+    PointData& p = cm.model.points;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> g(-1.0, 1.0);
+    for (std::size_t i = 0; i < p.owned; ++i) {
+      if (p.region[i] != 0) continue;
+      p.fluid_content_change[i] += 1e-4 * g(rng);
+      p.pore_pressure[i] = cm.model.fluid->biot_modulus * p.fluid_content_change[i];
+    }
+    cm.conditions.prescribe_pore_pressure(p, 0.0);
+  }
+};
+
 // The flow's own identities with both kinds of boundary, over updates from a random pressure:
 // sum V zeta changes by the inflow less the outflow (to round-off), and each update removes
 // dt (D + W_out - W_in) - M/2 sum V (dt Phi)^2 of stored energy, where D is the dissipation rate of
@@ -118,20 +138,11 @@ TEST(SolverFluidBoundaries, InertDrainedLayerLeavesTheMechanicsAsTheyWere) {
 // energy the fluid carries into the layer at its pressure, sum p_j F_ij over the drain bonds with
 // F_ij = kappa0 (p_i - p_j) V_i V_j / |xi|, and W_in the work of the sources, sum V_i p_i s_i.
 TEST(SolverFluidBoundaries, DrainedAndFedBoundariesKeepTheFluidsBooks) {
-  const ColumnCase c = loaded_column(10, true, true, 5e4);
-  ColumnModel cm(c.scene, c.cloud, kNx * kDx);
-  Model& m = cm.model;
+  RandomFluidColumn column;
+  Model& m = column.cm.model;
   const FluidConstants& fl = *m.fluid;
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> g(-1.0, 1.0);
-  for (std::size_t i = 0; i < m.points.owned; ++i) {
-    if (m.points.region[i] != 0) continue;
-    m.points.fluid_content_change[i] += 1e-4 * g(rng);
-    m.points.pore_pressure[i] = fl.biot_modulus * m.points.fluid_content_change[i];
-  }
-  cm.conditions.prescribe_pore_pressure(m.points, 0.0);
-  const FedSurface& fed = cm.conditions.fed().at(0);
-  FlowBoundaries boundaries{&m.drains, {{&fed.points, 2e-5 * fed.area / fed.volume_sum}}};
+  const FedSurface& fed = column.fed;
+  FlowBoundaries& boundaries = column.boundaries;
   const double volume0 = fluid_volume(m.points, fl);
   const double dt = 0.5 * fluid_step_limit(m.points, m.bonds, fl, &m.drains);
   double out = 0.0, in = 0.0;
@@ -189,20 +200,11 @@ struct SuperStepRun {
   double volume_change = 0.0, in = 0.0, out = 0.0, volume0 = 0.0;
 };
 SuperStepRun column_by_super_steps(double span_in_limits, int steps) {
-  const ColumnCase c = loaded_column(10, true, true, 5e4);
-  ColumnModel cm(c.scene, c.cloud, kNx * kDx);
-  Model& m = cm.model;
+  RandomFluidColumn column;
+  Model& m = column.cm.model;
   const FluidConstants& fl = *m.fluid;
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> g(-1.0, 1.0);
-  for (std::size_t i = 0; i < m.points.owned; ++i) {
-    if (m.points.region[i] != 0) continue;
-    m.points.fluid_content_change[i] += 1e-4 * g(rng);
-    m.points.pore_pressure[i] = fl.biot_modulus * m.points.fluid_content_change[i];
-  }
-  cm.conditions.prescribe_pore_pressure(m.points, 0.0);
-  const FedSurface& fed = cm.conditions.fed().at(0);
-  FlowBoundaries boundaries{&m.drains, {{&fed.points, 2e-5 * fed.area / fed.volume_sum}}};
+  const FedSurface& fed = column.fed;
+  FlowBoundaries& boundaries = column.boundaries;
   SuperStepRun r;
   r.volume0 = fluid_volume(m.points, fl);
   const double limit = fluid_step_limit(m.points, m.bonds, fl, &m.drains);
