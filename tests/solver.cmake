@@ -17,6 +17,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_pore_fluid.cpp
   unit/test_run_estimate.cpp
   unit/test_solver_fluid_boundaries.cpp
+  unit/test_solver_retention_curve.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
