@@ -30,6 +30,7 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_solver_flow_super_step.cpp
   verification/test_solver_pore_fluid_boundaries.cpp
   verification/test_solver_pore_fluid_mandel.cpp
+  verification/test_richards_reference.cpp
 )
 # The energies are computed without the force kernel's fused multiply-adds only if the two files
 # share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).
