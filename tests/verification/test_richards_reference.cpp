@@ -1,6 +1,7 @@
 // The 1-D Richards reference for unsaturated infiltration (tests/verification/problems/richards_column):
 // the fluid conserved to the Newton tolerance, a constant-diffusivity column against its analytic
-// solution (second order on grids refined with dt ~ dz^2), and the unsaturated infiltration's
+// solution (second order on grids refined with dt ~ dz^2), a draining unsaturated column's
+// hydrostatic equilibrium against its quadrature (second order), and the unsaturated infiltration's
 // wetting front and profile converging under grid and time refinement (observed orders printed).
 #include <gtest/gtest.h>
 
@@ -109,6 +110,52 @@ TEST(RichardsReference, ConstantDiffusivityColumnMatchesItsAnalyticSolution) {
     EXPECT_GT(order, 1.8);  // second order, the first grids slightly pre-asymptotic
   }
   EXPECT_LT(errors.back(), 1e-3);
+}
+
+// With no inflow, a column at a uniform suction drains under gravity towards the hydrostatic
+// equilibrium p = p_b - rho_f g z (no flux anywhere), with p_b set by the fluid it holds:
+// int_0^L zeta(p_b - rho_f g z) dz = L zeta(p_0). The scheme's steady state is linear with slope
+// -rho_f g exactly (each face's flux vanishes) and its p_b solves the midpoint rule of that integral,
+// so p_b converges at second order to the root computed here by Simpson's rule and bisection. This
+// checks the unsaturated storage zeta(p) through the whole range the column spans (0.5-1.5 p_e).
+TEST(RichardsReference, DrainedColumnReachesTheHydrostaticEquilibrium) {
+  RichardsColumn c = infiltration(50, 200);
+  c.initial_pressure = -1e4;  // p_e: k_r ~ 0.1, the diffusion time L^2 c / (k' k_r) ~ 1e5 s
+  c.top_flux = 0.0;
+  c.end_time = 4e6;  // tens of diffusion times: the transient has decayed below round-off
+  const double rho_g = c.fluid_density * c.gravity;
+  const auto content = [&](double p) { return solver::fluid_content_change(c.curve, c.storage, p, 0.0); };
+  const double target = c.length * content(c.initial_pressure);
+  const auto held = [&](double pb) {  // Simpson's rule, 2e4 intervals
+    const int m = 20000;
+    const double h = c.length / m;
+    double sum = content(pb) + content(pb - rho_g * c.length);
+    for (int k = 1; k < m; ++k) sum += (k % 2 ? 4.0 : 2.0) * content(pb - rho_g * k * h);
+    return sum * h / 3.0;
+  };
+  double lo = c.initial_pressure, hi = c.initial_pressure + rho_g * c.length;  // p_b lies between
+  for (int k = 0; k < 100; ++k) (held(0.5 * (lo + hi)) < target ? lo : hi) = 0.5 * (lo + hi);
+  const double exact = 0.5 * (lo + hi);
+  std::vector<double> errors;
+  for (int cells : {25, 50, 100}) {
+    c.cells = cells;
+    const RichardsResult r = solve_richards_column(c);
+    ASSERT_TRUE(r.converged);
+    EXPECT_LT(std::abs(r.stored), 1e-12);  // nothing came in: the fluid is the same to round-off
+    double lowest = 1e300, highest = -1e300;
+    for (std::size_t i = 0; i < r.z.size(); ++i) {
+      lowest = std::min(lowest, r.pressure[i] + rho_g * r.z[i]);
+      highest = std::max(highest, r.pressure[i] + rho_g * r.z[i]);
+    }
+    EXPECT_LT(highest - lowest, 1e-8 * rho_g * c.length);  // hydrostatic: the potential is uniform
+    errors.push_back(std::abs(0.5 * (lowest + highest) - exact) / (rho_g * c.length));
+  }
+  for (std::size_t k = 0; k + 1 < errors.size(); ++k) {
+    const double order = std::log2(errors[k] / errors[k + 1]);
+    std::printf("hydrostatic equilibrium: p_b error %.3e -> %.3e (of rho g L), observed order %.3f\n", errors[k],
+                errors[k + 1], order);
+    EXPECT_GT(order, 1.8);
+  }
 }
 
 // The unsaturated infiltration converges: the front and the saturation profile change less at each
