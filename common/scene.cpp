@@ -68,7 +68,8 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
     {"material.viscoplasticity.region", kRegionKeys},
     {"material.pore_fluid",
      {"permeability", "fluid_viscosity", "fluid_density", "biot_coefficient", "biot_modulus", "initial_pressure",
-      "free_surface"}},
+      "free_surface", "retention"}},
+    {"material.pore_fluid.retention", {"model", "air_entry_pressure", "n", "residual_saturation"}},
     {"boundary_conditions[]",
      {"name", "boundary", "entities", "box", "type", "value", "ramp", "history", "rotation", "rotation_rate",
       "rotation_history", "depth"}},
@@ -698,19 +699,14 @@ class SceneReader {
     scene_.material.viscoplasticity = vp;
   }
 
-  // The saturated pore fluid (docs/theory.md section 12). What is not built yet, the unsaturated
-  // model (`retention`), is refused by name: ignoring it would run another model than the one asked for.
+  // The pore fluid (docs/theory.md section 12), saturated unless `retention` is given. The solver
+  // refuses the unsaturated model at its start while its coupling is not built (solve_run.cpp).
   void read_pore_fluid(const YAML::Node& m) {
     const YAML::Node node = m["pore_fluid"];
     const std::string p = "material.pore_fluid";
     if (!effect_block_wanted(node, p, scene_.effects.pore_fluid, "pore_fluid")) return;
     if (!node.IsDefined() || node.IsNull())
       fail(m, p, "missing: the effect 'pore_fluid' needs {permeability, fluid_viscosity, biot_modulus}");
-    if (node.IsMap() && node["retention"].IsDefined()) {
-      fail(node["retention"], p + ".retention",
-           "unsaturated flow (retention) is not supported yet (remove retention: without it the pores are taken as "
-           "saturated)");
-    }
     check_keys(node, p);
     PoreFluidParameters fluid;
     fluid.permeability = quantity(require(node, p, "permeability", "intrinsic permeability k, e.g. 1e-12 m^2"),
@@ -728,7 +724,28 @@ class SceneReader {
         quantity(require(node, p, "biot_modulus", "M, e.g. 2 GPa"), p + ".biot_modulus", dim::pressure);
     positive(node["biot_modulus"], p + ".biot_modulus", fluid.biot_modulus);
     read_initial_pressure(node, p, fluid);
+    if (node["retention"].IsDefined()) fluid.retention = read_retention(node["retention"], p + ".retention");
     scene_.material.pore_fluid = fluid;
+  }
+
+  // {model: van_genuchten, air_entry_pressure, n, residual_saturation (0 unless given)}.
+  RetentionParameters read_retention(const YAML::Node& node, const std::string& p) {
+    check_keys(node, p);
+    RetentionParameters r;
+    r.model = scalar(require(node, p, "model", "van_genuchten"), p + ".model", "a model name");
+    if (r.model != "van_genuchten")
+      fail(node["model"], p + ".model", "unknown model '" + r.model + "' (expected van_genuchten)");
+    r.air_entry_pressure =
+        quantity(require(node, p, "air_entry_pressure", "p_e, e.g. 10 kPa"), p + ".air_entry_pressure", dim::pressure);
+    positive(node["air_entry_pressure"], p + ".air_entry_pressure", r.air_entry_pressure);
+    r.n = quantity(require(node, p, "n", "van Genuchten's n > 1, e.g. 2"), p + ".n", dim::none);
+    if (!(r.n > 1.0)) fail(node["n"], p + ".n", format_number(r.n) + " must be > 1 (m = 1 - 1/n > 0)");
+    r.residual_saturation = quantity_or(node, p, "residual_saturation", dim::none, 0.0);
+    if (!(r.residual_saturation >= 0.0 && r.residual_saturation < 1.0)) {
+      fail(node["residual_saturation"], p + ".residual_saturation",
+           format_number(r.residual_saturation) + " is out of range (expected 0 <= residual_saturation < 1)");
+    }
+    return r;
   }
 
   // n0 < b <= 1: b = 1 - K / K_s for a skeleton no stiffer than its grains (b = 1: rigid grains),

@@ -168,6 +168,15 @@ struct ViscoplasticParameters {
 };
 
 // The pore fluid (docs/theory.md section 12), saturated: the fluid fills the pores. SI units.
+// The unsaturated model's retention curve (docs/theory.md section 12, "Unsaturated (retention)"):
+// van Genuchten's S_e = [1 + (s / p_e)^n]^(-m), m = 1 - 1/n, of the suction s = max(0, -p).
+struct RetentionParameters {
+  std::string model = "van_genuchten";  // the only one
+  double air_entry_pressure = 0.0;      // p_e [Pa], > 0
+  double n = 0.0;                       // > 1
+  double residual_saturation = 0.0;     // S_res, in [0, 1)
+};
+
 struct PoreFluidParameters {
   double permeability = 0.0;      // intrinsic permeability k [m^2]
   double fluid_viscosity = 0.0;   // mu_f [Pa s]
@@ -178,6 +187,8 @@ struct PoreFluidParameters {
   // initial_pressure: hydrostatic: the level of the free surface (water table) along the up
   // direction -g [m]; p = rho_f |g| (free_surface - up . x) at t = 0. Empty: the constant pressure.
   std::optional<double> free_surface;
+  // Unsaturated flow when given (read and written back; the solver refuses it until it is built).
+  std::optional<RetentionParameters> retention;
 
   double mobility() const { return permeability / fluid_viscosity; }  // k' = k / mu_f [m^2/(Pa s)]
 };

@@ -128,6 +128,15 @@ void emit_pore_fluid(YAML::Emitter& out, const PoreFluidParameters& fluid) {
   } else {
     out << YAML::Key << "initial_pressure" << YAML::Value << Num{fluid.initial_pressure};
   }
+  if (fluid.retention) {
+    const auto& r = *fluid.retention;
+    out << YAML::Key << "retention" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "model" << YAML::Value << r.model;
+    out << YAML::Key << "air_entry_pressure" << YAML::Value << Num{r.air_entry_pressure};
+    out << YAML::Key << "n" << YAML::Value << Num{r.n};
+    out << YAML::Key << "residual_saturation" << YAML::Value << Num{r.residual_saturation};
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 }
 

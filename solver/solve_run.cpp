@@ -376,7 +376,19 @@ class RunDriver {
   SolveResult result_;
 };
 
+// The scene reader takes material.pore_fluid.retention (and writes it back), but the flow, the
+// stress and the undrained update of the solver are the saturated ones (docs/theory.md section 12):
+// running it would be a silent wrong answer, so it stops here.
+void refuse_unbuilt_models(const Scene& scene) {
+  if (scene.material.pore_fluid && scene.material.pore_fluid->retention) {
+    throw InputError(scene.path +
+                     ": material.pore_fluid.retention: unsaturated flow is not built into the solver yet (remove "
+                     "retention: to run the pores as saturated)");
+  }
+}
+
 void RunDriver::check_inputs(const PointCloud& cloud) {
+  refuse_unbuilt_models(scene_);
   check_points_match_scene(scene_, cloud, options_.points_file);
   if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");
   refuse_runs_that_do_not_fit(scene_, cloud);

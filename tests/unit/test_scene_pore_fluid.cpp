@@ -1,7 +1,7 @@
 // The pore fluid's scene keys (docs/scene.md, material.pore_fluid): read in SI with their
-// defaults, every bad value refused with its key and reason, the parts of the model that are not
-// built yet (unsaturated retention, hydrostatic initial pressure) refused by name, the block
-// ignored with a warning while the effect is off, and the resolved scene read back unchanged.
+// defaults, every bad value refused with its key and reason, the unsaturated retention curve read
+// and checked, the hydrostatic start's keys, the block ignored with a warning while the effect is
+// off, and the resolved scene read back unchanged.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -166,12 +166,12 @@ TEST(ScenePoreFluid, MissingAndUnknownKeysAreNamed) {
     EXPECT_EQ(e.rfind(kPath + ":15: " + kBlock + "." + key + ": missing required key (", 0), 0u) << key << ": " << e;
   }
   auto e = error_of(replace(kScene, "    permeability:", "    permeabilty:"));
-  EXPECT_EQ(e,
-            kPath +
-                ":15: material.pore_fluid.permeabilty: unknown key (expected one of: permeability, "
-                "fluid_viscosity, fluid_density, biot_coefficient, biot_modulus, initial_pressure, free_surface); did "
-                "you mean "
-                "'permeability'?");
+  EXPECT_EQ(e, kPath +
+                   ":15: material.pore_fluid.permeabilty: unknown key (expected one of: permeability, "
+                   "fluid_viscosity, fluid_density, biot_coefficient, biot_modulus, initial_pressure, free_surface, "
+                   "retention); did "
+                   "you mean "
+                   "'permeability'?");
   e = error_of(kScene, {"material.pore_fluid=water"});
   EXPECT_NE(e.find("material.pore_fluid: expected a map of keys (permeability, "), std::string::npos) << e;
   // The effect without its block.
@@ -188,17 +188,60 @@ TEST(ScenePoreFluid, MissingAndUnknownKeysAreNamed) {
       << e;
 }
 
-// The unsaturated model is not built: a scene asking for it must not run as saturated without
-// saying so. A hydrostatic start needs gravity and the free surface's level, and the level goes
-// with it only.
-TEST(ScenePoreFluid, UnsaturatedIsRefusedAndHydrostaticNeedsGravityAndItsLevel) {
-  auto e = error_of(replace(kScene, "    initial_pressure: -10 kPa\n",
-                            "    initial_pressure: -10 kPa\n"
-                            "    retention: {model: van_genuchten, air_entry_pressure: 10 kPa, n: 2}\n"));
-  EXPECT_EQ(e, kPath +
-                   ":21: material.pore_fluid.retention: unsaturated flow (retention) is not supported yet (remove "
-                   "retention: without it the pores are taken as saturated)");
-  e = error_of(replace(kScene, "initial_pressure: -10 kPa", "initial_pressure: hydrostatic"));
+// The unsaturated model's retention curve is read (model, p_e > 0, n > 1, 0 <= S_res < 1, unknown keys
+// refused), written back and read back bit for bit (the solver, not the reader, refuses to run it
+// while its coupling is not built: test_solver_fluid_boundaries.cpp).
+TEST(ScenePoreFluid, RetentionIsReadCheckedAndReadBack) {
+  const auto with = [](const std::string& block) {
+    return replace(kScene, "    initial_pressure: -10 kPa\n",
+                   "    initial_pressure: -10 kPa\n    retention: " + block + "\n");
+  };
+  const Scene s = parse_scene(
+      with("{model: van_genuchten, air_entry_pressure: 10 kPa, n: 1.56, residual_saturation: 0.078}"), kPath);
+  ASSERT_TRUE(s.material.pore_fluid->retention.has_value());
+  const RetentionParameters& r = *s.material.pore_fluid->retention;
+  EXPECT_EQ(r.model, "van_genuchten");
+  EXPECT_EQ(r.air_entry_pressure, 1e4);
+  EXPECT_EQ(r.n, 1.56);
+  EXPECT_EQ(r.residual_saturation, 0.078);
+  const Scene back = parse_scene(resolved_scene_yaml(s), "/elsewhere/scene.resolved.yaml");
+  ASSERT_TRUE(back.material.pore_fluid->retention.has_value());
+  const RetentionParameters& b = *back.material.pore_fluid->retention;
+  EXPECT_EQ(b.model, r.model);
+  EXPECT_EQ(b.air_entry_pressure, r.air_entry_pressure);
+  EXPECT_EQ(b.n, r.n);
+  EXPECT_EQ(b.residual_saturation, r.residual_saturation);
+  // The residual saturation is 0 unless given; a saturated scene has no retention.
+  EXPECT_EQ(parse_scene(with("{model: van_genuchten, air_entry_pressure: 2 kPa, n: 3}"), kPath)
+                .material.pore_fluid->retention->residual_saturation,
+            0.0);
+  EXPECT_FALSE(parse_scene(kScene, kPath).material.pore_fluid->retention.has_value());
+  EXPECT_EQ(resolved_scene_yaml(parse_scene(kScene, kPath)).find("retention"), std::string::npos);
+
+  EXPECT_EQ(error_of(with("{model: brooks_corey, air_entry_pressure: 10 kPa, n: 2}")),
+            kPath + ":21: material.pore_fluid.retention.model: unknown model 'brooks_corey' (expected van_genuchten)");
+  EXPECT_EQ(error_of(with("{model: van_genuchten, air_entry_pressure: 0 kPa, n: 2}")),
+            kPath + ":21: material.pore_fluid.retention.air_entry_pressure: 0 must be > 0");
+  EXPECT_EQ(error_of(with("{model: van_genuchten, air_entry_pressure: 10 kPa, n: 1}")),
+            kPath + ":21: material.pore_fluid.retention.n: 1 must be > 1 (m = 1 - 1/n > 0)");
+  EXPECT_EQ(error_of(with("{model: van_genuchten, air_entry_pressure: 10 kPa, n: 2, residual_saturation: 1}")),
+            kPath +
+                ":21: material.pore_fluid.retention.residual_saturation: 1 is out of range (expected 0 <= "
+                "residual_saturation < 1)");
+  auto e = error_of(with("{model: van_genuchten, air_entry_pressure: 10 kPa, n: 2, m: 0.5}"));
+  EXPECT_NE(e.find("material.pore_fluid.retention.m: unknown key (expected one of: model, air_entry_pressure, n, "
+                   "residual_saturation)"),
+            std::string::npos)
+      << e;
+  e = error_of(with("{model: van_genuchten, n: 2}"));
+  EXPECT_NE(e.find("material.pore_fluid.retention.air_entry_pressure: missing required key"), std::string::npos) << e;
+  e = error_of(with("{air_entry_pressure: 10 kPa, n: 2}"));
+  EXPECT_NE(e.find("material.pore_fluid.retention.model: missing required key"), std::string::npos) << e;
+}
+
+// A hydrostatic start needs gravity and the free surface's level, and the level goes with it only.
+TEST(ScenePoreFluid, HydrostaticNeedsGravityAndItsLevel) {
+  auto e = error_of(replace(kScene, "initial_pressure: -10 kPa", "initial_pressure: hydrostatic"));
   EXPECT_EQ(e, kPath +
                    ":20: material.pore_fluid.initial_pressure: hydrostatic needs the effect 'gravity' (the fluid's "
                    "weight sets the pressure)");

@@ -331,6 +331,28 @@ TEST(SolverFluidBoundaries, DrainedConditionWithoutALayerIsRefused) {
   }
 }
 
+// The scene reader takes the unsaturated model (material.pore_fluid.retention), but the solver's flow
+// and coupling are the saturated ones: the run stops before anything is written, as bad input
+// (exit 2) naming the key, instead of running another model than the one asked for.
+TEST(SolverFluidBoundaries, UnsaturatedSceneIsRefusedAtTheStart) {
+  ColumnCase c = loaded_column(10, true, true, 0.0);
+  c.scene.path = "solver-test.yaml";
+  c.scene.material.pore_fluid->retention = RetentionParameters{"van_genuchten", 1e4, 2.0, 0.1};
+  SolveOptions o;
+  o.points_file = "column.vtp";
+  o.run_directory = (std::filesystem::path(MPPM_BINARY_DIR) / "fluid-boundary-runs" / "unsaturated").string();
+  std::filesystem::remove_all(o.run_directory);
+  try {
+    solve(c.scene, c.cloud, o);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "solver-test.yaml: material.pore_fluid.retention: unsaturated flow is not built into the solver yet "
+              "(remove retention: to run the pores as saturated)");
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.run_directory + "/" + run_layout::load));
+}
+
 // A run of the drained and fed column: load.csv has each fluid condition's rate and volume (in place
 // of a displacement and a force), the volumes are the rates' sums, and energy.csv's mass balance is
 // round-off; the run's tables are the same bits on 2 threads.
