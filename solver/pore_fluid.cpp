@@ -273,8 +273,10 @@ FlowSchedule flow_schedule(double fluid_step, double dt, FlowIntegration integra
   s.fluid_step = fluid_step;
   const double usable = 0.9 * fluid_step;
   if (usable >= dt) {
-    const double steps = std::floor(usable / dt);
-    s.interval = steps >= 1e9 ? std::int64_t{1000000000} : std::max<std::int64_t>(1, static_cast<std::int64_t>(steps));
+    // At most kLongestFlowInterval steps between updates: each batch's pressure change is a step in
+    // the forces, which rings the skeleton at the batch period (docs/theory.md section 12).
+    const double steps = std::min(std::floor(usable / dt), static_cast<double>(kLongestFlowInterval));
+    s.interval = std::max<std::int64_t>(1, static_cast<std::int64_t>(steps));
   } else {
     s.substeps = static_cast<std::int64_t>(std::ceil(dt / usable));
     const std::int64_t stages = rkl2_stages(dt, fluid_step);
