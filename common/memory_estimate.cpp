@@ -78,9 +78,9 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   if (damage) p += 1 + 4 + 8 * D + 8 * R + 8 * D * D + 8 * R * D + 8 + 1;
   if (viscoplastic) p += 9 * 8 + 8 * R * D + 2 * 8 + 1;  // plastic strain and wryness, ebar, dissipation, active
   // Pore fluid: pressure, fluid content change, its rate, the pressures a flow update starts from,
-  // and the RKL2 super step's start and previous contents and start rates (counted always: an upper
-  // bound by 24 B per point for the runs whose flow needs no super step).
-  if (has(in.effects, "pore_fluid")) p += 4 * 8 + 3 * 8;
+  // and the RKL2 super step's start contents and rates and its two increments (counted always: an upper
+  // bound by 32 B per point for the runs whose flow needs no super step).
+  if (has(in.effects, "pore_fluid")) p += 4 * 8 + 4 * 8;
   e.bytes_per_point = p;
 
   // The integrator (solver/explicit_dynamics.hpp), per tracked point: body force and its previous

@@ -39,32 +39,40 @@ namespace {
 
 bool carries_fluid(const PointData& p, std::size_t i) { return p.region[i] == 0; }
 
+// The stages are carried as increments D_j = Y_j - Y_0 of the fluid content (D_0 = 0): the
+// combination mu D_(j-1) + nu D_(j-2) then rounds relative to the step's change, not to the
+// content, whose rounding through the stages' large coefficients (mu -> 2, nu -> -1) drifted the
+// fluid's books by 1e-9 of the pore volume over a long run; each stage's content is Y_0 + D_j.
+
 // Stage 1 on the body points' fluid content (the start's content and rates kept in `work`).
 void first_stage(PointData& p, double first_rate, double span, FlowSuperStepWork& w) {
   const auto n = static_cast<std::int64_t>(p.owned);
   w.start_content.assign(p.fluid_content_change.begin(), p.fluid_content_change.begin() + n);
-  w.previous_content = w.start_content;
   w.start_rate.assign(p.fluid_rate.begin(), p.fluid_rate.begin() + n);
-#pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    if (carries_fluid(p, i)) p.fluid_content_change[i] += first_rate * span * p.fluid_rate[i];
-  }
-}
-
-// Stage j >= 2: the content from the two stages before and the start; the stage before moves to
-// previous_content.
-void later_stage(PointData& p, const Rkl2Stage& c, double span, FlowSuperStepWork& w) {
-  const auto n = static_cast<std::int64_t>(p.owned);
-  const double from_start = 1.0 - c.mu - c.nu;
+  w.previous_increment.assign(static_cast<std::size_t>(n), 0.0);
+  w.increment.assign(static_cast<std::size_t>(n), 0.0);
 #pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
     if (!carries_fluid(p, i)) continue;
-    const double current = p.fluid_content_change[i];
-    p.fluid_content_change[i] = c.mu * current + c.nu * w.previous_content[i] + from_start * w.start_content[i] +
-                                span * (c.rate * p.fluid_rate[i] + c.start_rate * w.start_rate[i]);
-    w.previous_content[i] = current;
+    w.increment[i] = first_rate * span * p.fluid_rate[i];
+    p.fluid_content_change[i] = w.start_content[i] + w.increment[i];
+  }
+}
+
+// Stage j >= 2: the increment from the two stages before; the stage before moves to
+// previous_increment.
+void later_stage(PointData& p, const Rkl2Stage& c, double span, FlowSuperStepWork& w) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    if (!carries_fluid(p, i)) continue;
+    const double current = w.increment[i];
+    w.increment[i] = c.mu * current + c.nu * w.previous_increment[i] +
+                     span * (c.rate * p.fluid_rate[i] + c.start_rate * w.start_rate[i]);
+    w.previous_increment[i] = current;
+    p.fluid_content_change[i] = w.start_content[i] + w.increment[i];
   }
 }
 

@@ -31,8 +31,8 @@ Rkl2Coefficients rkl2_coefficients(std::int64_t stages);
 
 // The arrays a super step works in (kept from step to step: no allocation after the first).
 struct FlowSuperStepWork {
-  std::vector<double> start_content, previous_content, start_rate;  // per point
-  std::vector<double> start_outflow, previous_outflow, outflow;     // per drained condition
+  std::vector<double> start_content, start_rate, increment, previous_increment;  // per point
+  std::vector<double> start_outflow, previous_outflow, outflow;                  // per drained condition
 };
 
 // One RKL2 step of length span in `stages` stages at the skeleton's last strain, with the boundaries
