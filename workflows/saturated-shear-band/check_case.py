@@ -68,7 +68,7 @@ def snapshot_travel(run):
     """Platen travel [m] over one output interval of the run (the onset's resolution)."""
     interval = float(run["scene"]["output"]["interval"])
     top = next(bc for bc in run["scene"]["boundary_conditions"] if bc.get("name") == "top" and bc["type"] == "velocity")
-    return interval * math.hypot(*[float(v) for v in top["value"]])
+    return interval * max(math.hypot(*[float(v) for v in velocity]) for _, velocity in top["history"])
 
 
 def mm(length):

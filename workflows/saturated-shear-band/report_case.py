@@ -120,7 +120,8 @@ def plot_load_curves(results, runs, path):
                     ls="--" if m["dry"] else "-", label=label)
             if m["onset_travel_m"] is not None:
                 load = np.interp(m["onset_travel_m"], *(np.abs(m["curve"][c]) for c in ("top_uy_m", "top_Fy_N")))
-                ax.plot(1e3 * m["onset_travel_m"], load / 1e3, "o", color="k" if m["dry"] else f"C{k}", ms=5)
+                ax.plot(1e3 * m["onset_travel_m"], load / 1e3, "o", color="k" if m["dry"] else f"C{k}", ms=6,
+                        mec="w", zorder=5)
         ax.set_title(f"dilatancy {psi:g} deg")
         ax.set_xlabel("top platen displacement [mm]")
         ax.grid(alpha=0.3)
@@ -181,7 +182,7 @@ def main():
         "height (a formula of the resolved material, not a run output), over the loading time; band angle and width "
         "are the postprocessor's (summary.json) at the last snapshot; the band onset is the platen travel at the first "
         "snapshot from which both bands carry at least twice the mean plastic shear strain outside them (case 1's "
-        "band criterion), to one output interval (0.125 mm of travel); the band pore pressure is the mean over the "
+        f"band criterion), to one output interval ({1e3 * check_case.snapshot_travel(saturated):g} mm of travel); the band pore pressure is the mean over the "
         "interior points inside the bands at the platens' stop (a run without bands of its own: over the dry run's "
         "bands of its dilatancy); the fluid balance is energy.csv's fluid_mass_balance over the pore volume.",
         "",

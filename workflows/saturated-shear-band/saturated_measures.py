@@ -92,18 +92,27 @@ def band_pressure(post_dir, horizon, bands, time):
 
 
 def load_average(out, name):
-    """Mean 1-minute load average over the run's solve stage (timing/solve-NAME.txt and the
-    samples of timing/loadavg.txt), or None when they do not cover it."""
-    stage = os.path.join(out, "timing", f"solve-{name}.txt")
-    samples = os.path.join(out, "timing", "loadavg.txt")
-    if not (os.path.isfile(stage) and os.path.isfile(samples)):
-        return None
-    with open(stage) as f:
-        start, end = (float(v) for v in f.read().split()[1:3])
-    with open(samples) as f:
-        rows = [line.split() for line in f if line.strip()]
-    loads = [float(r[1]) for r in rows if len(r) > 1 and start <= float(r[0]) <= end]
-    return float(np.mean(loads)) if loads else None
+    """Mean 1-minute load average over the run's solve stage: the samples of timing/loadavg.txt
+    ('EPOCH LOAD1 ...' lines, when a sampler wrote them) within the stage's start and end
+    (timing/solve-NAME.txt), else the mean of the values at its start and end that the Makefile
+    keeps (timing/solve-NAME.load); None without either."""
+    timing = os.path.join(out, "timing")
+    stage = os.path.join(timing, f"solve-{name}.txt")
+    samples = os.path.join(timing, "loadavg.txt")
+    if os.path.isfile(stage) and os.path.isfile(samples):
+        with open(stage) as f:
+            start, end = (float(v) for v in f.read().split()[1:3])
+        with open(samples) as f:
+            rows = [line.split() for line in f if line.strip()]
+        loads = [float(r[1]) for r in rows if len(r) > 1 and start <= float(r[0]) <= end]
+        if loads:
+            return float(np.mean(loads))
+    ends = os.path.join(timing, f"solve-{name}.load")
+    if os.path.isfile(ends):
+        with open(ends) as f:
+            loads = [float(line.split()[0]) for line in f if line.strip()]
+        return float(np.mean(loads)) if loads else None
+    return None
 
 
 def run_measures(out, name, reference_bands=None):
