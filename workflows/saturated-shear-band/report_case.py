@@ -24,7 +24,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import check_case  # noqa: E402
-import saturated_measures as sm  # noqa: E402
 from band_contours import STRAIN_AND_ROTATION, plot_contours  # noqa: E402  (../tools)
 from mppm_outputs import RunOutputError, save_figure, write_text  # noqa: E402
 from shear_band_fields import Snapshot  # noqa: E402
