@@ -81,9 +81,12 @@ def run_table(results, runs):
         ratio = "dry" if m["dry"] else f"{consolidation_time(m) / m['platen_stop_s']:.2g}"
         balance = "n/a" if m["dry"] else f"{m['worst_fluid_balance_m3'] / m['pore_volume_m3']:.1e}"
         permeability = "dry" if m["dry"] else f"{m['permeability']:g}"
+        # A peak at the platens' stop is only the load there: the curve was still rising.
+        at_stop = s.get("time_at_peak_s") is not None and s["time_at_peak_s"] >= m["platen_stop_s"] - 1e-3
+        rising = " (still rising at the stop)" if at_stop else ""
         lines.append(
             f"| {name} | {m['psi']:g} | {permeability} | {ratio} | "
-            f"{s['peak_load_N']:.0f} | {fmt(s.get('displacement_at_peak_m') and 1e3 * s['displacement_at_peak_m'], '.2f')} | "
+            f"{s['peak_load_N']:.0f}{rising} | {fmt(s.get('displacement_at_peak_m') and 1e3 * s['displacement_at_peak_m'], '.2f')} | "
             f"{fmt(s.get('shear_band_angle_deg'), '.1f')} | {fmt(s.get('shear_band_width_m') and 1e3 * s['shear_band_width_m'], '.1f')} | "
             f"{fmt(m['onset_travel_m'] and 1e3 * m['onset_travel_m'], '.2f', 'no band')} | {pressure} | "
             f"{fmt(m['outside_pressure_Pa'] and m['outside_pressure_Pa'] / 1e6, '+.3f', 'n/a')} | {extremes} | {balance} | "
