@@ -24,7 +24,8 @@ set_tests_properties(workflows.shear_band_quick PROPERTIES LABELS "regression" T
 # status, energy balance, fluid mass balance at round-off, bands in the dry runs, suction in the
 # bands and a raised peak and a later band at psi 15, neither at psi 0. The drained end
 # (k = 1e-10) is only in the full `make check`. 2 saturated runs of 14 430 steps and 2 dry runs
-# of 7 143 steps on 3372 points, two at a time.
+# of 7 143 steps on 3372 points, two at a time: 96 s wall measured with the 2 cores shared
+# (load average about 4); not yet timed on an idle machine.
 add_test(NAME workflows.saturated_shear_band_quick
   COMMAND sh -c "make -s -C '${PROJECT_SOURCE_DIR}/workflows/saturated-shear-band' clean OUT='${CMAKE_BINARY_DIR}/workflow-runs/saturated-shear-band-quick' && make -j2 -C '${PROJECT_SOURCE_DIR}/workflows/saturated-shear-band' quick MPPM_BIN='${CMAKE_BINARY_DIR}/bin' OUT='${CMAKE_BINARY_DIR}/workflow-runs/saturated-shear-band-quick'")
 set_tests_properties(workflows.saturated_shear_band_quick PROPERTIES LABELS "regression" TIMEOUT 600)
