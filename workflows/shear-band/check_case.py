@@ -5,7 +5,7 @@ Usage: check_case.py --out OUT --runs phi35-psi15 [phi25-psi15 ...] [--quiet]
 
 Per run:
   - the run completed;
-  - energy: the largest |balance error| of energy.csv (its last column) stays below 1 %;
+  - energy: the largest |balance error| of energy.csv stays below 1 %;
   - two conjugate bands: the postprocessor reports two bands, one rising and one falling to
     the right, and each is a band, not a blob: the mean plastic shear strain on its arms
     (inside the band, away from the crossing) is at least twice the mean outside the bands;
@@ -64,9 +64,8 @@ def run_measures(folder):
     summary = read_json(os.path.join(folder, "post", "summary.json"))
     energy_path = os.path.join(folder, "run", "energy.csv")
     energy = read_csv_columns(energy_path)
-    last_column = list(energy)[-1]
-    if last_column != "balance_error":
-        raise RunOutputError(f"{energy_path}: last column is '{last_column}' (expected balance_error)")
+    if "balance_error" not in energy:  # the last column of a dry run; the pore fluid's columns follow it
+        raise RunOutputError(f"{energy_path}: no column balance_error")
     balance = energy["balance_error"]
     measures = {
         "info": info,

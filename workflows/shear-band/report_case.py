@@ -21,7 +21,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.tri as mtri  # noqa: E402
 import numpy as np  # noqa: E402
 
 import check_case  # noqa: E402
@@ -30,6 +29,7 @@ from shear_band_fields import LastSnapshot, parse_run_name  # noqa: E402
 # mppm_outputs is in tools/, which shear_band_fields puts on the path.
 from mppm_outputs import (RunOutputError, prescribed_displacement, read_csv_columns, resolved_scene,  # noqa: E402
                           save_figure, write_text)
+from band_contours import plot_contours  # noqa: E402  (tools/, shared with ../saturated-shear-band)
 
 
 class Run:
@@ -225,42 +225,6 @@ def plot_cone_match(plane_strain, triaxial, path):
     ax.legend(fontsize=7)
     fig.tight_layout()
     save_figure(fig, path, 110)
-
-
-def plot_contours(runs, path, title):
-    fig, axes = plt.subplots(2, len(runs), figsize=(2.7 * len(runs) + 0.5, 9.2), squeeze=False)
-    for col, run in enumerate(runs):
-        snap = run.last_snapshot()
-        body = snap.body
-        xy = snap.deformed[body] * 1e3
-        # Triangulate the reference lattice (regular) and draw it on the deformed positions, so
-        # no triangle bridges points that are not neighbours.
-        triangles = mtri.Triangulation(*(snap.reference[body] * 1e3).T).triangles
-        tri = mtri.Triangulation(xy[:, 0], xy[:, 1], triangles)
-        for row, (values, cmap, label) in enumerate(
-                [(snap.plastic_shear_strain[body], "viridis", "plastic shear strain [-]"),
-                 (snap.rotation[body], "RdBu_r", "micro-rotation [rad]")]):
-            ax = axes[row][col]
-            top = float(np.max(np.abs(values))) or 1.0
-            levels = np.linspace(-top, top, 21) if row == 1 else np.linspace(0.0, top, 21)
-            cs = ax.tricontourf(tri, values, levels=levels, cmap=cmap)
-            for band in run.m["bands"]:  # the postprocessor's centre lines, on the reference frame
-                along = np.array([-0.25, 0.25])
-                line = band.centre[None, :] + along[:, None] * band.tangent[None, :]
-                ax.plot(line[:, 0] * 1e3, line[:, 1] * 1e3, color="w" if row == 0 else "k", lw=0.7, ls="--")
-            ax.set_xlim(xy[:, 0].min() - 2, xy[:, 0].max() + 2)
-            ax.set_ylim(xy[:, 1].min() - 2, xy[:, 1].max() + 2)
-            ax.set_aspect("equal")
-            ax.set_title(f"{run.name}\n{label}", fontsize=8)
-            ax.tick_params(labelsize=7)
-            fig.colorbar(cs, ax=ax, shrink=0.8).ax.tick_params(labelsize=7)
-        axes[1][col].set_xlabel("x [mm]", fontsize=8)
-    for row in range(2):
-        axes[row][0].set_ylabel("y [mm], deformed (true scale)", fontsize=8)
-    fig.suptitle(f"{title}: last snapshot (t = {runs[0].last_snapshot().time:g} s), body points; dashed: the "
-                 "postprocessor's band centre lines", fontsize=9)
-    fig.tight_layout()
-    save_figure(fig, path, 100)
 
 
 CASE_TRAVEL = None  # platen travel of the case runs [m], set from their resolved scenes in main()

@@ -24,13 +24,14 @@ def parse_run_name(name):
     return float(m.group(1)), float(m.group(2))
 
 
-class LastSnapshot:
-    """The last frame of post/results.pvd: body points, deformed positions and fields."""
+class Snapshot:
+    """One frame of post/results.pvd (default the last): body points, deformed positions and
+    fields; `pore_pressure` too when the run has it (None otherwise: a dry run)."""
 
-    def __init__(self, post_dir, horizon):
+    def __init__(self, post_dir, horizon, frame=-1):
         import meshio  # imported here so the table-only paths do not need it
 
-        self.time, path = frames(post_dir)[-1]
+        self.time, path = frames(post_dir)[frame]
         try:
             mesh = meshio.read(path)
         except Exception as e:  # meshio raises several types on a bad file
@@ -44,6 +45,7 @@ class LastSnapshot:
         self.displacement = data["displacement"][:, :2]
         self.rotation = np.asarray(data["rotation"]).reshape(len(self.reference), -1)[:, -1]
         self.plastic_shear_strain = np.asarray(data["plastic_shear_strain"]).ravel()
+        self.pore_pressure = np.asarray(data["pore_pressure"]).ravel() if "pore_pressure" in data else None
         self.body = np.asarray(data["region"]).ravel() == 0
         # Same interior as the postprocessor's shear-band metrics (postprocess/README.md):
         # body points farther than 2 horizons from every boundary-layer or loaded point,
@@ -57,3 +59,6 @@ class LastSnapshot:
     @property
     def deformed(self):
         return self.reference + self.displacement
+
+
+LastSnapshot = Snapshot  # the name check_case.py and report_case.py use for the last frame
