@@ -441,9 +441,9 @@ TEST(SolverPoreFluidMandel, MandelCryerPeakAtTheCentre) {
   // than the continuum where the free faces cut the families (measured +0.6 % to +1.3 %; the
   // Terzaghi column's free top made it 2.0-3.8 % softer).
   EXPECT_LT(largest_settlement_deviation(samples, 0.01, 0.3), 0.02);
-  // The shortfall is the discretization's and falls as dx / a: measured -0.0149 p0 at a = 20.5 dx,
-  // -0.0078 p0 at 40.5 dx (peak times 0.0766 and 0.0783 against 0.0775; the largest deviation of the
-  // curve 0.010 p0). A ratio below 0.7 shows the first order; a fixed offset (the plates, a wrong
+  // The shortfall is the discretization's and falls as dx / a: measured -0.0142 p0 at a = 20.5 dx,
+  // -0.0073 p0 at 40.5 dx (peak times 0.0777 and 0.0785 against 0.0775; the largest deviation of the
+  // curve 0.011 p0). A ratio below 0.7 shows the first order; a fixed offset (the plates, a wrong
   // coefficient) would not fall.
   EXPECT_LT(std::abs(peak.value - series.value), 0.7 * std::abs(coarse_peak.value - series.value));
 }
