@@ -109,6 +109,37 @@ def check_lines(out, runs, quick=False):
     return [f"- `{line[:4]}` {line[5:]}" for line in buffer.getvalue().splitlines()], len(failures)
 
 
+def case_wall_seconds(out):
+    """From the first stage's start to the last one's end (timing/<stage>.txt: name, start, end, ...)."""
+    starts, ends = [], []
+    timing = os.path.join(out, "timing")
+    for name in os.listdir(timing) if os.path.isdir(timing) else []:
+        if name.endswith(".txt"):
+            with open(os.path.join(timing, name)) as f:
+                fields = f.read().split()
+            if len(fields) >= 3:
+                starts.append(float(fields[1]))
+                ends.append(float(fields[2]))
+    return max(ends) - min(starts) if starts else None
+
+
+def wall_time_statement(results, out):
+    """What the wall times are worth: `make -j2` runs two runs at a time with one thread each, so a
+    load average up to about 2.5 is the case itself on the 2 cores (an idle machine otherwise);
+    above that something else ran beside it. A run whose load was not sampled is not vouched for."""
+    loads = [m["load_average"] for m in results.values()]
+    if any(load is None for load in loads) or max(loads) > 2.5:
+        return ("**Wall times were measured on a shared 2-core machine** (something else ran beside some runs, or "
+                "their load was not sampled; `make -j2` ran two runs at a time with `--threads 1` each); the last "
+                "column is the mean 1-minute load average sampled during each run's solve. They are not idle-machine "
+                "figures.")
+    whole = case_wall_seconds(out)
+    total = f" The whole case, points to postprocessing, took {whole / 60:.1f} min." if whole else ""
+    return (f"Wall times on the 2-core machine running only this case (`make -j2`: two runs at a time with "
+            f"`--threads 1` each, so a load average of about 2 is the case itself; largest {max(loads):.1f}); the last "
+            f"column is the mean 1-minute load average sampled during each run's solve.{total}")
+
+
 def plot_load_curves(results, runs, path):
     dilatancies = sorted({results[n]["psi"] for n in runs}, reverse=True)
     fig, axes = plt.subplots(1, len(dilatancies), figsize=(6 * len(dilatancies), 4.6), sharey=True, squeeze=False)
@@ -190,10 +221,7 @@ def main():
         "",
     ] + run_table(results, ordered) + [
         "",
-        "**Wall times were measured on a shared 2-core machine** (other sessions were building and running "
-        "beside these runs, `make -j2` ran two runs at a time with `--threads 1` each); the last column is the "
-        "mean 1-minute load average sampled every 20 s during each run's solve when the samples "
-        "(`timing/loadavg.txt`) cover it. They are not idle-machine figures.",
+        wall_time_statement(results, args.out),
         "",
         f"`make check` ({failures} failed):",
         "",
