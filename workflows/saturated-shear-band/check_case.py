@@ -24,14 +24,13 @@ Per dilatancy (the dry run against the saturated ones):
 those runs can show: everything above but the drained end, which needs its k = 1e-10 runs.
 Prints one PASS/FAIL/SKIP line per check; exit 1 if any fails, 2 if the outputs are unusable.
 """
-import argparse
 import math
 import sys
 
 import numpy as np
 
 import saturated_measures as sm
-from mppm_outputs import RunOutputError  # ../tools, on the path saturated_measures sets
+from case_checks import run_case_checks  # ../tools, on the path saturated_measures sets
 
 MAX_BALANCE_ERROR = sm.case1_check.MAX_BALANCE_ERROR  # case 1's energy criterion (1 %)
 # fluid_mass_balance is the volume change of the pores less the inflow plus the outflow, summed
@@ -220,26 +219,7 @@ def check(out, runs, report, quick=False):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="folder holding one sub-folder per run")
-    ap.add_argument("--runs", nargs="+", required=True, help="run names psi<deg>-k<m^2>|dry[-quick]")
-    ap.add_argument("--quick", action="store_true", help="the reduced form: see above")
-    args = ap.parse_args()
-    failures = 0
-
-    def report(ok, text):
-        """ok: True (PASS), False (FAIL) or None (SKIP: not asserted)."""
-        nonlocal failures
-        print(("SKIP " if ok is None else "PASS " if ok else "FAIL ") + text)
-        failures += 1 if ok is False else 0
-
-    try:
-        check(args.out, args.runs, report, quick=args.quick)
-    except (RunOutputError, KeyError) as e:
-        print(f"check_case: cannot read the outputs: {e}", file=sys.stderr)
-        return 2
-    print(f"{failures} check(s) failed" if failures else "all checks passed")
-    return 1 if failures else 0
+    return run_case_checks(__doc__, check, "run names psi<deg>-k<m^2>|dry[-quick]")
 
 
 if __name__ == "__main__":

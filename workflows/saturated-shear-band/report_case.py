@@ -12,10 +12,8 @@ contour pictures with the shared band_contours.plot_contours of case 1. Exit 2 i
 missing or unreadable.
 """
 import argparse
-import io
 import os
 import sys
-from contextlib import redirect_stdout
 
 import matplotlib
 
@@ -24,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import check_case  # noqa: E402
+from case_checks import check_lines  # noqa: E402  (tools/)
 from band_contours import STRAIN_AND_ROTATION, plot_contours  # noqa: E402  (../tools)
 from mppm_outputs import RunOutputError, save_figure, write_text  # noqa: E402
 from shear_band_fields import Snapshot  # noqa: E402
@@ -95,20 +94,6 @@ def run_table(results, runs):
     return lines
 
 
-def check_lines(out, runs, quick=False):
-    buffer = io.StringIO()
-    failures = []
-
-    def report(ok, text):
-        print(("SKIP " if ok is None else "PASS " if ok else "FAIL ") + text)
-        if ok is False:
-            failures.append(text)
-
-    with redirect_stdout(buffer):
-        check_case.check(out, runs, report, quick=quick)
-    return [f"- `{line[:4]}` {line[5:]}" for line in buffer.getvalue().splitlines()], len(failures)
-
-
 def case_wall_seconds(out):
     """From the first stage's start to the last one's end (timing/<stage>.txt: name, start, end, ...)."""
     starts, ends = [], []
@@ -176,7 +161,7 @@ def main():
         results = check_case.measure_all(args.out, args.runs)
         for name, m in results.items():
             m["folder"] = os.path.join(args.out, name)
-        checks, failures = check_lines(args.out, args.runs)
+        checks, failures = check_lines(check_case.check, args.out, args.runs)
     except (RunOutputError, KeyError, ValueError) as e:
         print(f"report_case: cannot read the outputs: {e}", file=sys.stderr)
         return 2

@@ -23,7 +23,6 @@ maximum lies inside the 75 mm interior for the ridge fit. The full checks are `m
 (the case) and `make check-published` (the published 4.5 mm form, on which most of them fail).
 Prints one PASS/FAIL/SKIP line per check; exit 1 if any fails, 2 if the outputs are unusable.
 """
-import argparse
 import os
 import sys
 
@@ -31,7 +30,8 @@ import numpy as np
 
 from band_measures import BandRegions, bands_of
 from shear_band_fields import LastSnapshot, parse_run_name
-from mppm_outputs import RunOutputError, read_csv_columns, read_json  # tools/, on the path shear_band_fields sets
+from case_checks import run_case_checks  # tools/, on the path shear_band_fields sets
+from mppm_outputs import RunOutputError, read_csv_columns, read_json
 
 MAX_BALANCE_ERROR = 0.01  # the case's criterion: no run with an energy balance error above 1 %
 MIN_ROTATION_RATIO = 3.0  # the case's criterion: mean |w| inside the bands >= 3x outside
@@ -142,26 +142,7 @@ def check(out, runs, report, quick=False):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", required=True, help="folder holding one sub-folder per run")
-    ap.add_argument("--runs", nargs="+", required=True, help="run names phi<deg>-psi<deg>[-variant]")
-    ap.add_argument("--quick", action="store_true", help="the reduced form: see above")
-    args = ap.parse_args()
-    failures = 0
-
-    def report(ok, text):
-        """ok: True (PASS), False (FAIL) or None (SKIP: measured, not asserted)."""
-        nonlocal failures
-        print(("SKIP " if ok is None else "PASS " if ok else "FAIL ") + text)
-        failures += 1 if ok is False else 0
-
-    try:
-        check(args.out, args.runs, report, quick=args.quick)
-    except (RunOutputError, KeyError) as e:
-        print(f"check_case: cannot read the outputs: {e}", file=sys.stderr)
-        return 2
-    print(f"{failures} check(s) failed" if failures else "all checks passed")
-    return 1 if failures else 0
+    return run_case_checks(__doc__, check, "run names phi<deg>-psi<deg>[-variant]")
 
 
 if __name__ == "__main__":

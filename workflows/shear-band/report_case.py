@@ -12,10 +12,8 @@ labelled as such). The checks are those of check_case.py. Figures are PNG files 
 headless with matplotlib (Agg). Exit 2 if an output is missing or unreadable.
 """
 import argparse
-import io
 import os
 import sys
-from contextlib import redirect_stdout
 
 import matplotlib
 
@@ -24,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import check_case  # noqa: E402
+from case_checks import check_lines  # noqa: E402  (tools/)
 from homogeneous_response import biaxial_response, homogeneous_peak  # noqa: E402
 from shear_band_fields import LastSnapshot, parse_run_name  # noqa: E402
 # mppm_outputs is in tools/, which shear_band_fields puts on the path.
@@ -158,21 +157,6 @@ def run_table(runs, with_homogeneous=True):
     return lines
 
 
-def check_lines(out, names, quick=False):
-    """check_case.py's lines for these runs, as a Markdown list, and the number of failures."""
-    buffer = io.StringIO()
-    failures = []
-
-    def report(ok, text):
-        print(("SKIP " if ok is None else "PASS " if ok else "FAIL ") + text)
-        if ok is False:
-            failures.append(text)
-
-    with redirect_stdout(buffer):
-        check_case.check(out, names, report, quick=quick)
-    return [f"- `{line[:4]}` {line[5:]}" for line in buffer.getvalue().splitlines()], len(failures)
-
-
 def sweeps(runs):
     friction, dilatancy = check_case.sweep_centre([r.name for r in runs])
     return [([r for r in runs if r.psi_name == dilatancy],
@@ -250,8 +234,8 @@ def main():
         CASE_TRAVEL = case[0].prescribed_travel()
         PUBLISHED_TRAVEL = published[0].prescribed_travel()
         CASE_THICKNESS = float(case[0].scene["thickness"])
-        case_checks, case_failures = check_lines(args.out, args.runs)
-        published_checks, published_failures = check_lines(args.out, args.published_runs)
+        case_checks, case_failures = check_lines(check_case.check, args.out, args.runs)
+        published_checks, published_failures = check_lines(check_case.check, args.out, args.published_runs)
     except (RunOutputError, KeyError, ValueError) as e:
         print(f"report_case: cannot read the outputs: {e}", file=sys.stderr)
         return 2
