@@ -19,6 +19,9 @@ struct RunCostInput {
   int threads = 1;
   std::int64_t snapshots = 0;                   // written by the run, the first and last included
   std::uint64_t snapshot_values_per_point = 0;  // the components of its output fields
+  // Pore fluid: the flow-rate evaluations per step (explicit substeps or RKL2 stages; 1 / N for an
+  // update every N steps).
+  double flow_evaluations_per_step = 0.0;
 };
 
 struct RunCostEstimate {

@@ -7,6 +7,7 @@
 #include "common/memory_estimate.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/model.hpp"
+#include "solver/pore_fluid.hpp"
 #include "solver/regular_lattice.hpp"
 
 namespace mppm::solver {
@@ -19,6 +20,7 @@ namespace {
 // gives 1.47x the plate's critical step, the block 1.0x). The run computes its own.
 struct SampleSteps {
   double critical = 0.0, damage = 0.0;
+  double fluid = 0.0;  // the flow's step limit of an interior point (pore fluid only)
 };
 SampleSteps sample_block_steps(const Scene& scene) {
   const int cells = static_cast<int>(std::ceil(2.0 * scene.geometry.horizon_factor)) + 3;
@@ -28,6 +30,7 @@ SampleSteps sample_block_steps(const Scene& scene) {
   SampleSteps s;
   s.critical = critical_time_step(model).step;
   s.damage = model.damage_critical_step(s.critical);
+  if (model.fluid) s.fluid = fluid_step_limit(model.points, model.bonds, *model.fluid);
   return s;
 }
 
@@ -75,6 +78,11 @@ RunEstimate estimate_run(const Scene& scene, const PointCloud& cloud, std::uint6
   cost.bonds = e.bonds;
   cost.steps = e.steps;
   cost.threads = threads;
+  if (sample.fluid > 0.0) {
+    const FlowSchedule flow = flow_schedule(sample.fluid, e.time_step, scene.numerics.flow_integration);
+    cost.flow_evaluations_per_step = flow.interval > 1 ? 1.0 / static_cast<double>(flow.interval)
+                                                       : static_cast<double>(flow.rate_evaluations_per_step());
+  }
   // The snapshots at t = 0, at every output.interval and at the end (common/run_directory.hpp).
   cost.snapshots = scene.output.interval > 0.0
                        ? static_cast<std::int64_t>(std::floor(scene.time.end / scene.output.interval + 1e-9)) + 1
