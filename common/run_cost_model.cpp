@@ -26,7 +26,14 @@ constexpr double kBaseSeconds2d = 4.17e-9, kBaseSeconds3d = 14.3e-9;
 // a flow faster than the step costs its substeps or RKL2 stages on top, which this factor leaves out).
 constexpr double kMicropolar2d = 1.65, kMicropolar3d = 1.87;
 constexpr double kDamage = 1.29;
-constexpr double kViscoplasticity2d = 1.79, kViscoplasticity3d = 1.45;
+constexpr double kViscoplasticity2d = 1.39, kViscoplasticity3d = 1.45;
+// 2-D viscoplasticity also costs per point (the return map, the plastic state): with the bond factor
+// above, 129 ns per point and step fits both measured micropolar viscoplastic runs' loops, the plate
+// (46 bonds per point, 9.1 ms per step) and the shear band (12 bonds per point, 0.808 ms per step), on
+// one thread (workflows/accuracy-cost/estimates.md of 2026-12-03, their start-up taken off). A factor
+// alone (1.79, the plate's) put the shear band at 0.62 of its time. 3-D has one measurement: its
+// factor holds both parts.
+constexpr double kViscoplasticSecondsPerPoint2d = 129e-9;
 constexpr double kPoreFluid = 1.26;
 // The factor above holds the plate's quarter of a flow update per step; each further flow-rate
 // evaluation per step (substeps, RKL2 stages) costs about 3.8 ns per bond on one thread: the
@@ -70,7 +77,11 @@ RunCostEstimate estimate_run_cost(const RunCostInput& in) {
   const auto bonds = static_cast<double>(in.bonds);
   const double extra_flow =
       has(in.effects, "pore_fluid") ? std::max(0.0, in.flow_evaluations_per_step - kPoreFluidEvaluationsInFactor) : 0.0;
-  e.seconds_per_step = bonds * (update + extra_flow * kFlowEvaluationSecondsPerBond) / e.thread_speed_up;
+  const double per_point =
+      has(in.effects, "viscoplasticity") && in.dimension == 2 ? kViscoplasticSecondsPerPoint2d : 0.0;
+  e.seconds_per_step =
+      (bonds * (update + extra_flow * kFlowEvaluationSecondsPerBond) + static_cast<double>(in.points) * per_point) /
+      e.thread_speed_up;
   e.snapshot_seconds =
       kSnapshotSecondsPerValue * static_cast<double>(in.points) * static_cast<double>(in.snapshot_values_per_point);
   e.loop_seconds = static_cast<double>(std::max<std::int64_t>(0, in.steps)) * e.seconds_per_step +
