@@ -75,9 +75,7 @@ TEST(RunCostModel, ViscoplasticityCostsPerBondAndPerPoint) {
 
 // The pore fluid's flow evaluations beyond the quarter per step its factor holds cost their count
 // times a bond loop (3.8 ns per bond: the saturated shear band's 31 RKL2 stages per step added 265 s
-// to 69 s, common/run_cost_model.cpp). The per-bond model puts that case's k = 1e-13 run at 35 s
-// against 69 s measured: its sparse families (horizon factor 2.05) make the per-point work, the
-// return map above all, a larger share than the model's plate has; not asserted here.
+// to 69 s, common/run_cost_model.cpp).
 TEST(RunCostModel, FlowEvaluationsBeyondTheFactorCostTheirBondLoops) {
   RunCostInput in;
   in.dimension = 2;
