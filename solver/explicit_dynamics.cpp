@@ -193,19 +193,16 @@ void ExplicitDynamics::advance_flow() {
   for (const FedSurface& s : conditions_.fed())
     flow_boundaries_.sources.push_back({&s.points, s.value.component_at(time_, 0) * s.area / s.volume_sum});
   boundary_volume_start_ = boundary_volume_;  // (sized at initialize(): no allocation)
+  // The span the flow advances: a step (substeps or a super step), or the interval's steps.
+  const double span = flow_.substeps > 1 || flow_.stages > 1 ? dt_ : dt_ * static_cast<double>(flow_.interval);
   if (flow_.stages > 1) {
-    energy_.flow_dissipation += flow_super_step(model_.points, model_.bonds, *model_.fluid, dt_, flow_.stages,
+    energy_.flow_dissipation += flow_super_step(model_.points, model_.bonds, *model_.fluid, span, flow_.stages,
                                                 &flow_boundaries_, pressure_before_flow_, super_step_work_);
-    book_boundary_volumes(dt_);
-    for (std::size_t c = 0; c < boundary_volume_.size(); ++c)
-      boundary_rate_[c] = (boundary_volume_[c] - boundary_volume_start_[c]) / dt_;
-    return;
+    book_boundary_volumes(span);
+  } else {
+    const std::int64_t updates = flow_.substeps > 1 ? flow_.substeps : 1;
+    for (std::int64_t k = 0; k < updates; ++k) flow_update_with_boundaries(span / static_cast<double>(updates));
   }
-  const std::int64_t updates = flow_.substeps > 1 ? flow_.substeps : 1;
-  const double h =
-      flow_.substeps > 1 ? dt_ / static_cast<double>(flow_.substeps) : dt_ * static_cast<double>(flow_.interval);
-  for (std::int64_t k = 0; k < updates; ++k) flow_update_with_boundaries(h);
-  const double span = h * static_cast<double>(updates);
   for (std::size_t c = 0; c < boundary_volume_.size(); ++c)
     boundary_rate_[c] = (boundary_volume_[c] - boundary_volume_start_[c]) / span;
 }

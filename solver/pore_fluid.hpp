@@ -102,8 +102,11 @@ struct FlowSchedule {
   std::int64_t substeps = 1;
   std::int64_t stages = 1;  // > 1: the RKL2 super step
   double fluid_step = 0.0;  // the stability limit it was chosen from [s]
-  // The flow rates evaluated per mechanical step (its cost in bond loops).
-  std::int64_t rate_evaluations_per_step() const { return stages > 1 ? stages : substeps; }
+  // The flow-rate evaluations per mechanical step (its cost in bond loops): 1 / interval, the
+  // substeps or the stages.
+  double rate_evaluations_per_step() const {
+    return stages > 1 ? static_cast<double>(stages) : static_cast<double>(substeps) / static_cast<double>(interval);
+  }
 };
 // With the margin 0.9: interval = min(floor(0.9 dt_f / dt), kLongestFlowInterval) when dt_f >= dt; else the cheaper of
 // ceil(dt / (0.9 dt_f)) substeps and the RKL2 super step of rkl2_stages(dt, dt_f) stages (the

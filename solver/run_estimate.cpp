@@ -80,8 +80,7 @@ RunEstimate estimate_run(const Scene& scene, const PointCloud& cloud, std::uint6
   cost.threads = threads;
   if (sample.fluid > 0.0) {
     const FlowSchedule flow = flow_schedule(sample.fluid, e.time_step, scene.numerics.flow_integration);
-    cost.flow_evaluations_per_step = flow.interval > 1 ? 1.0 / static_cast<double>(flow.interval)
-                                                       : static_cast<double>(flow.rate_evaluations_per_step());
+    cost.flow_evaluations_per_step = flow.rate_evaluations_per_step();
   }
   // The snapshots at t = 0, at every output.interval and at the end (common/run_directory.hpp).
   cost.snapshots = scene.output.interval > 0.0

@@ -67,6 +67,18 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The cost columns of a problem solved once: its size, the force evaluations or steps, the solve's
+// time (the kernel) and the rest of `total` (the set-up).
+void record_solve(StudyResult& r, std::size_t points, std::size_t bonds, std::int64_t steps, double bond_updates,
+                  double solve_seconds, double total) {
+  r.points = points;
+  r.bonds = bonds;
+  r.steps = steps;
+  r.bond_updates = bond_updates;
+  r.kernel_seconds = solve_seconds;
+  r.setup_seconds = total - solve_seconds;
+}
+
 void record(StudyResult& r, const verification::WaveMeasurement& w, std::size_t bonds) {
   const double signed_error = w.ratio() - 1.0;
   if (std::abs(signed_error) >= r.error) {
@@ -125,13 +137,10 @@ StudyResult run_layer(const StudyParameters& p) {
   r.analytic = layer.analytic;
   r.signed_error = layer.stiffness / layer.analytic - 1.0;
   r.error = std::abs(r.signed_error);
-  r.points = layer.points;
-  r.bonds = layer.bonds;
-  r.steps = layer.force_evaluations;
   r.wall_seconds = layer.solve_seconds;
-  r.setup_seconds = total - layer.solve_seconds;
-  r.kernel_seconds = layer.solve_seconds;
-  r.bond_updates = static_cast<double>(layer.bonds) * static_cast<double>(layer.force_evaluations);
+  record_solve(r, layer.points, layer.bonds, layer.force_evaluations,
+               static_cast<double>(layer.bonds) * static_cast<double>(layer.force_evaluations), layer.solve_seconds,
+               total);
   if (!layer.converged) r.error = r.signed_error = std::numeric_limits<double>::quiet_NaN();
   return r;
 }
@@ -168,14 +177,9 @@ StudyResult run_crack(const StudyParameters& p) {
   r.measured = c.crossing_bond_work / c.crack_area;
   r.signed_error = r.measured / r.analytic - 1.0;
   r.error = c.separated ? std::abs(r.signed_error) : std::numeric_limits<double>::quiet_NaN();
-  r.points = c.points;
-  r.bonds = c.bonds;
-  r.steps = c.steps;
   r.time_step = c.time_step;
   r.wall_seconds = total;
-  r.setup_seconds = total - c.solve_seconds;
-  r.kernel_seconds = c.solve_seconds;
-  r.bond_updates = static_cast<double>(c.bond_updates);
+  record_solve(r, c.points, c.bonds, c.steps, static_cast<double>(c.bond_updates), c.solve_seconds, total);
   return r;
 }
 
@@ -204,14 +208,10 @@ StudyResult run_terzaghi(const StudyParameters& p) {
       r.analytic = s.degree_series;
     }
   r.second_error = run.base_pressure_error();
-  r.points = run.points;
-  r.bonds = run.bonds;
-  r.steps = run.steps;
   r.time_step = run.time_step;
   r.wall_seconds = run.solve_seconds;
-  r.setup_seconds = total - run.solve_seconds;
-  r.kernel_seconds = run.solve_seconds;
-  r.bond_updates = static_cast<double>(run.bonds) * static_cast<double>(run.steps);
+  record_solve(r, run.points, run.bonds, run.steps, static_cast<double>(run.bonds) * static_cast<double>(run.steps),
+               run.solve_seconds, total);
   return r;
 }
 
