@@ -81,6 +81,9 @@ MemoryEstimate estimate_run_memory(const MemoryEstimateInput& in) {
   // and the RKL2 super step's start contents and rates and its two increments (counted always: an upper
   // bound by 32 B per point for the runs whose flow needs no super step).
   if (has(in.effects, "pore_fluid")) p += 4 * 8 + 4 * 8;
+  // Unsaturated: the stored fluid energy and k_r per point, the change of Bishop's pore stress of a
+  // force correction and the k_r of the flow's limit (both made per update).
+  if (has(in.effects, "pore_fluid") && in.unsaturated) p += 4 * 8;
   e.bytes_per_point = p;
 
   // The integrator (solver/explicit_dynamics.hpp), per tracked point: body force and its previous

@@ -20,6 +20,7 @@ struct MemoryEstimateInput {
   // keeps the start-of-step state of those only, of every point with gravity or damping.
   std::uint64_t boundary_points = 0;
   bool damping = false;                      // numerics.damping != 0
+  bool unsaturated = false;                  // material.pore_fluid.retention given
   std::vector<std::string> effects;          // scene effects: micropolar, damage, viscoplasticity, ...
   std::vector<std::string> snapshot_fields;  // scene output.fields
 };

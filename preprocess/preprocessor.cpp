@@ -339,6 +339,7 @@ void estimate_solver_needs(const Scene& scene, const PointCloud& cloud, std::int
   memory.effects = scene.effects.names();
   memory.snapshot_fields = scene.output.fields;
   memory.damping = scene.numerics.damping != 0.0;
+  memory.unsaturated = scene.material.pore_fluid && scene.material.pore_fluid->retention;
   for (std::size_t i = 0; i < cloud.size(); ++i)
     memory.boundary_points += cloud.region[i] > 0 || cloud.boundary_id[i] > 0;
   report.estimated_memory_bytes = static_cast<double>(estimate_run_memory(memory).total_bytes);

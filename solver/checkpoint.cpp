@@ -40,6 +40,8 @@ void visit_carried_arrays(ModelRef& model, Visit&& visit) {
     visit("fluid_content_change", p.fluid_content_change);
     visit("pore_pressure", p.pore_pressure);
     if (!model.effects.viscoplasticity) visit("strain", p.strain);
+    // Unsaturated: the stored fluid energy is booked per point (solver/unsaturated_coupling.hpp).
+    if (!p.fluid_energy.empty()) visit("stored_fluid_energy", p.fluid_energy);
   }
   if (model.effects.damage) {
     auto& f = model.bonds;

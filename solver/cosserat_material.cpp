@@ -25,11 +25,15 @@ CosseratConstants cosserat_constants(const Scene& scene) {
   if (scene.effects.pore_fluid && m.pore_fluid) {
     // The mixture moves as one: rho = phi_s rho_s + n0 rho_f for the inertia (and gravity),
     // docs/theory.md section 12. (Written as the sum so that rho_f = 0 keeps the dry bits.)
-    const double fluid = m.porosity() * m.pore_fluid->fluid_density;
+    // Unsaturated: at the start's saturation S_r(initial_pressure) (saturated with a hydrostatic start);
+    // the mass does not follow the saturation as it changes (docs/theory.md section 12).
+    const double fluid = m.porosity() * m.pore_fluid->fluid_density * start_saturation(*m.pore_fluid);
     c.density = m.partial_density() + fluid;
     c.micro_inertia = m.micro_inertia() * (c.density / m.partial_density());
     c.biot_coefficient = m.pore_fluid->biot_coefficient;
     c.biot_modulus = m.pore_fluid->biot_modulus;
+    c.retention = retention_curve(*m.pore_fluid);
+    c.fluid_storage = FluidStorage{m.porosity(), c.biot_coefficient, c.biot_modulus};
   }
   c.solid_fraction = m.solid_fraction;
   c.length_scale = m.length_scale;

@@ -2,10 +2,12 @@
 // derived once from the scene, plus the constitutive laws sigma(eps) and m(kap).
 #pragma once
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 
 #include "common/scene.hpp"
 #include "solver/plasticity/cosserat_elasticity.hpp"
+#include "solver/retention_curve.hpp"
 
 namespace mppm::solver {
 
@@ -26,8 +28,12 @@ struct CosseratConstants {
   double length_scale = 0.0;    // l [m]
   // Pore fluid (docs/theory.md section 12): the coupling of pass 1, p = M (zeta - n0 - b tr eps) and the
   // total stress sigma' - b p 1 (0 without the effect).
-  double biot_coefficient = 0.0;    // b
-  double biot_modulus = 0.0;        // M [Pa]
+  double biot_coefficient = 0.0;  // b
+  double biot_modulus = 0.0;      // M [Pa]
+  // Unsaturated (material.pore_fluid.retention): p from the content by the retention inverse and
+  // Bishop's total stress sigma' - b S_r p 1 (solver/unsaturated_coupling.hpp).
+  std::optional<RetentionCurve> retention{};
+  FluidStorage fluid_storage{};     // n0, b, M of the retention inverse
   double critical_bond_work = 0.0;  // w_cr [J/m^6] from G_cr (damage effect; 0 otherwise)
   // material.damage.compressed_bonds: hold: a bond at its critical work breaks only once stretched.
   bool hold_compressed_bonds = false;

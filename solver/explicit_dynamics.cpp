@@ -193,6 +193,10 @@ void ExplicitDynamics::advance_flow() {
   for (const FedSurface& s : conditions_.fed())
     flow_boundaries_.sources.push_back({&s.points, s.value.component_at(time_, 0) * s.area / s.volume_sum});
   boundary_volume_start_ = boundary_volume_;  // (sized at initialize(): no allocation)
+  // Unsaturated: the limit at the present saturations (the layers' prescribed pressures set above).
+  if (flow_.follows_saturation)
+    flow_ = unsaturated_flow_schedule(fluid_step_limit(model_.points, model_.bonds, *model_.fluid, &model_.drains), dt_,
+                                      flow_.integration);
   // The span the flow advances: a step (substeps or a super step), or the interval's steps.
   const double span = flow_.substeps > 1 || flow_.stages > 1 ? dt_ : dt_ * static_cast<double>(flow_.interval);
   if (flow_.stages > 1) {
@@ -205,6 +209,16 @@ void ExplicitDynamics::advance_flow() {
   }
   for (std::size_t c = 0; c < boundary_volume_.size(); ++c)
     boundary_rate_[c] = (boundary_volume_[c] - boundary_volume_start_[c]) / span;
+  // A content no pressure gives (the retention inverse failed: NaN) stops the run at this step.
+  if (model_.fluid->retention && first_unrecovered_pressure()) finite_ = false;
+}
+
+std::optional<std::size_t> ExplicitDynamics::first_unrecovered_pressure() const {
+  const PointData& p = model_.points;
+  if (p.pore_pressure.empty()) return std::nullopt;
+  for (std::size_t i = 0; i < p.owned; ++i)
+    if (p.region[i] == 0 && !std::isfinite(p.pore_pressure[i])) return i;
+  return std::nullopt;
 }
 
 void ExplicitDynamics::flow_update_with_boundaries(double h) {
@@ -512,6 +526,12 @@ std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite() const {
     return false;
   };
   std::optional<NonFinitePoint> out;
+  // A pore pressure first: it is the cause when the retention inverse failed (its forces follow).
+  if (const auto i = first_unrecovered_pressure()) {
+    out = NonFinitePoint{*i, "pore_pressure", 0};
+    for (std::size_t j = *i; j < p.owned; ++j) out->points += p.region[j] == 0 && !std::isfinite(p.pore_pressure[j]);
+    return out;
+  }
   for (std::size_t i = 0; i < p.owned; ++i) {
     const char* field = bad(p.displacement, i, D)        ? "displacement"
                         : bad(p.velocity, i, D)          ? "velocity"

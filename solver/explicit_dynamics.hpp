@@ -129,6 +129,9 @@ class ExplicitDynamics {
   // False once a non-finite displacement, velocity or rotation has appeared.
   bool finite() const { return finite_; }
   // The points holding non-finite values now (a full scan: call it when finite() turned false).
+  // The lowest body point whose pore pressure is not finite (the unsaturated retention inverse found no
+  // pressure for its fluid content), if any.
+  std::optional<std::size_t> first_unrecovered_pressure() const;
   std::optional<NonFinitePoint> first_non_finite() const;
 
   Model& model() { return model_; }

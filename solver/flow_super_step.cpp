@@ -117,7 +117,7 @@ double flow_super_step(PointData& p, const BondFamilies& f, const FluidConstants
   stage(nullptr);
   for (const Rkl2Stage& coefficients : c.stages) stage(&coefficients);
   if (drains) drains->outflow = work.outflow;
-  return stored_energy_released(p, fl, pressure_before);
+  return stored_energy_released(p, fl, pressure_before, work.increment);
 }
 
 }  // namespace mppm::solver

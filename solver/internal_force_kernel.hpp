@@ -32,6 +32,7 @@
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
 #include "solver/symmetric_tensor.hpp"
+#include "solver/unsaturated_coupling.hpp"
 #include "solver/viscoplastic_point.hpp"
 
 namespace mppm::solver::kernel {
@@ -217,7 +218,10 @@ StoredEnergy elastic_energies(const PointData& p, const CosseratConstants& c, st
   if constexpr (Effects::pore_fluid) {
     // The fluid's stored energy V p^2 / (2 M) at this strain and the fluid content held
     // (docs/theory.md section 12): the pass-1 pressure's potential.
-    if (p.region[i] == 0) {
+    // Unsaturated: the work the fluid received, booked per point (solver/unsaturated_coupling.hpp).
+    if (p.region[i] == 0 && c.retention) {
+      e.fluid = p.fluid_energy[i];
+    } else if (p.region[i] == 0) {
       const double pressure = c.biot_modulus * (p.fluid_content_change[i] - c.biot_coefficient * eps.trace());
       e.fluid = 0.5 * vi * pressure * pressure / c.biot_modulus;
     }
@@ -341,12 +345,22 @@ MPPM_INLINE void own_share(const Mat<D>& a, const Mat<D>& ck, const Mat<D>& kinv
 // Pore fluid (docs/theory.md section 12): at a body point, the pressure of the fluid content held, at
 // the point's new strain, p = M (zeta - n0 - b tr eps) (the undrained update; the flow changes zeta
 // between force evaluations), stored, and the total stress sigma' - b p 1 in place of sigma'.
-// The fictitious layers carry no fluid.
+// Unsaturated (a retention curve): p by the retention inverse and Bishop's sigma' - b S_r p 1, the
+// stored fluid energy booked from the strain of the last evaluation, eps_before
+// (solver/unsaturated_coupling.hpp). The fictitious layers carry no fluid.
 template <int D>
 MPPM_INLINE void add_pore_pressure(PointData& p, const CosseratConstants& c, std::size_t i, const Mat<D>& eps,
-                                   Mat<D>& sigma) {
+                                   const Eigen::Map<Mat<D>>& eps_before, Mat<D>& sigma) {
   if (p.region[i] != 0) return;
+  // The saturated pressure, rounded here as the saturated model rounds it (this file is contracted
+  // with FMAs), so that a point with p >= 0 has the saturated model's bits with a retention curve too.
   const double pressure = c.biot_modulus * (p.fluid_content_change[i] - c.biot_coefficient * eps.trace());
+  if (c.retention) {
+    const double stress =
+        undrained_unsaturated_update(p, *c.retention, c.fluid_storage, i, pressure, eps.trace(), eps_before.trace());
+    for (int a = 0; a < D; ++a) sigma(a, a) -= c.biot_coefficient * stress;
+    return;
+  }
   p.pore_pressure[i] = pressure;
   for (int a = 0; a < D; ++a) sigma(a, a) -= c.biot_coefficient * pressure;
 }
@@ -407,7 +421,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   } else {
     sigma = cosserat_stress<D>(eps, c);
   }
-  if constexpr (Effects::pore_fluid) add_pore_pressure<D>(p, c, i, eps, sigma);
+  if constexpr (Effects::pore_fluid) add_pore_pressure<D>(p, c, i, eps, eps_out, sigma);
   const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
   const Mat<D> a = sigma * kinv - ck * eps;

@@ -91,6 +91,10 @@ struct PointData {
   // zeta itself would resolve p only to M ulp(n0), 6e-8 Pa at M = 2 GPa); the rate d zeta / dt of
   // the last flow update.
   std::vector<double> pore_pressure, fluid_content_change, fluid_rate;
+  // Unsaturated pore fluid only (a retention curve; allocated by start_fluid): the stored fluid
+  // energy per point [J], the work the fluid received since the start (solver/unsaturated_coupling.hpp),
+  // and the relative permeability k_r(p) of every point, layers included, refreshed by each flow-rate evaluation.
+  std::vector<double> fluid_energy, relative_permeability;
 
   // The stabilization energy per point [J], V 1/2 sum_j V_j (z_u.T^s + z_w.M^s), filled when a force
   // evaluation is asked for energies (the bond loop that gives it is the force pass's). The elastic

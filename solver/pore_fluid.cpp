@@ -10,6 +10,7 @@
 #include "solver/flow_super_step.hpp"
 #include "solver/ordered_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
+#include "solver/unsaturated_coupling.hpp"
 
 namespace mppm::solver {
 
@@ -55,7 +56,16 @@ bool has_gravity(const FluidConstants& fl) {
   return fl.fluid_density != 0.0 && (fl.gravity[0] != 0.0 || fl.gravity[1] != 0.0 || fl.gravity[2] != 0.0);
 }
 
-template <int D>
+// The bond conductivity's relative factor: (k_r,i + k_r,j) / 2 unsaturated (docs/theory.md section 12), else 1.
+template <bool Unsaturated>
+double relative_conductivity(const PointData& p, std::size_t i, std::size_t j) {
+  if constexpr (Unsaturated)
+    return 0.5 * (p.relative_permeability[i] + p.relative_permeability[j]);
+  else
+    return 1.0;
+}
+
+template <int D, bool Unsaturated>
 void fluid_rates_d(PointData& p, const BondFamilies& f, const FluidConstants& fl) {
   const auto n = static_cast<std::int64_t>(p.owned);
   const bool with_gravity = has_gravity(fl);
@@ -70,7 +80,8 @@ void fluid_rates_d(PointData& p, const BondFamilies& f, const FluidConstants& fl
     double rate = 0.0;
     for_each_conducting_bond<D>(p, f, i, [&](std::size_t j, const double*, double length) {
       const double psi_j = with_gravity ? potential<D>(p, fl, j) : p.pore_pressure[j];
-      rate += (psi_j - psi_i) / length * p.volume[j];
+      // (Saturated, 1.0 x: the same bits as without the factor.)
+      rate += relative_conductivity<Unsaturated>(p, i, j) * (psi_j - psi_i) / length * p.volume[j];
     });
     p.fluid_rate[i] = fl.micro_conductivity * rate;
   }
@@ -80,7 +91,7 @@ void fluid_rates_d(PointData& p, const BondFamilies& f, const FluidConstants& fl
 // conducting drain bonds of each body point that has any (psi_j of the layer's prescribed
 // pressure), added to points.fluid_rate; each bond's volume rate into the layer,
 // kappa0 (psi_i - psi_j) V_i V_j / |xi|, into d.pair_flux (0 for a bond that does not conduct).
-template <int D>
+template <int D, bool Unsaturated>
 void add_drain_rates(PointData& p, const BondFamilies& f, DrainBonds& d, const FluidConstants& fl) {
   const auto rows = static_cast<std::int64_t>(d.point.size());
   const bool with_gravity = has_gravity(fl);
@@ -93,7 +104,7 @@ void add_drain_rates(PointData& p, const BondFamilies& f, DrainBonds& d, const F
     double rate = 0.0;
     for_each_drain_bond(p, f, d, row, [&](std::size_t j, const double*, double length, std::size_t b) {
       const double psi_j = with_gravity ? potential<D>(p, fl, j) : p.pore_pressure[j];
-      const double term = (psi_j - psi_i) / length * p.volume[j];
+      const double term = relative_conductivity<Unsaturated>(p, i, j) * (psi_j - psi_i) / length * p.volume[j];
       rate += term;
       d.pair_flux[b] = -fl.micro_conductivity * term * p.volume[i];
     });
@@ -114,9 +125,58 @@ double volumetric_strain(const PointData& p, std::size_t i) {
   return trace;
 }
 
-// p = M (zeta - n0 - b tr eps) of body point i at its fluid content and last strain.
+// p = M (zeta - n0 - b tr eps) of body point i at its fluid content and last strain; unsaturated, the
+// retention inverse's (NaN where it fails: the run's guard names the point).
 double pressure_from_content(const PointData& p, const FluidConstants& fl, std::size_t i) {
+  if (fl.retention)
+    return unsaturated_pressure(*fl.retention, fl.storage(), p.fluid_content_change[i], volumetric_strain(p, i));
   return fl.biot_modulus * (p.fluid_content_change[i] - fl.biot_coefficient * volumetric_strain(p, i));
+}
+
+// k_r(p) of every point (the layers' at their prescribed pressure) for the flow rates.
+void refresh_relative_permeability(PointData& p, const RetentionCurve& curve) {
+  const auto n = static_cast<std::int64_t>(p.total());
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.total()))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    p.relative_permeability[i] = relative_permeability(curve, p.pore_pressure[i]);
+  }
+}
+
+// The unsaturated flow update (see flow_update): zeta += dt rate, p by the retention inverse, and the
+// stored fluid energy of each attached point booked as the trapezoid of p d zeta
+// (solver/unsaturated_coupling.hpp). Returns the energy the update released.
+double unsaturated_flow_update(PointData& p, const FluidConstants& fl, double dt) {
+  const auto sums = ordered_point_sums<1>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
+                                            for (std::size_t i = lo; i < hi; ++i) {
+                                              if (!carries_fluid(p, i)) continue;
+                                              const double before = p.pore_pressure[i];
+                                              const double increment = dt * p.fluid_rate[i];
+                                              p.fluid_content_change[i] += increment;
+                                              p.pore_pressure[i] = pressure_from_content(p, fl, i);
+                                              if (p.detached[i]) continue;  // as in flow_update
+                                              const double change = flow_energy_change(p, i, before, increment);
+                                              p.fluid_energy[i] += change;
+                                              acc[0] -= change;
+                                            }
+                                          });
+  return sums[0];
+}
+
+// The same booking for a super step that changed the contents by `increment` from the pressures `before`.
+double unsaturated_energy_released(PointData& p, const std::vector<double>& before,
+                                   const std::vector<double>& increment) {
+  const auto sums = ordered_point_sums<1>(p.owned, thread_point_loop(p.owned),
+                                          [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
+                                            for (std::size_t i = lo; i < hi; ++i) {
+                                              if (!carries_fluid(p, i) || p.detached[i]) continue;
+                                              const double change = flow_energy_change(p, i, before[i], increment[i]);
+                                              p.fluid_energy[i] += change;
+                                              acc[0] -= change;
+                                            }
+                                          });
+  return sums[0];
 }
 
 }  // namespace
@@ -130,7 +190,9 @@ void update_pressures(PointData& p, const FluidConstants& fl) {
   }
 }
 
-double stored_energy_released(const PointData& p, const FluidConstants& fl, const std::vector<double>& before) {
+double stored_energy_released(PointData& p, const FluidConstants& fl, const std::vector<double>& before,
+                              const std::vector<double>& content_increment) {
+  if (fl.retention) return unsaturated_energy_released(p, before, content_increment);
   const double inv_2m = 0.5 / fl.biot_modulus;
   const auto sums = ordered_point_sums<1>(p.owned, thread_point_loop(p.owned),
                                           [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
@@ -163,6 +225,7 @@ FluidConstants fluid_constants(const Scene& scene) {
   fl.micro_conductivity = lattice_micro_conductivity(scene.dimension, scene.geometry.spacing, scene.geometry.horizon(),
                                                      scene.thickness, fl.mobility);
   if (scene.effects.gravity) fl.gravity = scene.gravity;
+  fl.retention = retention_curve(pf);
   return fl;
 }
 
@@ -181,25 +244,39 @@ void start_fluid(PointData& p, const FluidConstants& fl, double initial_pressure
     }
     p.pore_pressure[i] = body ? p0 : 0.0;
     p.fluid_content_change[i] = body ? p0 / fl.biot_modulus : 0.0;
+    // Unsaturated under suction: the content of the retention curve at zero strain.
+    if (body && fl.retention && p0 < 0.0)
+      p.fluid_content_change[i] = fluid_content_change(*fl.retention, fl.storage(), p0, 0.0);
     p.fluid_rate[i] = 0.0;
+  }
+  if (fl.retention) {  // the work received counts from the start (solver/unsaturated_coupling.hpp)
+    p.fluid_energy.assign(p.total(), 0.0);
+    p.relative_permeability.assign(p.total(), 1.0);
   }
 }
 
 void fluid_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl) {
-  if (p.dimension == 2)
-    fluid_rates_d<2>(p, f, fl);
-  else
-    fluid_rates_d<3>(p, f, fl);
+  if (fl.retention) {
+    refresh_relative_permeability(p, *fl.retention);
+    if (p.dimension == 2)
+      fluid_rates_d<2, true>(p, f, fl);
+    else
+      fluid_rates_d<3, true>(p, f, fl);
+  } else if (p.dimension == 2) {
+    fluid_rates_d<2, false>(p, f, fl);
+  } else {
+    fluid_rates_d<3, false>(p, f, fl);
+  }
 }
 
 void flow_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl, FlowBoundaries* boundaries) {
   fluid_rates(p, f, fl);
   DrainBonds* drains = boundaries ? boundaries->drains : nullptr;
-  if (drains) {
-    if (p.dimension == 2)
-      add_drain_rates<2>(p, f, *drains, fl);
+  if (drains) {  // (fluid_rates refreshed k_r)
+    if (fl.retention)
+      p.dimension == 2 ? add_drain_rates<2, true>(p, f, *drains, fl) : add_drain_rates<3, true>(p, f, *drains, fl);
     else
-      add_drain_rates<3>(p, f, *drains, fl);
+      p.dimension == 2 ? add_drain_rates<2, false>(p, f, *drains, fl) : add_drain_rates<3, false>(p, f, *drains, fl);
   }
   if (boundaries) add_sources(p, boundaries->sources);
 }
@@ -216,6 +293,7 @@ double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl
     drained_outflow_rates(*drains, drains->outflow);
     for (double& v : drains->outflow) v *= dt;
   }
+  if (fl.retention) return unsaturated_flow_update(p, fl, dt);
   const double inv_2m = 0.5 / fl.biot_modulus;
   const auto sums = ordered_point_sums<1>(p.owned, thread_point_loop(p.owned),
                                           [&](std::size_t lo, std::size_t hi, std::array<double, 1>& acc) {
@@ -236,20 +314,31 @@ double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl
 }
 
 double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidConstants& fl, const DrainBonds* drains) {
+  // Unsaturated: each row of the linearized flow, sum_j kappa_ij V_j / |xi| over the point's tangent
+  // capacity d zeta / dp (docs/theory.md section 12); saturated the capacity is 1/M everywhere.
+  std::vector<double> kr;
+  if (fl.retention) {
+    kr.resize(p.total());
+    for (std::size_t i = 0; i < p.total(); ++i) kr[i] = relative_permeability(*fl.retention, p.pore_pressure[i]);
+  }
+  const auto factor = [&](std::size_t i, std::size_t j) { return kr.empty() ? 1.0 : 0.5 * (kr[i] + kr[j]); };
   double largest = 0.0;
   std::size_t row = 0;  // the drain bonds' rows are sorted by point: walked alongside
   for (std::size_t i = 0; i < p.owned; ++i) {
     if (!carries_fluid(p, i)) continue;
     double sum = 0.0;
-    auto add = [&](std::size_t j, const double*, double length) { sum += p.volume[j] / length; };
+    auto add = [&](std::size_t j, const double*, double length) { sum += factor(i, j) * p.volume[j] / length; };
     if (p.dimension == 2)
       for_each_conducting_bond<2>(p, f, i, add);
     else
       for_each_conducting_bond<3>(p, f, i, add);
     if (drains && row < drains->point.size() && static_cast<std::size_t>(drains->point[row]) == i)
       for_each_drain_bond(p, f, *drains, row++, [&](std::size_t j, const double*, double length, std::size_t) {
-        sum += p.volume[j] / length;
+        sum += factor(i, j) * p.volume[j] / length;
       });
+    if (fl.retention && sum > 0.0)
+      sum /= fl.biot_modulus *
+             fluid_content_derivative(*fl.retention, fl.storage(), p.pore_pressure[i], volumetric_strain(p, i));
     largest = std::max(largest, sum);
   }
   const double rate = fl.biot_modulus * fl.micro_conductivity * largest;
@@ -271,6 +360,7 @@ double fluid_volume(const PointData& p, const FluidConstants& fl) {
 FlowSchedule flow_schedule(double fluid_step, double dt, FlowIntegration integration) {
   FlowSchedule s;
   s.fluid_step = fluid_step;
+  s.integration = integration;
   const double usable = 0.9 * fluid_step;
   if (usable >= dt) {
     // At most kLongestFlowInterval steps between updates: each batch's pressure change is a step in
@@ -285,6 +375,13 @@ FlowSchedule flow_schedule(double fluid_step, double dt, FlowIntegration integra
       s.substeps = 1;
     }
   }
+  return s;
+}
+
+FlowSchedule unsaturated_flow_schedule(double fluid_step, double dt, FlowIntegration integration) {
+  FlowSchedule s = flow_schedule(fluid_step, dt, integration);
+  s.interval = 1;
+  s.follows_saturation = true;
   return s;
 }
 
@@ -309,7 +406,9 @@ void darcy_velocity_d(const PointData& p, const BondFamilies& f, const FluidCons
   const Eigen::FullPivLU<Eigen::Matrix<double, D, D>> lu(k);
   if (!lu.isInvertible()) return;
   const Eigen::Matrix<double, D, 1> gradient = lu.solve(s);
-  for (int a = 0; a < D; ++a) q[a] = -fl.mobility * (gradient(a) - fl.fluid_density * fl.gravity[a]);
+  const double mobility =
+      fl.retention ? fl.mobility * relative_permeability(*fl.retention, p.pore_pressure[i]) : fl.mobility;
+  for (int a = 0; a < D; ++a) q[a] = -mobility * (gradient(a) - fl.fluid_density * fl.gravity[a]);
 }
 }  // namespace
 

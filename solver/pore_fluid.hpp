@@ -14,6 +14,7 @@
 #include "solver/bond_families.hpp"
 #include "solver/fluid_boundaries.hpp"
 #include "solver/point_data.hpp"
+#include "solver/retention_curve.hpp"
 
 namespace mppm::solver {
 
@@ -25,6 +26,10 @@ struct FluidConstants {
   double mobility = 0.0;                         // k' = k / mu_f [m^2 / (Pa s)]
   double micro_conductivity = 0.0;               // kappa0 of the bond flux [1 / (Pa s m^2)]
   std::array<double, 3> gravity{0.0, 0.0, 0.0};  // g when the gravity effect is on, else zero
+  // Unsaturated when set (material.pore_fluid.retention): p from zeta by the retention inverse, the
+  // bond conductivity kappa0 (k_r,i + k_r,j) / 2, the capacity d zeta / dp in the flow's limit.
+  std::optional<RetentionCurve> retention;
+  FluidStorage storage() const { return {porosity, biot_coefficient, biot_modulus}; }
 };
 
 // kappa0 = 2 d k' / sum_j |xi_j| V_j over a full interior family of the cubic lattice of spacing
@@ -73,8 +78,10 @@ void update_pressures(PointData& points, const FluidConstants& fluid);
 
 // The stored fluid energy sum V (p_before^2 - p^2) / (2M) over the attached body points (a detached
 // point keeps its fluid but stores no energy), summed in point chunks fixed by the point count.
-double stored_energy_released(const PointData& points, const FluidConstants& fluid,
-                              const std::vector<double>& pressure_before);
+// Unsaturated, the trapezoid sum -V (p_before + p) / 2 content_increment, booked into
+// points.fluid_energy as well (solver/unsaturated_coupling.hpp); content_increment is unused when saturated.
+double stored_energy_released(PointData& points, const FluidConstants& fluid,
+                              const std::vector<double>& pressure_before, const std::vector<double>& content_increment);
 
 // One flow update of length dt at the skeleton's last strain: zeta += dt (Phi + s) (fluid_rates
 // first, then the drain bonds' share of Phi and the sources of `boundaries`), then
@@ -86,7 +93,8 @@ double flow_update(PointData& points, const BondFamilies& bonds, const FluidCons
                    FlowBoundaries* boundaries = nullptr);
 
 // The largest stable flow step, 1 / max_i (M sum_j kappa0 V_j / |xi|) over the body points'
-// conducting bonds and drain bonds (infinite when no bond conducts).
+// conducting bonds and drain bonds (infinite when no bond conducts); unsaturated
+// 1 / max_i (sum_j kappa_ij V_j / |xi| / (d zeta/dp)_i) at the present pressures.
 double fluid_step_limit(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid,
                         const DrainBonds* drains = nullptr);
 
@@ -102,22 +110,31 @@ struct FlowSchedule {
   std::int64_t substeps = 1;
   std::int64_t stages = 1;  // > 1: the RKL2 super step
   double fluid_step = 0.0;  // the stability limit it was chosen from [s]
+  FlowIntegration integration = FlowIntegration::automatic;
+  // Unsaturated: chosen again before every update from the limit at the state then (the capacity and
+  // k_r follow the saturation), with an update every step.
+  bool follows_saturation = false;
   // The flow-rate evaluations per mechanical step (its cost in bond loops): 1 / interval, the
-  // substeps or the stages.
+  // substeps or the stages; one more for the limit when it follows the saturation.
   double rate_evaluations_per_step() const {
-    return stages > 1 ? static_cast<double>(stages) : static_cast<double>(substeps) / static_cast<double>(interval);
+    const double rates =
+        stages > 1 ? static_cast<double>(stages) : static_cast<double>(substeps) / static_cast<double>(interval);
+    return follows_saturation ? rates + 1.0 : rates;
   }
 };
 // With the margin 0.9: interval = min(floor(0.9 dt_f / dt), kLongestFlowInterval) when dt_f >= dt; else the cheaper of
 // ceil(dt / (0.9 dt_f)) substeps and the RKL2 super step of rkl2_stages(dt, dt_f) stages (the
 // substeps when they cost no more, or always with FlowIntegration::explicit_substeps).
 FlowSchedule flow_schedule(double fluid_step, double dt, FlowIntegration integration = FlowIntegration::automatic);
+// The schedule of unsaturated flow: flow_schedule's substeps or super step, an update every step, and
+// follows_saturation set (the run chooses it again before each update).
+FlowSchedule unsaturated_flow_schedule(double fluid_step, double dt, FlowIntegration integration);
 // The longest interval between flow updates when the flow's limit allows longer ones: Mandel's
 // specimen carried a ripple of +-1 % of p0 at an update every 9 steps, 0.05 % at 4 (docs/theory.md
 // section 12).
 inline constexpr std::int64_t kLongestFlowInterval = 4;
 
-// The Darcy velocity of body point i, q = -k' (grad p - rho_f g), with the nonlocal gradient
+// The Darcy velocity of body point i, q = -k' k_r (grad p - rho_f g) (k_r = 1 saturated), with the nonlocal gradient
 // grad p = K_i^-1 sum_j V_j (p_j - p_i) xi over its acting bonds to body points and its conducting
 // drain bonds (zero for a detached point); D components into q.
 void darcy_velocity(const PointData& points, const BondFamilies& bonds, const FluidConstants& fluid, std::size_t i,

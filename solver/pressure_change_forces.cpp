@@ -5,18 +5,18 @@
 
 #include "solver/parallel_policy.hpp"
 #include "solver/symmetric_tensor.hpp"
+#include "solver/unsaturated_coupling.hpp"
 
 namespace mppm::solver {
 
 namespace {
 
 // The pressure change of point j in the force state: none at a layer point or a detached one.
-double pressure_change(const PointData& p, const std::vector<double>& before, std::size_t j) {
-  return p.region[j] == 0 && !p.detached[j] ? p.pore_pressure[j] - before[j] : 0.0;
-}
+bool in_force_state(const PointData& p, std::size_t j) { return p.region[j] == 0 && !p.detached[j]; }
 
-template <int D>
-void add_changes(PointData& p, const BondFamilies& f, double b, const std::vector<double>& before) {
+// change(j): the change of point j's pore stress (0 outside the force state).
+template <int D, class Change>
+void add_changes(PointData& p, const BondFamilies& f, double b, Change&& pressure_change) {
   using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
   using Vec = Eigen::Matrix<double, D, 1>;
   constexpr int S = symmetric_components<D>;
@@ -36,7 +36,7 @@ void add_changes(PointData& p, const BondFamilies& f, double b, const std::vecto
       bond_vector<D>(f, p.position.data(), i, k, x);
       const Eigen::Map<const Vec> xi(x);
       m += p.volume[j] * xi;
-      const double dp = pressure_change(p, before, j);
+      const double dp = pressure_change(j);
       if (dp == 0.0) continue;
       const Vec t = -b * dp * (unpack_symmetric<D>(&p.shape_inverse[j * S]) * xi);  // dA_j xi
       force += p.volume[j] * t;
@@ -51,7 +51,7 @@ void add_changes(PointData& p, const BondFamilies& f, double b, const std::vecto
         }
       }
     }
-    const double dpi = pressure_change(p, before, i);
+    const double dpi = pressure_change(i);
     if (dpi != 0.0) force += -b * dpi * (unpack_symmetric<D>(&p.shape_inverse[i * S]) * m);
     for (int a = 0; a < D; ++a) p.force[i * D + a] += force(a);
     for (int a = 0; a < R; ++a) p.moment[i * R + a] += moment[a];
@@ -59,7 +59,7 @@ void add_changes(PointData& p, const BondFamilies& f, double b, const std::vecto
 #pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
-    const double dpi = pressure_change(p, before, i);
+    const double dpi = pressure_change(i);
     if (dpi == 0.0) continue;
     Eigen::Map<Mat> a(&p.force_tensor[i * D * D]);
     a -= b * dpi * unpack_symmetric<D>(&p.shape_inverse[i * S]);
@@ -70,10 +70,24 @@ void add_changes(PointData& p, const BondFamilies& f, double b, const std::vecto
 
 void add_pressure_change_forces(PointData& p, const BondFamilies& f, const CosseratConstants& c,
                                 const std::vector<double>& before) {
+  if (c.retention) {
+    // Bishop's pore stress S_r(p) p is not linear in p: its change, once per point.
+    std::vector<double> change(p.total(), 0.0);
+    for (std::size_t j = 0; j < p.owned; ++j)
+      if (in_force_state(p, j))
+        change[j] = bishop_pressure(*c.retention, p.pore_pressure[j]) - bishop_pressure(*c.retention, before[j]);
+    auto of = [&change](std::size_t j) { return change[j]; };
+    if (p.dimension == 2)
+      add_changes<2>(p, f, c.biot_coefficient, of);
+    else
+      add_changes<3>(p, f, c.biot_coefficient, of);
+    return;
+  }
+  auto of = [&p, &before](std::size_t j) { return in_force_state(p, j) ? p.pore_pressure[j] - before[j] : 0.0; };
   if (p.dimension == 2)
-    add_changes<2>(p, f, c.biot_coefficient, before);
+    add_changes<2>(p, f, c.biot_coefficient, of);
   else
-    add_changes<3>(p, f, c.biot_coefficient, before);
+    add_changes<3>(p, f, c.biot_coefficient, of);
 }
 
 }  // namespace mppm::solver

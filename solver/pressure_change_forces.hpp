@@ -6,6 +6,7 @@
 //   df_i = dA_i m_i + sum_j V_j dA_j xi,   m_i = sum_j V_j xi,
 //   dl_i = sum_j V_j 1/2 xi x (dA_j xi)    (dA_i K_i is isotropic: no moment of its own),
 // over the acting bonds. A bond loop with a scalar per neighbour: a fraction of a force evaluation.
+// Unsaturated, the change is that of Bishop's pore stress S_r(p) p (solver/unsaturated_coupling.hpp).
 #pragma once
 #include <vector>
 

@@ -52,6 +52,17 @@ double relative_permeability(const RetentionCurve& c, double p) {
   return std::sqrt(se) * bracket * bracket;
 }
 
+std::optional<RetentionCurve> retention_curve(const PoreFluidParameters& fluid) {
+  if (!fluid.retention) return std::nullopt;
+  const RetentionParameters& r = *fluid.retention;
+  return RetentionCurve{r.air_entry_pressure, r.n, r.residual_saturation};
+}
+
+double start_saturation(const PoreFluidParameters& fluid) {
+  const auto curve = retention_curve(fluid);
+  return curve && !fluid.free_surface ? saturation(*curve, fluid.initial_pressure) : 1.0;
+}
+
 double fluid_content(const RetentionCurve& c, const FluidStorage& f, double p, double eps_v) {
   return saturation(c, p) * (f.porosity + f.biot_coefficient * eps_v + p / f.biot_modulus);
 }

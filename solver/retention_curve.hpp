@@ -2,8 +2,11 @@
 // (retention)"): the van Genuchten saturation of the suction, Mualem's relative permeability, the
 // fluid content zeta(p, eps_v) = S_r(p) (n0 + b eps_v + p/M) and its inverse, p from zeta at a given
 // volumetric strain. The air is at zero pressure, p is compression positive, the suction s = max(0, -p).
-// Not wired into the solver yet: this unit is the model alone.
+// The solver's use of it: solver/unsaturated_coupling.hpp and solver/pore_fluid.hpp.
 #pragma once
+#include <optional>
+
+#include "common/scene.hpp"
 
 namespace mppm::solver {
 
@@ -22,6 +25,12 @@ double saturation(const RetentionCurve& c, double p);
 double saturation_derivative(const RetentionCurve& c, double p);
 // Mualem: k_r = sqrt(S_e) [1 - (1 - S_e^(1/m))^m]^2, 1 at S_e = 1 and 0 at S_e = 0.
 double relative_permeability(const RetentionCurve& c, double p);
+
+// The curve of a scene's pore fluid, if it has one (material.pore_fluid.retention).
+std::optional<RetentionCurve> retention_curve(const PoreFluidParameters& fluid);
+// The saturation of the start: S_r(initial_pressure) with a retention curve and a constant start,
+// else 1 (saturated, or a hydrostatic start: docs/theory.md section 12).
+double start_saturation(const PoreFluidParameters& fluid);
 
 // The constants of the fluid content: zeta = S_r(p) (n0 + b eps_v + p/M).
 struct FluidStorage {

@@ -79,7 +79,11 @@ RunEstimate estimate_run(const Scene& scene, const PointCloud& cloud, std::uint6
   cost.steps = e.steps;
   cost.threads = threads;
   if (sample.fluid > 0.0) {
-    const FlowSchedule flow = flow_schedule(sample.fluid, e.time_step, scene.numerics.flow_integration);
+    // Unsaturated: the start's schedule, every step, and the limit's bond loop before each update.
+    const bool unsaturated = scene.material.pore_fluid && scene.material.pore_fluid->retention;
+    const FlowSchedule flow =
+        unsaturated ? unsaturated_flow_schedule(sample.fluid, e.time_step, scene.numerics.flow_integration)
+                    : flow_schedule(sample.fluid, e.time_step, scene.numerics.flow_integration);
     cost.flow_evaluations_per_step = flow.rate_evaluations_per_step();
   }
   // The snapshots at t = 0, at every output.interval and at the end (common/run_directory.hpp).
@@ -100,6 +104,7 @@ RunEstimate estimate_run(const Scene& scene, const PointCloud& cloud, std::uint6
   memory.effects = scene.effects.names();
   memory.snapshot_fields = scene.output.fields;
   memory.damping = scene.numerics.damping != 0.0;
+  memory.unsaturated = scene.material.pore_fluid && scene.material.pore_fluid->retention;
   memory.boundary_points = boundary_points(cloud);
   e.memory_bytes = estimate_run_memory(memory).total_bytes;
   return e;

@@ -182,6 +182,8 @@ void RunWriter::flush(const RunInfo& info) {
     j += "  \"flow_update_interval_steps\": " + std::to_string(info.flow->interval) + ",\n";
     j += "  \"flow_substeps\": " + std::to_string(info.flow->substeps) + ",\n";
     j += "  \"flow_rkl2_stages\": " + std::to_string(info.flow->stages > 1 ? info.flow->stages : 0) + ",\n";
+    // Unsaturated: the schedule above is the start's; it is chosen again before every update.
+    if (info.flow->follows_saturation) j += "  \"flow_follows_saturation\": true,\n";
   }
   j += "  \"snapshots\": [";
   for (std::size_t k = 0; k < snapshots_.size(); ++k)

@@ -188,8 +188,10 @@ std::vector<SnapshotFieldSource> snapshot_sources(const Model& m, const std::vec
         *out = p.region[i] == 0 ? n0 + p.fluid_content_change[i] : 0.0;
       }));
     } else if (name == "saturation") {
-      // Saturated: the fluid fills the pores of the body (the layers carry none).
-      sources.push_back(per_point(name, 1, [&p](std::size_t i, double* out) { *out = p.region[i] == 0 ? 1.0 : 0.0; }));
+      // S_r(p) with a retention curve, else 1: the fluid fills the pores (the layers carry none).
+      sources.push_back(per_point(name, 1, [&p, curve = m.fluid->retention](std::size_t i, double* out) {
+        *out = p.region[i] != 0 ? 0.0 : (curve ? saturation(*curve, p.pore_pressure[i]) : 1.0);
+      }));
     } else if (name == "darcy_velocity") {
       sources.push_back(per_point(name, D, [&m](std::size_t i, double* out) {
         darcy_velocity(m.points, m.bonds, *m.fluid, i, out, &m.drains);

@@ -102,6 +102,12 @@ std::string non_finite_reason(const ExplicitDynamics& dynamics) {
   const auto bad = dynamics.first_non_finite();
   if (!bad) return "non-finite displacement, rotation or velocity";
   const PointData& p = dynamics.model().points;
+  if (bad->field == "pore_pressure")
+    return "no pore pressure holds the fluid content of point " + std::to_string(bad->point) +
+           " of the points file (0-based; position " + position_of(p, bad->point) +
+           "): the retention curve's inverse failed there, the point was drained below the liquid its pores hold "
+           "at the largest suction (check the fluid_flux outflow, the permeability or the time step); " +
+           std::to_string(bad->points) + " point(s) so";
   return "non-finite " + bad->field + " at point " + std::to_string(bad->point) +
          " of the points file (0-based; region " + std::to_string(p.region[bad->point]) + ", position " +
          position_of(p, bad->point) + "); " + std::to_string(bad->points) + " point(s) non-finite";
@@ -120,6 +126,7 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
   in.effects = scene.effects.names();
   in.snapshot_fields = scene.output.fields;
   in.damping = scene.numerics.damping != 0.0;
+  in.unsaturated = scene.material.pore_fluid && scene.material.pore_fluid->retention;
   for (std::size_t i = 0; i < cloud.size(); ++i)
     in.boundary_points +=
         (!cloud.region.empty() && cloud.region[i] > 0) || (!cloud.boundary_id.empty() && cloud.boundary_id[i] > 0);
@@ -379,16 +386,7 @@ class RunDriver {
 // The scene reader takes material.pore_fluid.retention (and writes it back), but the flow, the
 // stress and the undrained update of the solver are the saturated ones (docs/theory.md section 12):
 // running it would be a silent wrong answer, so it stops here.
-void refuse_unbuilt_models(const Scene& scene) {
-  if (scene.material.pore_fluid && scene.material.pore_fluid->retention) {
-    throw InputError(scene.path +
-                     ": material.pore_fluid.retention: unsaturated flow is not built into the solver yet (remove "
-                     "retention: to run the pores as saturated)");
-  }
-}
-
 void RunDriver::check_inputs(const PointCloud& cloud) {
-  refuse_unbuilt_models(scene_);
   check_points_match_scene(scene_, cloud, options_.points_file);
   if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");
   refuse_runs_that_do_not_fit(scene_, cloud);
@@ -433,8 +431,9 @@ void RunDriver::fit_time_step() {
   scene_.time.step = plan_.dt;
   start_up_.mark("damage step limit");
   if (model().fluid) {
-    plan_.flow = flow_schedule(fluid_step_limit(model().points, model().bonds, *model().fluid, &model().drains),
-                               plan_.dt, scene_.numerics.flow_integration);
+    const double limit = fluid_step_limit(model().points, model().bonds, *model().fluid, &model().drains);
+    plan_.flow = model().fluid->retention ? unsaturated_flow_schedule(limit, plan_.dt, scene_.numerics.flow_integration)
+                                          : flow_schedule(limit, plan_.dt, scene_.numerics.flow_integration);
     start_up_.mark("fluid step limit");
   }
 }
@@ -493,7 +492,13 @@ std::string fluid_report(const FluidConstants& fluid, const FlowSchedule& flow, 
   if (flow.stages > 1)
     schedule = "one RKL2 super step of " + std::to_string(flow.stages) + " stages per step (instead of " +
                std::to_string(static_cast<std::int64_t>(std::ceil(dt / (0.9 * flow.fluid_step)))) + " flow updates)";
-  return "pore fluid (saturated): Biot coefficient " + log_number(fluid.biot_coefficient) + ", Biot modulus " +
+  if (flow.follows_saturation) schedule += ", chosen again before every update as the saturation changes";
+  std::string model = "saturated";
+  if (fluid.retention)
+    model = "unsaturated: van Genuchten p_e " + log_number(fluid.retention->air_entry_pressure) + " Pa, n " +
+            log_number(fluid.retention->n) + ", S_res " + log_number(fluid.retention->residual_saturation) +
+            ", Mualem k_r, Bishop chi = S_r";
+  return "pore fluid (" + model + "): Biot coefficient " + log_number(fluid.biot_coefficient) + ", Biot modulus " +
          log_number(fluid.biot_modulus) + " Pa, mobility k/mu_f " + log_number(fluid.mobility) +
          " m^2/(Pa s), micro-conductivity " + log_number(fluid.micro_conductivity) +
          " 1/(Pa s m^2); fluid step limit " + log_number(flow.fluid_step) + " s against the time step " +

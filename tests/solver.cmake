@@ -18,6 +18,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_run_estimate.cpp
   unit/test_solver_fluid_boundaries.cpp
   unit/test_solver_retention_curve.cpp
+  unit/test_solver_unsaturated.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
@@ -31,6 +32,7 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_solver_pore_fluid_boundaries.cpp
   verification/test_solver_pore_fluid_mandel.cpp
   verification/test_richards_reference.cpp
+  verification/test_solver_unsaturated_infiltration.cpp
 )
 # The energies are computed without the force kernel's fused multiply-adds only if the two files
 # share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).

@@ -331,26 +331,75 @@ TEST(SolverFluidBoundaries, DrainedConditionWithoutALayerIsRefused) {
   }
 }
 
-// The scene reader takes the unsaturated model (material.pore_fluid.retention), but the solver's flow
-// and coupling are the saturated ones: the run stops before anything is written, as bad input
-// (exit 2) naming the key, instead of running another model than the one asked for.
-TEST(SolverFluidBoundaries, UnsaturatedSceneIsRefusedAtTheStart) {
-  ColumnCase c = loaded_column(10, true, true, 0.0);
-  c.scene.path = "solver-test.yaml";
+// The unsaturated column (a retention curve, under suction to start) fed through its base: the run
+// writes S_r below 1 in its snapshots, keeps the fluid's books to round-off in energy.csv, and has the
+// same bits on 1 and 2 threads. Drawn from at its base instead (a negative flux) faster than the fluid
+// can follow, the base row is emptied: no pressure holds its content any more, and the run stops
+// (exit 3) naming the point and the step, with its run directory kept (run_info "numerical_failure").
+TEST(SolverFluidBoundaries, UnsaturatedRunKeepsItsBooksAndStopsWhenAPointRunsDry) {
+  ColumnCase c = loaded_column(10, false, true, 0.0);
   c.scene.material.pore_fluid->retention = RetentionParameters{"van_genuchten", 1e4, 2.0, 0.1};
+  c.scene.material.pore_fluid->initial_pressure = -2e4;
+  c.scene.time.end = 20e-6;
+  c.scene.time.step = 1e-8;
+  c.scene.output.interval = 10e-6;
+  c.scene.output.fields = {"displacement", "pore_pressure", "saturation", "darcy_velocity"};
   SolveOptions o;
   o.points_file = "column.vtp";
-  o.run_directory = (std::filesystem::path(MPPM_BINARY_DIR) / "fluid-boundary-runs" / "unsaturated").string();
-  std::filesystem::remove_all(o.run_directory);
-  try {
-    solve(c.scene, c.cloud, o);
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "solver-test.yaml: material.pore_fluid.retention: unsaturated flow is not built into the solver yet "
-              "(remove retention: to run the pores as saturated)");
+  const auto run = [&](const std::string& name, int threads) {
+    o.run_directory = (std::filesystem::path(MPPM_BINARY_DIR) / "fluid-boundary-runs" / name).string();
+    std::filesystem::remove_all(o.run_directory);
+    const int saved = omp_get_max_threads();
+    const ParallelThresholds saved_thresholds = parallel_thresholds();
+    parallel_thresholds() = ParallelThresholds{1, 1, 1};
+    omp_set_num_threads(threads);
+    try {
+      solve(c.scene, c.cloud, o);
+    } catch (...) {
+      omp_set_num_threads(saved);
+      parallel_thresholds() = saved_thresholds;
+      throw;
+    }
+    omp_set_num_threads(saved);
+    parallel_thresholds() = saved_thresholds;
+    return o.run_directory;
+  };
+  const std::string one = run("unsaturated_one", 1), two = run("unsaturated_two", 2);
+  EXPECT_EQ(testing::read_text(one + "/" + run_layout::load), testing::read_text(two + "/" + run_layout::load));
+  EXPECT_EQ(testing::read_text(one + "/" + run_layout::energy), testing::read_text(two + "/" + run_layout::energy));
+  const auto energy = testing::read_csv_rows(one + "/" + run_layout::energy);
+  for (const auto& row : energy) ASSERT_LT(std::abs(row[11]), 1e-12) << "t = " << row[0];
+  std::string newest;
+  for (const auto& e : std::filesystem::directory_iterator(one + "/" + run_layout::snapshot_dir))
+    newest = std::max(newest, e.path().string());
+  const Snapshot last = read_snapshot(newest);
+  ASSERT_GT(last.time, 0.0);
+  ASSERT_NE(last.find("saturation"), nullptr);
+  const auto& saturation = last.find("saturation")->data;
+  double lowest = 1.0, highest = 0.0;
+  for (std::size_t i = 0; i < saturation.size(); ++i) {
+    if (c.cloud.region[i] != 0) continue;
+    lowest = std::min(lowest, saturation[i]);
+    highest = std::max(highest, saturation[i]);
   }
-  EXPECT_FALSE(std::filesystem::exists(o.run_directory + "/" + run_layout::load));
+  EXPECT_GT(lowest, 0.1);  // above S_res
+  EXPECT_LT(highest, 1.0);
+  EXPECT_GT(highest, lowest) << "the fed base is wetter";
+  EXPECT_NE(testing::read_text(one + "/" + run_layout::log).find("pore fluid (unsaturated: van Genuchten p_e 10000 Pa"),
+            std::string::npos);
+
+  c.scene.boundary_conditions.back().value.values = {{-2e2}};  // a draw of 0.2 m/s from the base
+  try {
+    run("unsaturated_dry", 1);
+    FAIL() << "ran on";
+  } catch (const NumericalFailure& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("numerical failure at step "), std::string::npos) << what;
+    EXPECT_NE(what.find("no pore pressure holds the fluid content of point "), std::string::npos) << what;
+  }
+  const std::string info = testing::read_text(o.run_directory + "/" + run_layout::run_info);
+  EXPECT_NE(info.find("numerical_failure"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(o.run_directory + "/" + run_layout::energy));
 }
 
 // A run of the drained and fed column: load.csv has each fluid condition's rate and volume (in place

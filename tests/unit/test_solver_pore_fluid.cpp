@@ -143,9 +143,15 @@ TEST(SolverPoreFluid, FlowConservesTheFluidAndDissipatesItsEnergy) {
 // After a batch of flow updates the forces are corrected by the pressure change alone
 // (solver/pressure_change_forces.hpp): the same forces, moments and force tensors as a whole force
 // evaluation at the new fluid content, to round-off (1e-10 of the largest: sums of a few hundred
-// terms in another order), near the faces and with a broken bond too.
-void check_pressure_change_forces(int dimension, std::array<int, 3> n, double horizon_factor) {
+// terms in another order), near the faces and with a broken bond too. Unsaturated (a retention curve,
+// under suction), the correction is that of Bishop's pore stress S_r(p) p, which is not linear in p.
+void check_pressure_change_forces(int dimension, std::array<int, 3> n, double horizon_factor,
+                                  bool unsaturated = false) {
   Scene scene = fluid_scene(dimension, true, horizon_factor);
+  if (unsaturated) {
+    scene.material.pore_fluid->retention = RetentionParameters{"van_genuchten", 1e4, 2.0, 0.1};
+    scene.material.pore_fluid->initial_pressure = -5e3;
+  }
   scene.effects.damage = true;
   scene.material.damage = DamageParameters{};
   Model m = make_model(make_lattice(dimension, n, kDx, scene.thickness), scene);
@@ -153,7 +159,8 @@ void check_pressure_change_forces(int dimension, std::array<int, 3> n, double ho
   std::uniform_real_distribution<double> g(-1.0, 1.0);
   for (auto& u : m.points.displacement) u = 1e-4 * kDx * g(rng);
   for (auto& w : m.points.rotation) w = 1e-4 * g(rng);
-  for (auto& z : m.points.fluid_content_change) z = 1e-5 * g(rng);
+  // (Under suction the capacity is ~1e-5 / Pa, not 1/M: a larger change of content moves p as much.)
+  for (auto& z : m.points.fluid_content_change) z += (unsaturated ? 1e-3 : 1e-5) * g(rng);
   const std::size_t k = 7;  // a bond broken at point 7
   m.bonds.break_bond(mirror_bond(m.bonds, k, static_cast<std::size_t>(m.bonds.neighbor[m.bonds.offset[k]])));
   m.bonds.break_bond(m.bonds.offset[k]);
@@ -187,6 +194,9 @@ TEST(SolverPoreFluid, PressureChangeCorrectsTheForcesAsAnEvaluation2D) {
 }
 TEST(SolverPoreFluid, PressureChangeCorrectsTheForcesAsAnEvaluation3D) {
   check_pressure_change_forces(3, {6, 5, 5}, 2.05);
+}
+TEST(SolverPoreFluid, PressureChangeCorrectsTheForcesAsAnEvaluationUnsaturated) {
+  check_pressure_change_forces(2, {10, 8, 1}, 3.05, true);
 }
 
 // A hydrostatic start (docs/theory.md section 12) is the fluid at rest: its potential p - rho_f g . x
