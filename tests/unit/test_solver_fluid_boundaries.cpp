@@ -21,6 +21,7 @@
 #include "solver/parallel_policy.hpp"
 #include "solver/pore_fluid.hpp"
 #include "solver/solve_run.hpp"
+#include "tests/unit/thread_count_scope.hpp"
 #include "tests/verification/solver_fluid_column.hpp"
 #include "tests/verification/solver_viscoplastic_cases.hpp"
 
@@ -349,19 +350,8 @@ TEST(SolverFluidBoundaries, UnsaturatedRunKeepsItsBooksAndStopsWhenAPointRunsDry
   const auto run = [&](const std::string& name, int threads) {
     o.run_directory = (std::filesystem::path(MPPM_BINARY_DIR) / "fluid-boundary-runs" / name).string();
     std::filesystem::remove_all(o.run_directory);
-    const int saved = omp_get_max_threads();
-    const ParallelThresholds saved_thresholds = parallel_thresholds();
-    parallel_thresholds() = ParallelThresholds{1, 1, 1};
-    omp_set_num_threads(threads);
-    try {
-      solve(c.scene, c.cloud, o);
-    } catch (...) {
-      omp_set_num_threads(saved);
-      parallel_thresholds() = saved_thresholds;
-      throw;
-    }
-    omp_set_num_threads(saved);
-    parallel_thresholds() = saved_thresholds;
+    const testing::ThreadCountScope scope(threads);
+    solve(c.scene, c.cloud, o);
     return o.run_directory;
   };
   const std::string one = run("unsaturated_one", 1), two = run("unsaturated_two", 2);
@@ -417,13 +407,8 @@ TEST(SolverFluidBoundaries, RunWritesTheFluidBoundariesColumns) {
   const auto run = [&](const std::string& name, int threads) {
     o.run_directory = (std::filesystem::path(MPPM_BINARY_DIR) / "fluid-boundary-runs" / name).string();
     std::filesystem::remove_all(o.run_directory);
-    const int saved = omp_get_max_threads();
-    const ParallelThresholds saved_thresholds = parallel_thresholds();
-    parallel_thresholds() = ParallelThresholds{1, 1, 1};  // every loop threaded, even on this column
-    omp_set_num_threads(threads);
+    const testing::ThreadCountScope scope(threads);  // every loop threaded, even on this column
     solve(c.scene, c.cloud, o);
-    omp_set_num_threads(saved);
-    parallel_thresholds() = saved_thresholds;
     return o.run_directory;
   };
   const std::string one = run("one_thread", 1), two = run("two_threads", 2);
