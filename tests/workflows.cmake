@@ -48,3 +48,11 @@ set_tests_properties(workflows.crack_initiation_quick PROPERTIES LABELS "regress
 add_test(NAME workflows.kalthoff_winkler_quick
   COMMAND sh -c "make -s -C '${PROJECT_SOURCE_DIR}/workflows/kalthoff-winkler' clean OUT='${CMAKE_BINARY_DIR}/workflow-runs/kalthoff-winkler-quick' && make -j2 -C '${PROJECT_SOURCE_DIR}/workflows/kalthoff-winkler' quick MPPM_BIN='${CMAKE_BINARY_DIR}/bin' OUT='${CMAKE_BINARY_DIR}/workflow-runs/kalthoff-winkler-quick'")
 set_tests_properties(workflows.kalthoff_winkler_quick PROPERTIES LABELS "regression" TIMEOUT 600)
+
+# The case-level convergence study (workflows/case-convergence/README.md) in its quick form: the
+# coarsest spacing of the shear-band and crack-branching cases at both horizon factors, estimated,
+# run, postprocessed, reported and checked (the driver end to end; the convergence itself needs
+# the full study on an idle machine). 4 runs, one at a time: 72 s measured with the 2 cores shared.
+add_test(NAME workflows.case_convergence_quick
+  COMMAND sh -c "rm -rf '${CMAKE_BINARY_DIR}/workflow-runs/case-convergence-quick' && make -s -C '${PROJECT_SOURCE_DIR}/workflows/case-convergence' QUICK=1 all report check MPPM_BIN='${CMAKE_BINARY_DIR}/bin' OUT='${CMAKE_BINARY_DIR}/workflow-runs/case-convergence-quick'")
+set_tests_properties(workflows.case_convergence_quick PROPERTIES LABELS "regression" TIMEOUT 600)

@@ -9,11 +9,11 @@ usage: check_estimates.py BIN WORK OUT.md
 import json
 import os
 import re
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
-from script_exit import InputError, RunError, run_main  # noqa: E402
+from run_timing import estimate_numbers, load_average, run  # noqa: E402
+from script_exit import InputError, run_main  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 
@@ -29,28 +29,6 @@ CASES = [
     ("3-D notched bar, non-polar + damage", "tests/stability/scenes/notched_impact_3d.yaml", 2,
      ["time.end=20us"]),
 ]
-
-
-def run(command):
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        raise RunError(f"{' '.join(command)} failed ({result.returncode}): {result.stderr.strip()}")
-    return result
-
-
-def estimate_numbers(text):
-    wall = re.search(r"wall time\s+~([0-9.e+-]+) (s|min|h)", text)
-    memory = re.search(r"peak memory\s+~([0-9.]+) (KiB|MiB|GiB)", text)
-    if not wall or not memory:
-        raise RunError(f"cannot read the estimate:\n{text}")
-    seconds = float(wall.group(1)) * {"s": 1, "min": 60, "h": 3600}[wall.group(2)]
-    mib = float(memory.group(1)) * {"KiB": 1 / 1024, "MiB": 1, "GiB": 1024}[memory.group(2)]
-    return seconds, mib
-
-
-def load_average():
-    with open("/proc/loadavg") as f:
-        return float(f.read().split()[0])
 
 
 def main(argv):

@@ -1,0 +1,333 @@
+"""Case-level convergence and cost (README.md): the reference cases run at a sequence of spacings and
+two horizon factors, each run estimated first (mppm-solve --estimate), then timed on one thread with
+the machine watched (the load average and the CPU time other processes took during the run), then
+postprocessed; the case metrics from summary.json.
+
+usage:
+  convergence.py run BIN CASE OUT.csv WORK [--quick]   run CASE's levels -> OUT.csv (one row per run)
+  convergence.py report RESULTS.md FIGURES CSV...       results.md and one figure per case
+  convergence.py check [--quick] CSV...                 every run timed on an idle machine, every metric of the
+                                                        reference level there (--quick: the test suite's form,
+                                                        run beside other tests, one level: neither is asked)
+"""
+import csv
+import json
+import math
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from run_timing import OtherWork, estimate_numbers, run  # noqa: E402
+from script_exit import InputError, RunError, run_main  # noqa: E402
+
+# A run counts as taken on a busy machine when other processes took more than this fraction of one
+# core during it (the run itself uses one thread of the two cores).
+BUSY_FRACTION = 0.10
+
+# Per case: its scene, the spacings [mm] and horizon factors of the study (the case's own factor
+# first: its series gives the reference), the quick form's spacings, and the metrics of summary.json
+# (key, label, unit scale, unit).
+CASES = {
+    "shear-band": {
+        "scene": "workflows/shear-band/scene.yaml",
+        "spacings_mm": [5.0, 2.5, 1.25],
+        "factors": [2.05, 3.05],
+        "quick_spacings_mm": [5.0],
+        "metrics": [("peak_load_N", "peak load", 1.0, "N"),
+                    ("shear_band_angle_deg", "band angle", 1.0, "deg"),
+                    ("shear_band_width_m", "band width", 1e3, "mm")],
+    },
+    "crack-branching": {
+        "scene": "workflows/crack-branching/scene.yaml",
+        "spacings_mm": [1.0, 0.5, 0.25],
+        "factors": [4.05, 3.05],
+        "quick_spacings_mm": [1.0],
+        "metrics": [("crack_start_time_s", "crack start", 1e6, "us"),
+                    ("crack_branch_time_s", "branching", 1e6, "us"),
+                    ("crack_end_time_s", "crack end", 1e6, "us"),
+                    ("crack_tip_speed_max_m_per_s", "largest tip speed", 1.0, "m/s")],
+    },
+}
+
+COLUMNS = ["case", "spacing_m", "horizon_factor", "points", "bonds", "steps", "wall_seconds", "predicted_seconds",
+           "peak_mib", "predicted_mib", "load_before", "load_after", "other_cpu_seconds", "busy"]
+
+
+def metric_keys(case):
+    return [m[0] for m in CASES[case]["metrics"]]
+
+
+def run_level(bin_dir, case, spacing_mm, factor, work):
+    """One run of CASE at the spacing and horizon factor: its row."""
+    scene = os.path.join(ROOT, CASES[case]["scene"])
+    name = f"dx{spacing_mm:g}mm-h{factor:g}"
+    folder = os.path.join(work, case, name)
+    os.makedirs(folder, exist_ok=True)
+    sets = [f"geometry.spacing={spacing_mm:g}mm", f"geometry.horizon_factor={factor:g}"]
+    set_args = [a for s in sets for a in ("--set", s)]
+    points = os.path.join(folder, "points.vtp")
+    run([os.path.join(bin_dir, "mppm-preprocess"), scene, "-o", points, "--quiet"] + set_args)
+    estimate = run([os.path.join(bin_dir, "mppm-solve"), scene, "--points", points, "--estimate", "--threads", "1"]
+                   + set_args).stdout
+    predicted_seconds, predicted_mib = estimate_numbers(estimate)
+    run_dir = os.path.join(folder, "run")
+    with OtherWork() as other:
+        timed = run(["/usr/bin/time", "-f", "peak_rss_kib %M", os.path.join(bin_dir, "mppm-solve"), scene, "--points",
+                     points, "-o", run_dir, "--force", "--quiet", "--threads", "1"] + set_args)
+    post = os.path.join(folder, "post")
+    run([os.path.join(bin_dir, "mppm-postprocess"), run_dir, "-o", post, "--force", "--quiet"])
+    with open(os.path.join(run_dir, "run_info.json")) as f:
+        info = json.load(f)
+    with open(os.path.join(post, "summary.json")) as f:
+        summary = json.load(f)
+    peak = re.search(r"peak_rss_kib (\d+)", timed.stderr)
+    wall = float(info["wall_seconds"])
+    row = {"case": case, "spacing_m": spacing_mm * 1e-3, "horizon_factor": factor, "points": info["points"],
+           "bonds": info["bonds"], "steps": info["steps"], "wall_seconds": wall,
+           "predicted_seconds": predicted_seconds, "peak_mib": int(peak.group(1)) / 1024 if peak else float("nan"),
+           "predicted_mib": predicted_mib, "load_before": other.load_before, "load_after": other.load_after,
+           "other_cpu_seconds": other.seconds, "busy": int(other.seconds > BUSY_FRACTION * wall)}
+    for key in metric_keys(case):
+        value = summary.get(key)
+        row[key] = "" if value is None else float(value)
+    print(f"{case} {name}: {wall:.1f} s (estimate {predicted_seconds:.3g} s), other processes "
+          f"{other.seconds:.1f} CPU s" + (" BUSY" if row["busy"] else ""), flush=True)
+    return row
+
+
+def run_case(bin_dir, case, out_csv, work, quick):
+    if case not in CASES:
+        raise InputError(f"unknown case {case!r} (expected one of {', '.join(CASES)})")
+    c = CASES[case]
+    spacings = c["quick_spacings_mm"] if quick else c["spacings_mm"]
+    rows = [run_level(bin_dir, case, dx, h, work) for h in c["factors"] for dx in spacings]
+    temporary = out_csv + ".part"
+    with open(temporary, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS + metric_keys(case))
+        writer.writeheader()
+        writer.writerows(rows)
+    os.replace(temporary, out_csv)  # never a half-written table
+    return 0
+
+
+def read_rows(path):
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        raise InputError(f"{path}: {e.strerror}")
+    if not rows:
+        raise InputError(f"{path}: no rows")
+    for r in rows:
+        for k, v in r.items():
+            if k != "case":
+                r[k] = None if v == "" else float(v)
+    return rows
+
+
+# ------------------------------------------------------------------------------------------ analysis
+
+def series(rows, factor, key):
+    """(spacings, values) of one horizon factor, coarse to fine, runs without the metric left out."""
+    pts = sorted(((r["spacing_m"], r[key]) for r in rows if r["horizon_factor"] == factor and r[key] is not None),
+                 reverse=True)
+    return [p[0] for p in pts], [p[1] for p in pts]
+
+
+def observed_rate(values):
+    """The order p from the last three levels (each half the spacing of the one before) when the
+    differences keep their sign and shrink; None otherwise (not converging monotonically)."""
+    if len(values) < 3:
+        return None
+    d1, d2 = values[-3] - values[-2], values[-2] - values[-1]
+    if d1 == 0.0 or d2 == 0.0 or (d1 > 0) != (d2 > 0) or abs(d2) >= abs(d1):
+        return None
+    return math.log2(abs(d1) / abs(d2))
+
+
+def reference(values):
+    """(reference value, how): Richardson's extrapolation of the last two levels with the observed
+    order where the sequence converges monotonically, else the finest level."""
+    p = observed_rate(values)
+    if p is None:
+        return values[-1], "finest level"
+    return values[-1] + (values[-1] - values[-2]) / (2.0 ** p - 1.0), f"Richardson (order {p:.2f})"
+
+
+def relative_error(value, ref):
+    return abs(value - ref) / abs(ref) if ref else float("inf")
+
+
+# -------------------------------------------------------------------------------------------- report
+
+def fmt_value(value, scale):
+    return "none" if value is None else f"{value * scale:.4g}"
+
+
+def case_section(case, rows, figures):
+    c = CASES[case]
+    own = c["factors"][0]
+    lines = [f"## {case}", "", f"![{case}: metric error against wall time](figures/{case}.png)", "",
+             f"Scene `{c['scene']}` as written but for the spacing and the horizon factor; every run on one thread. "
+             f"The reference of each metric comes from the case's own horizon factor ({own:g}): Richardson's "
+             "extrapolation where its three levels converge monotonically, else its finest level. Errors are "
+             "relative to it.", "",
+             "| horizon factor | dx [mm] | points | bonds | steps | " +
+             " | ".join(f"{label} [{unit}] (error)" for _, label, _, unit in c["metrics"]) +
+             " | wall [s] | estimate [s] | peak MiB (estimate) | other CPU [s] |",
+             "|" + "---|" * (9 + len(c["metrics"]))]
+    refs = {}
+    for key, label, scale, unit in c["metrics"]:
+        _, values = series(rows, own, key)
+        refs[key] = reference(values) if values else (None, "no value")
+    for r in sorted(rows, key=lambda r: (c["factors"].index(r["horizon_factor"]), -r["spacing_m"])):
+        cells = []
+        for key, _, scale, _ in c["metrics"]:
+            ref = refs[key][0]
+            err = "" if r[key] is None or ref is None else f" ({100 * relative_error(r[key], ref):.2g} %)"
+            cells.append(fmt_value(r[key], scale) + err)
+        wall = "BUSY: rerun" if r["busy"] else f"{r['wall_seconds']:.3g}"
+        lines.append(f"| {r['horizon_factor']:g} | {r['spacing_m'] * 1e3:g} | {int(r['points'])} | {int(r['bonds'])} | "
+                     f"{int(r['steps'])} | " + " | ".join(cells) +
+                     f" | {wall} | {r['predicted_seconds']:.3g} | {r['peak_mib']:.0f} ({r['predicted_mib']:.0f}) | "
+                     f"{r['other_cpu_seconds']:.1f} |")
+    lines += ["", "References and observed orders (from the last three levels of each series; 'no' where they do "
+              "not converge monotonically):", "",
+              "| metric | reference | from | " + " | ".join(f"order at h = {h:g}" for h in c["factors"]) + " |",
+              "|" + "---|" * (3 + len(c["factors"]))]
+    for key, label, scale, unit in c["metrics"]:
+        orders = []
+        for h in c["factors"]:
+            p = observed_rate(series(rows, h, key)[1])
+            orders.append("no" if p is None else f"{p:.2f}")
+        ref, how = refs[key]
+        lines.append(f"| {label} [{unit}] | {fmt_value(ref, scale)} | {how} | " + " | ".join(orders) + " |")
+    lines += ["", "What a 2x finer lattice buys and costs (the case's horizon factor):", "",
+              "| dx [mm] -> dx/2 | " + " | ".join(f"{label} change" for _, label, _, _ in c["metrics"]) +
+              " | wall time x | bond updates x |", "|" + "---|" * (3 + len(c["metrics"]))]
+    own_rows = sorted((r for r in rows if r["horizon_factor"] == own), key=lambda r: -r["spacing_m"])
+    for a, b in zip(own_rows, own_rows[1:]):
+        changes = []
+        for key, _, _, _ in c["metrics"]:
+            changes.append("n/a" if a[key] is None or b[key] is None or not a[key]
+                           else f"{100 * (b[key] - a[key]) / abs(a[key]):+.2g} %")
+        time_ratio = "busy" if a["busy"] or b["busy"] else f"{b['wall_seconds'] / a['wall_seconds']:.2f}"
+        updates = (b["bonds"] * b["steps"]) / (a["bonds"] * a["steps"])
+        lines.append(f"| {a['spacing_m'] * 1e3:g} -> {b['spacing_m'] * 1e3:g} | " + " | ".join(changes) +
+                     f" | {time_ratio} | {updates:.2f} |")
+    lines += ["", "The cheapest measured setting within 1 %, 5 % and 10 % of the reference (the reference's own "
+              "finest run excluded: its error is zero by construction when it is the reference):", "",
+              "| metric | within 1 % | within 5 % | within 10 % |", "|---|---|---|---|"]
+    finest = min(r["spacing_m"] for r in own_rows) if own_rows else None
+    for key, label, _, unit in c["metrics"]:
+        cells = []
+        for tol in (0.01, 0.05, 0.10):
+            ref, how = refs[key]
+            fits = [r for r in rows if r[key] is not None and ref is not None and not r["busy"]
+                    and not (how == "finest level" and r["horizon_factor"] == own and r["spacing_m"] == finest)
+                    and relative_error(r[key], ref) <= tol]
+            best = min(fits, key=lambda r: r["wall_seconds"], default=None)
+            cells.append("none measured" if best is None else
+                         f"dx {best['spacing_m'] * 1e3:g} mm, h {best['horizon_factor']:g}: {best['wall_seconds']:.3g} s "
+                         f"(estimate {best['predicted_seconds']:.3g} s)")
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    plot_case(case, rows, refs, os.path.join(figures, f"{case}.png"))
+    return lines + [""]
+
+
+def plot_case(case, rows, refs, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    c = CASES[case]
+    fig, axes = plt.subplots(1, len(c["metrics"]), figsize=(4.2 * len(c["metrics"]), 3.6))
+    for ax, (key, label, _, _) in zip(axes, c["metrics"]):
+        ref = refs[key][0]
+        for h, marker in zip(c["factors"], "os^"):
+            pts = [(r["wall_seconds"], 100 * relative_error(r[key], ref), r["spacing_m"]) for r in rows
+                   if r["horizon_factor"] == h and r[key] is not None and ref is not None and not r["busy"]]
+            pts = [p for p in pts if p[1] > 0]
+            if pts:
+                ax.loglog([p[0] for p in pts], [p[1] for p in pts], marker=marker, label=f"horizon {h:g} dx")
+                for t, e, dx in pts:
+                    ax.annotate(f"{dx * 1e3:g}", (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
+        ax.set_title(label)
+        ax.set_xlabel("wall time, 1 thread [s]")
+        ax.set_ylabel("error against the reference [%]")
+        ax.grid(alpha=0.3, which="both")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
+    fig.suptitle(f"{case}: error against cost (labels: dx in mm)")
+    fig.tight_layout()
+    temporary = path + ".part.png"
+    fig.savefig(temporary, dpi=100)
+    os.replace(temporary, path)
+    plt.close(fig)
+
+
+def report(results, figures, csvs):
+    os.makedirs(figures, exist_ok=True)
+    lines = ["# Case-level convergence and cost: results", "",
+             "Written by `make report` from " + ", ".join(f"`{os.path.basename(p)}`" for p in csvs) +
+             " (README.md says how the runs are made). A run during which other processes took more than "
+             f"{100 * BUSY_FRACTION:.0f} % of a core is marked BUSY and its wall time is not shown.", ""]
+    all_rows = []
+    for path in csvs:
+        rows = read_rows(path)
+        all_rows += rows
+        lines += case_section(rows[0]["case"], rows, figures)
+    loads = [r["load_before"] for r in all_rows] + [r["load_after"] for r in all_rows]
+    lines += [f"Load average at the runs' starts and ends: {min(loads):.2f} to {max(loads):.2f} (one run at a time, "
+              f"one thread); other processes' CPU time per run at most "
+              f"{max(r['other_cpu_seconds'] for r in all_rows):.1f} s."]
+    temporary = results + ".part"
+    with open(temporary, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(temporary, results)
+    print(f"report: {results}")
+    return 0
+
+
+def check(csvs, quick=False):
+    """A missing metric at a coarse level is a result (no band forms on 3 points across it, a crack
+    that never branches) and is reported, not failed; the reference level must have every metric."""
+    failures = []
+    for path in csvs:
+        rows = read_rows(path)
+        case = rows[0]["case"]
+        own = CASES[case]["factors"][0]
+        finest = min(r["spacing_m"] for r in rows if r["horizon_factor"] == own)
+        for r in rows:
+            where = f"{path}: {case} dx {r['spacing_m'] * 1e3:g} mm, h {r['horizon_factor']:g}"
+            if r["busy"] and not quick:
+                failures.append(f"{where}: timed on a busy machine ({r['other_cpu_seconds']:.1f} CPU s of other work)")
+            if not r["wall_seconds"] > 0:
+                failures.append(f"{where}: no wall time")
+            missing = [k for k in metric_keys(case) if r[k] is None or not math.isfinite(r[k])]
+            if not missing:
+                continue
+            if r["horizon_factor"] == own and r["spacing_m"] == finest and not quick:
+                failures.append(f"{where}: the reference level has no {', '.join(missing)}")
+            else:
+                print(f"note: {where}: no {', '.join(missing)}")
+    for f in failures:
+        print("FAIL", f)
+    print("PASS" if not failures else f"{len(failures)} failure(s)")
+    return 0 if not failures else 1
+
+
+def main(argv):
+    if len(argv) >= 5 and argv[0] == "run":
+        return run_case(argv[1], argv[2], argv[3], argv[4], "--quick" in argv[5:])
+    if len(argv) >= 4 and argv[0] == "report":
+        return report(argv[1], argv[2], argv[3:])
+    if len(argv) >= 2 and argv[0] == "check":
+        return check([a for a in argv[1:] if a != "--quick"], "--quick" in argv[1:])
+    raise InputError(__doc__.strip())
+
+
+if __name__ == "__main__":
+    run_main(main)
