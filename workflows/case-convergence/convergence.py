@@ -289,13 +289,20 @@ def plot_case(case, rows, refs, path):
                 ax.loglog([p[0] for p in pts], [p[1] for p in pts], marker=marker, label=f"horizon {h:g} dx")
                 for t, e, dx in pts:
                     ax.annotate(f"{dx * 1e3:g}", (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
+        # The Pareto front: the runs no other run beats in both wall time and error, circled.
+        front = [(r["wall_seconds"], 100 * relative_error(r[key], ref)) for r in rows
+                 if r[key] is not None and ref is not None and not r["busy"] and relative_error(r[key], ref) > 0]
+        front = [p for p in front if not any(q[0] <= p[0] and q[1] <= p[1] and q != p for q in front)]
+        if front:
+            ax.scatter([p[0] for p in front], [p[1] for p in front], s=160, facecolors="none", edgecolors="k",
+                       label="Pareto front")
         ax.set_title(label)
         ax.set_xlabel("wall time, 1 thread [s]")
         ax.set_ylabel("error against the reference [%]")
         ax.grid(alpha=0.3, which="both")
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
-    fig.suptitle(f"{case}: error against cost (labels: dx in mm)")
+    fig.suptitle(f"{case}: error against cost (labels: dx in mm; circled: the Pareto front)")
     fig.tight_layout()
     temporary = path + ".part.png"
     fig.savefig(temporary, dpi=100)
