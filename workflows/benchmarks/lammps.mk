@@ -40,5 +40,22 @@ $(OUT)/lammps.csv: $(LAMMPS_INPUTS)/plate.json $(LAMMPS_BENCH_DIR)/run_lammps.py
 	  --ranks $(LAMMPS_RANKS) --repeats $(LAMMPS_REPEATS) $(if $(LAMMPS_MPIRUN_ARGS),--mpirun-args="$(LAMMPS_MPIRUN_ARGS)")
 	mv $@.tmp $@
 
+# The 3-D block (make_block_input.py: 60^3 points, horizon 2.05 dx, 100 steps), the yardstick of
+# mppm's 3-D kernels: `make lammps-3d` -> $(OUT)/lammps_block.csv. Knobs: LAMMPS_BLOCK_ARGS
+# (generator options, e.g. "--n 12 --steps 10" for a smoke test).
+LAMMPS_BLOCK_ARGS ?=
+LAMMPS_BLOCK_INPUTS := $(OUT)/lammps-block
+.PHONY: lammps-3d
+lammps-3d: $(OUT)/lammps_block.csv
+
+$(LAMMPS_BLOCK_INPUTS)/block.json: $(LAMMPS_BENCH_DIR)/make_block_input.py $(LAMMPS_BENCH_DIR)/make_plate_input.py
+	$(LAMMPS_PYTHON) $< --out-dir $(LAMMPS_BLOCK_INPUTS) $(LAMMPS_BLOCK_ARGS)
+
+$(OUT)/lammps_block.csv: $(LAMMPS_BLOCK_INPUTS)/block.json $(LAMMPS_BENCH_DIR)/run_lammps.py | lammps-deps
+	@rm -f $@.tmp
+	$(LAMMPS_PYTHON) $(LAMMPS_BENCH_DIR)/run_lammps.py $@.tmp --benchmark block --inputs $(LAMMPS_BLOCK_INPUTS) \
+	  --ranks $(LAMMPS_RANKS) --repeats $(LAMMPS_REPEATS) $(if $(LAMMPS_MPIRUN_ARGS),--mpirun-args="$(LAMMPS_MPIRUN_ARGS)")
+	mv $@.tmp $@
+
 # Including this fragment must not change the including Makefile's default goal.
 .DEFAULT_GOAL := $(LAMMPS_SAVED_DEFAULT_GOAL)

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Runs the LAMMPS PERI plate inputs at 1 and 2 MPI ranks and appends benchmark rows to a CSV.
+"""Runs the LAMMPS PERI inputs of a benchmark (the 2-D plate of make_plate_input.py or the 3-D block
+of make_block_input.py) at 1 and 2 MPI ranks and appends benchmark rows to a CSV.
 
 Owns: launching Debian's `lmp` under `mpirun` (the Debian build has no OPENMP package, so
 LAMMPS parallelizes with MPI ranks only), per-rank peak memory (GNU time around each rank,
@@ -33,10 +34,12 @@ CSV_HEADER = ("case,effects,threads,points,bonds,steps,wall_seconds,"
 
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(
-        description="Run the LAMMPS peri/lps and peri/pmb plate benchmark and append CSV rows.")
+        description="Run the LAMMPS peri/lps and peri/pmb benchmark inputs and append CSV rows.")
     parser.add_argument("csv", help="CSV file to append rows to (created with a header if missing)")
     parser.add_argument("--inputs", required=True,
-                        help="directory written by make_plate_input.py (holds plate.json)")
+                        help="directory written by the generator (holds BENCHMARK.json)")
+    parser.add_argument("--benchmark", default="plate", choices=("plate", "block"),
+                        help="plate (make_plate_input.py, default) or block (make_block_input.py)")
     parser.add_argument("--models", default="lps,pmb", help="subset of lps,pmb (default both)")
     parser.add_argument("--ranks", default="1,2", help="MPI rank counts (default 1,2)")
     parser.add_argument("--repeats", type=int, default=1,
@@ -59,13 +62,13 @@ def parse_arguments(argv):
     return args
 
 
-def load_plate(inputs, models):
-    path = os.path.join(inputs, "plate.json")
+def load_plate(inputs, models, benchmark="plate"):
+    path = os.path.join(inputs, f"{benchmark}.json")
     try:
         with open(path) as stream:
             plate = json.load(stream)
     except FileNotFoundError:
-        raise InputError(f"{path}: not found (run make_plate_input.py --out-dir {inputs} first)")
+        raise InputError(f"{path}: not found (run make_{benchmark}_input.py --out-dir {inputs} first)")
     except (OSError, json.JSONDecodeError) as error:
         raise InputError(f"{path}: unreadable ({error})")
     for key in ("points", "bonds", "steps", "models"):
@@ -237,7 +240,7 @@ def main(argv):
         if not args.models or unknown:
             raise InputError(f"--models: unknown model(s) {unknown or args.models} "
                              "(expected lps and/or pmb)")
-        plate = load_plate(args.inputs, args.models)
+        plate = load_plate(args.inputs, args.models, args.benchmark)
         for tool in (args.lmp, args.mpirun, "/usr/bin/time"):
             if shutil.which(tool) is None:
                 raise InputError(f"{tool}: not found (install Debian packages lammps, "

@@ -1,0 +1,72 @@
+#!/usr/bin/python3
+"""The 3-D side-by-side table (results_3d.md) from run_block3d.py's and run_lammps.py --benchmark
+block's CSVs: bond updates per second of mppm's 3-D block at each effect set against LAMMPS
+peri/lps and peri/pmb on the same lattice, at equal thread / rank counts, with the targets marked
+(non-polar >= 5x peri/lps, micro-polar + damage >= 1.5x peri/pmb, the full model >= 1x peri/pmb),
+and the start-up against the loop (the start-up in time steps: target <= 10).
+
+usage: report_block3d.py MPPM.csv LAMMPS.csv OUT.md
+"""
+import csv
+import datetime
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+from mppm_outputs import atomic_open  # noqa: E402
+from script_exit import InputError, run_main  # noqa: E402
+
+TARGETS = [("none", "block-lammps-lps", 5.0), ("micropolar+damage", "block-lammps-pmb", 1.5),
+           ("micropolar+damage+viscoplasticity", "block-lammps-pmb", 1.0)]
+START_UP_STEPS = 10.0
+
+
+def read(path):
+    try:
+        with open(path, newline="") as f:
+            return list(csv.DictReader(f))
+    except OSError as e:
+        raise InputError(f"{path}: {e.strerror}")
+
+
+def main(argv):
+    if len(argv) != 3:
+        raise InputError(__doc__.strip().splitlines()[-1])
+    mppm, lammps = read(argv[0]), read(argv[1])
+    stamp = datetime.datetime.fromtimestamp(os.path.getmtime(argv[0]), datetime.timezone.utc)
+    lines = ["# 3-D block: mppm side by side with LAMMPS PERI", "",
+             f"Written by `make block-3d` (report_block3d.py); mppm measured up to {stamp:%Y-%m-%d %H:%M} UTC. "
+             "The same 60^3 simple-cubic lattice in both codes (dx = 1 mm, horizon 2.05 dx, 216 000 points, "
+             f"{mppm[0]['bonds']} bonds from both ends), 100 steps; threads are MPI ranks for LAMMPS. The loop "
+             "time is the time integration only (LAMMPS's Loop time); each row is the fastest of its repeats.", "",
+             "| code, model | threads | loop [s] | bond updates/s | start-up [s] | start-up in steps |",
+             "|---|---|---|---|---|---|"]
+    for r in mppm:
+        per_step = float(r["wall_seconds"]) / float(r["steps"])
+        lines.append(f"| mppm, {r['effects']} | {r['threads']} | {r['wall_seconds']} | "
+                     f"{float(r['bond_updates_per_second']):.3g} | {r['start_up_seconds']} | "
+                     f"{float(r['start_up_seconds']) / per_step:.0f} |")
+    for r in lammps:
+        lines.append(f"| LAMMPS, {r['effects']} | {r['threads']} | {r['wall_seconds']} | "
+                     f"{float(r['bond_updates_per_second']):.3g} | | |")
+    lines += ["", "| target | threads | ratio | met |", "|---|---|---|---|"]
+    for effects, case, target in TARGETS:
+        for r in (x for x in mppm if x["effects"] == effects):
+            other = next((x for x in lammps if x["case"] == case and x["threads"] == r["threads"]), None)
+            if other is None:
+                continue
+            ratio = float(r["bond_updates_per_second"]) / float(other["bond_updates_per_second"])
+            lines.append(f"| {effects} >= {target:g}x {other['effects']} | {r['threads']} | {ratio:.2f} | "
+                         f"{'yes' if ratio >= target else 'no'} |")
+    for r in mppm:
+        steps = float(r["start_up_seconds"]) / (float(r["wall_seconds"]) / float(r["steps"]))
+        lines.append(f"| start-up <= {START_UP_STEPS:g} steps, {r['effects']} | {r['threads']} | {steps:.0f} steps | "
+                     f"{'yes' if steps <= START_UP_STEPS else 'no'} |")
+    with atomic_open(argv[2]) as f:
+        f.write("\n".join(lines) + "\n")
+    print(f"wrote {argv[2]}")
+    return 0
+
+
+if __name__ == "__main__":
+    run_main(main)

@@ -1,0 +1,67 @@
+#!/usr/bin/python3
+"""Runs mppm's 3-D block side by side with LAMMPS's (lammps/make_block_input.py): the same 60^3
+simple-cubic lattice (dx = 1 mm, horizon 2.05 dx, 216 000 points, 6 676 552 bonds), 100 steps, at
+each effect set (none, micropolar, micropolar+damage, micropolar+damage+viscoplasticity) and
+thread count, and writes the CSV rows of run_mppm.py plus the start-up (run_info.json's
+start_up_total_seconds). No boundary condition (the families are LAMMPS's exactly; the kernels do
+the same arithmetic at rest). The thread counts of a set take turns over the repeats; each row keeps
+the fastest loop with the slowest beside it.
+
+usage: run_block3d.py --bin BIN --scenes SCENES --work WORK --csv OUT.csv [--threads 1,2] [--repeats N]
+"""
+import argparse
+import os
+import shutil
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_mppm import CSV_COLUMNS, preprocess, row, solve, write_csv  # noqa: E402
+from script_exit import InputError, run_main  # noqa: E402
+
+EFFECT_SETS = {
+    "none": [],
+    "micropolar": ["micropolar"],
+    "micropolar+damage": ["micropolar", "damage"],
+    "micropolar+damage+viscoplasticity": ["micropolar", "damage", "viscoplasticity"],
+}
+BLOCK_SETS = ["geometry.file=block60.geo", "boundary_conditions=[]", "time.end=5us", "output.interval=5us"]
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--bin", required=True)
+    parser.add_argument("--scenes", required=True)
+    parser.add_argument("--work", required=True)
+    parser.add_argument("--csv", required=True)
+    parser.add_argument("--threads", default="1,2")
+    parser.add_argument("--repeats", type=int, default=2)
+    args = parser.parse_args(argv)
+    try:
+        threads = [int(t) for t in args.threads.split(",") if t.strip()]
+    except ValueError:
+        raise InputError(f"--threads: expected comma-separated positive integers (got {args.threads!r})")
+    if not threads or min(threads) < 1 or args.repeats < 1:
+        raise InputError("--threads and --repeats: expected positive integers")
+    scene = os.path.join(args.scenes, "block.yaml")
+    points = os.path.join(args.work, "block60", "points.vtp")
+    preprocess(args, scene, points, BLOCK_SETS)
+    rows = []
+    for name, effects in EFFECT_SETS.items():
+        runs = {t: [] for t in threads}
+        for _ in range(args.repeats):
+            for t in threads:
+                run_dir = os.path.join(args.work, "block60", f"{name.replace('+', '-')}-{t}t")
+                runs[t].append(solve(args, scene, points, run_dir, effects, t, BLOCK_SETS))
+                shutil.rmtree(os.path.join(run_dir, "snapshots"), ignore_errors=True)
+        for t in threads:
+            info, peak = min(runs[t], key=lambda run: run[0]["loop_wall_seconds"])
+            slowest = max(run[0]["loop_wall_seconds"] for run in runs[t])
+            r = row("block60-3d", name, t, info, peak, slowest, args.repeats)
+            r["start_up_seconds"] = f"{info['start_up_total_seconds']:.4g}"
+            rows.append(r)
+    write_csv(args.csv, CSV_COLUMNS + ["start_up_seconds"], rows)
+    return 0
+
+
+if __name__ == "__main__":
+    run_main(main)
