@@ -161,8 +161,10 @@ CriticalTimeStep critical_time_step(Model& model) {
   CosseratConstants& c = model.constants;
   const bool fluid = !p.fluid_content_change.empty();
   const std::string density =
-      (fluid ? " over the mixture density rho = solid_fraction * density + porosity * fluid_density = "
-             : " over the density rho = solid_fraction * density = ") +
+      (!fluid        ? " over the density rho = solid_fraction * density = "
+       : c.retention ? " over the mixture density rho = solid_fraction * density + porosity * S_r * fluid_density "
+                       "(S_r of the start) = "
+                     : " over the mixture density rho = solid_fraction * density + porosity * fluid_density = ") +
       number(c.density) + " kg/m^3";
   const std::string undrained = fluid
                                     ? ", stiffened by the pore fluid held in the pores: undrained lambda + b^2 M = " +
