@@ -315,16 +315,25 @@ double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl
 
 double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidConstants& fl, const DrainBonds* drains) {
   // Unsaturated: each row of the linearized flow, sum_j kappa_ij V_j / |xi| over the point's tangent
-  // capacity d zeta / dp (docs/theory.md section 12); saturated the capacity is 1/M everywhere.
+  // capacity d zeta / dp (docs/theory.md section 12); saturated the capacity is 1/M everywhere. The
+  // largest row is a max, the same for any thread count. k_r of the present pressures in a vector of
+  // its own (the points are not changed).
+  const bool unsaturated = fl.retention.has_value();
   std::vector<double> kr;
-  if (fl.retention) {
+  if (unsaturated) {
     kr.resize(p.total());
-    for (std::size_t i = 0; i < p.total(); ++i) kr[i] = relative_permeability(*fl.retention, p.pore_pressure[i]);
+    const auto total = static_cast<std::int64_t>(p.total());
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.total()))
+    for (std::int64_t s = 0; s < total; ++s)
+      kr[static_cast<std::size_t>(s)] =
+          relative_permeability(*fl.retention, p.pore_pressure[static_cast<std::size_t>(s)]);
   }
-  const auto factor = [&](std::size_t i, std::size_t j) { return kr.empty() ? 1.0 : 0.5 * (kr[i] + kr[j]); };
+  const auto factor = [&](std::size_t i, std::size_t j) { return unsaturated ? 0.5 * (kr[i] + kr[j]) : 1.0; };
+  const auto n = static_cast<std::int64_t>(p.owned);
   double largest = 0.0;
-  std::size_t row = 0;  // the drain bonds' rows are sorted by point: walked alongside
-  for (std::size_t i = 0; i < p.owned; ++i) {
+#pragma omp parallel for schedule(static) reduction(max : largest) if (thread_bond_loop(f.bond_count()))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
     if (!carries_fluid(p, i)) continue;
     double sum = 0.0;
     auto add = [&](std::size_t j, const double*, double length) { sum += factor(i, j) * p.volume[j] / length; };
@@ -332,11 +341,12 @@ double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidCo
       for_each_conducting_bond<2>(p, f, i, add);
     else
       for_each_conducting_bond<3>(p, f, i, add);
-    if (drains && row < drains->point.size() && static_cast<std::size_t>(drains->point[row]) == i)
-      for_each_drain_bond(p, f, *drains, row++, [&](std::size_t j, const double*, double length, std::size_t) {
-        sum += factor(i, j) * p.volume[j] / length;
-      });
-    if (fl.retention && sum > 0.0)
+    if (const std::ptrdiff_t row = drains ? drains->row_of(i) : -1; row >= 0)
+      for_each_drain_bond(p, f, *drains, static_cast<std::size_t>(row),
+                          [&](std::size_t j, const double*, double length, std::size_t) {
+                            sum += factor(i, j) * p.volume[j] / length;
+                          });
+    if (unsaturated && sum > 0.0)
       sum /= fl.biot_modulus *
              fluid_content_derivative(*fl.retention, fl.storage(), p.pore_pressure[i], volumetric_strain(p, i));
     largest = std::max(largest, sum);

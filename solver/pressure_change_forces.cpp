@@ -73,9 +73,13 @@ void add_pressure_change_forces(PointData& p, const BondFamilies& f, const Cosse
   if (c.retention) {
     // Bishop's pore stress S_r(p) p is not linear in p: its change, once per point.
     std::vector<double> change(p.total(), 0.0);
-    for (std::size_t j = 0; j < p.owned; ++j)
+    const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
+    for (std::int64_t s = 0; s < n; ++s) {
+      const auto j = static_cast<std::size_t>(s);
       if (in_force_state(p, j))
         change[j] = bishop_pressure(*c.retention, p.pore_pressure[j]) - bishop_pressure(*c.retention, before[j]);
+    }
     auto of = [&change](std::size_t j) { return change[j]; };
     if (p.dimension == 2)
       add_changes<2>(p, f, c.biot_coefficient, of);

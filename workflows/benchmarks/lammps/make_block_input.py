@@ -28,7 +28,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from make_plate_input import FAMILY_TOLERANCE_IN_SPACINGS, material_and_run, positive  # noqa: E402
+from make_plate_input import FAMILY_TOLERANCE_IN_SPACINGS, PREAMBLE, material_and_run, positive  # noqa: E402
 from mppm_outputs import write_text  # noqa: E402
 from script_exit import InputError  # noqa: E402
 
@@ -90,12 +90,7 @@ def lammps_input(args, model, constants):
 # {n}^3 points, dx = {dx:g} m, delta = {args.horizon_factor:g} dx, {constants['points']} points,
 # {constants['bonds']} bonds (both ends), {args.steps} steps.
 
-units           si
-dimension       3
-boundary        f f f
-atom_style      peri
-atom_modify     map array
-
+{PREAMBLE}
 lattice         sc {dx:.17g} origin 0.5 0.5 0.5
 region          box block -2 {n + 2} -2 {n + 2} -2 {n + 2}
 create_box      1 box

@@ -133,6 +133,16 @@ def pmb_micromodulus(lame_lambda, mu, thickness, delta):
     return 12.0 * (lame_lambda + mu) / (math.pi * thickness * delta ** 3)
 
 
+# The first commands of every input (PERI wants a 3-D box even for the one-layer plate).
+PREAMBLE = """\
+units           si
+dimension       3
+boundary        f f f
+atom_style      peri
+atom_modify     map array
+"""
+
+
 def pair_lines(args, model, constants):
     """The pair style and coefficients of peri/lps or peri/pmb (s00 far above any stretch, alpha 0)."""
     if model == "lps":
@@ -187,12 +197,7 @@ def lammps_input(args, model, constants):
 # {args.nx} x {args.ny} points, dx = {dx:g} m, delta = {args.horizon_factor:g} dx, t = {args.thickness:g} m,
 # {constants['points']} points, {constants['bonds']} bonds (both ends), {args.steps} steps.
 
-units           si
-dimension       3
-boundary        f f f
-atom_style      peri
-atom_modify     map array
-
+{PREAMBLE}
 # one layer of a cubic lattice: PERI needs xlattice = ylattice = zlattice = dx
 lattice         sc {dx:.17g} origin 0.5 0.5 0.0
 region          box block -2 {args.nx + 2} -2 {args.ny + 2} -0.5 0.5
