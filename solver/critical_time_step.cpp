@@ -28,6 +28,22 @@ double start_value(std::int64_t id, int component) {
   return static_cast<double>(x >> 11) * 0x1.0p-53 - 0.5;
 }
 
+// When the largest Ritz value counts as converged: it has moved by no more than `tolerance`
+// (relative) over the last `window` iterations, after at least `least` and at most `most`.
+struct Convergence {
+  double tolerance;
+  int window, least, most;
+};
+// The step: 1e-8 over the last 5 of at least 20, far finer than any safety factor (a single small
+// change can be a plateau before the Krylov space reaches the top of the spectrum: on a 3-D
+// sample block the value creeps by 3e-7 per iteration for 7 iterations before it climbs another
+// 6e-4).
+constexpr Convergence step_convergence{1e-8, 5, 20, 150};
+// Naming the mode and its parameter compares block values with each other and with half of one
+// another: 1e-2 over the last 3 of at least 10 leaves them within about 1e-3 (measured on the
+// 3-D benchmark block: 5e-4 after 14 iterations), at half the cost or less.
+constexpr Convergence naming_convergence{1e-2, 3, 10, 60};
+
 struct OperatorEstimate {
   double lambda = 0.0;  // omega_max^2 (a Ritz value: approaches it from below)
   int iterations = 0;
@@ -43,7 +59,7 @@ struct OperatorEstimate {
 // previous q in `prev_u`, `prev_w` (the model's velocity and spin before a run: see
 // critical_time_step), so that no vector of the model's size is allocated here: this runs before
 // the time loop, and its vectors would otherwise set the run's peak memory.
-OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance, int max_iterations,
+OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence& convergence,
                                     std::vector<double>& prev_u, std::vector<double>& prev_w) {
   PointData& p = model.points;
   const int D = p.dimension;
@@ -80,7 +96,7 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance,
   std::vector<double> alpha, beta;
   OperatorEstimate r;
   std::vector<double> history;
-  for (int it = 1; it <= max_iterations; ++it) {
+  for (int it = 1; it <= convergence.most; ++it) {
     // w = M^-1 K q = -(internal force of the field q) / mass density
     model.compute_internal_forces(false);
     for (std::size_t k = 0; k < n * D; ++k) w_u[k] = use_u ? -w_u[k] / rho : 0.0;
@@ -100,11 +116,11 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, double tolerance,
     const double ritz = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(t, Eigen::EigenvaluesOnly).eigenvalues()(m - 1);
     r.lambda = ritz;
     r.iterations = it;
-    // Converged when the largest Ritz value has not moved by more than the tolerance over the
-    // last 5 iterations (a single small change can be a plateau before the Krylov space reaches
-    // the top of the spectrum), and never before 20 iterations.
     history.push_back(ritz);
-    if (it >= 20 && std::abs(ritz - history[history.size() - 6]) <= tolerance * std::abs(ritz)) break;
+    if (it >= convergence.least &&
+        std::abs(ritz - history[history.size() - 1 - static_cast<std::size_t>(convergence.window)]) <=
+            convergence.tolerance * std::abs(ritz))
+      break;
     const double b = std::sqrt(mass_dot(w_u, w_w, w_u, w_w));
     if (!(b > 1e-14 * std::abs(ritz))) break;  // invariant subspace: the Ritz values are exact
     beta.push_back(b);
@@ -123,13 +139,16 @@ std::string number(double v) {
   return s.str();
 }
 
-}  // namespace
-
-CriticalTimeStep critical_time_step(Model& model) {
+// Lends the model's state to the Lanczos iteration (its vectors live there, see
+// largest_eigenvalue) and puts it back afterwards. Before a run the state is the reference
+// configuration at rest (all +0.0, as allocated): then nothing is copied, and the velocity and spin
+// hold the previous Lanczos vector, so no vector of the model's size is made.
+// Pore fluid: the operator is the kernel's response at the fluid content held (undrained, the
+// stiffening lambda + b^2 M of docs/theory.md section 12); the content is set to n0 (no change)
+// for it, so that the response is linear in the Lanczos vector (no pressure at zero strain).
+template <typename Estimates>
+void with_operator(Model& model, Estimates&& estimates) {
   PointData& p = model.points;
-  // The Lanczos vectors overwrite the state, which is put back at the end. Before a run it is the
-  // reference configuration at rest (all +0.0, as allocated): then nothing is copied, and the
-  // velocity and spin hold the previous Lanczos vector, so no vector of the model's size is made.
   auto zero = [](const std::vector<double>& v) {
     return std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0 && !std::signbit(x); });
   };
@@ -139,25 +158,33 @@ CriticalTimeStep critical_time_step(Model& model) {
     saved_u = p.displacement;
     saved_w = p.rotation;
   }
-  // Pore fluid: the operator is the kernel's response at the fluid content held (undrained, the
-  // stiffening lambda + b^2 M of docs/theory.md section 12); the content is set to n0 (no change) for it, so that the
-  // response is linear in the Lanczos vector (no pressure at zero strain), and put back at the end.
   std::vector<double> saved_fluid_content;
   if (!p.fluid_content_change.empty()) {
     saved_fluid_content = p.fluid_content_change;
     for (std::size_t i = 0; i < p.owned; ++i)
       if (p.region[i] == 0) p.fluid_content_change[i] = 0.0;
   }
-  std::vector<double>& prev_u = rest ? p.velocity : own_prev_u;
-  std::vector<double>& prev_w = rest ? p.spin : own_prev_w;
-  CriticalTimeStep out;
-  // The coupled estimate sets the step (Ritz value converged to 1e-8, far finer than any safety
-  // factor); the block estimates name the limiting mode.
-  const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, 1e-8, 150, prev_u, prev_w);
-  const OperatorEstimate trans = largest_eigenvalue(model, Block::translational, 1e-5, 100, prev_u, prev_w);
-  out.step = 2.0 / std::sqrt(coupled.lambda);
-  out.translational = 2.0 / std::sqrt(trans.lambda);
-  out.iterations = coupled.iterations;
+  estimates(rest ? p.velocity : own_prev_u, rest ? p.spin : own_prev_w);
+  if (rest) {
+    for (auto* v : {&p.displacement, &p.rotation, &p.velocity, &p.spin}) std::fill(v->begin(), v->end(), 0.0);
+  } else {
+    p.displacement = saved_u;
+    p.rotation = saved_w;
+  }
+  if (!saved_fluid_content.empty()) p.fluid_content_change = std::move(saved_fluid_content);
+  model.compute_internal_forces(false);
+}
+
+// The translational and rotational block steps, the limiting mode and the parameter that drives
+// it, for the model whose coupled step is in `out`.
+void name_mode(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u, std::vector<double>& prev_w) {
+  PointData& p = model.points;
+  // Without rotation dofs the translational block is the coupled operator.
+  const double trans_lambda =
+      p.rotation_components > 0
+          ? largest_eigenvalue(model, Block::translational, naming_convergence, prev_u, prev_w).lambda
+          : 4.0 / (out.step * out.step);
+  out.translational = 2.0 / std::sqrt(trans_lambda);
   CosseratConstants& c = model.constants;
   const bool fluid = !p.fluid_content_change.empty();
   const std::string density =
@@ -181,13 +208,13 @@ CriticalTimeStep critical_time_step(Model& model) {
   // operator is linear in the moduli, and each term of the energy is positive semi-definite, so
   // switching one off can only lower omega_max^2; the block is credited to the modulus without
   // which less than half of omega_max^2 is left. These extra estimates run only for the limiting
-  // block, with a coarser tolerance (they name a parameter, they do not set the step).
+  // block.
   // The stabilization tensors C:K^-1 that a switch may zero are rebuilt from K^-1 and the restored
   // constants afterwards (the same bits), not copied: a copy would cost 9 doubles per point.
   auto estimate_without = [&](Block b, auto&& switch_off) {
     const CosseratConstants saved = c;
     switch_off();
-    const OperatorEstimate e = largest_eigenvalue(model, b, 1e-4, 60, prev_u, prev_w);
+    const OperatorEstimate e = largest_eigenvalue(model, b, naming_convergence, prev_u, prev_w);
     c = saved;
     update_stabilization_tensors(p, c);
     return e.lambda;
@@ -196,7 +223,7 @@ CriticalTimeStep critical_time_step(Model& model) {
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
   double rot_lambda = 0.0;
   if (p.rotation_components > 0) {
-    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, 1e-5, 100, prev_u, prev_w);
+    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, naming_convergence, prev_u, prev_w);
     out.rotational = 2.0 / std::sqrt(rot.lambda);
     rot_lambda = rot.lambda;
   }
@@ -226,21 +253,44 @@ CriticalTimeStep critical_time_step(Model& model) {
           number(c.bending_modulus) + " N alone gives " + number(bending / rot_lambda) + " of omega_max^2)" + inertia;
     }
   } else if (c.mu_c > 0.0 && p.rotation_components > 0 &&
-             estimate_without(Block::translational, [&] { c.mu_c = 0.0; }) < 0.5 * trans.lambda) {
+             estimate_without(Block::translational, [&] { c.mu_c = 0.0; }) < 0.5 * trans_lambda) {
     // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
     // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
     out.driver = "material.mu_c = " + number(c.mu_c) +
                  " Pa (the couple modulus stiffens the shear waves: mu + mu_c = " + number(c.mu + c.mu_c) +
                  " Pa against the P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
   }
-  if (rest) {
-    for (auto* v : {&p.displacement, &p.rotation, &p.velocity, &p.spin}) std::fill(v->begin(), v->end(), 0.0);
-  } else {
-    p.displacement = saved_u;
-    p.rotation = saved_w;
-  }
-  if (fluid) p.fluid_content_change = std::move(saved_fluid_content);
-  model.compute_internal_forces(false);
+}
+
+// The coupled estimate sets the step (step_convergence).
+void estimate_coupled(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u, std::vector<double>& prev_w) {
+  const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, step_convergence, prev_u, prev_w);
+  out.step = 2.0 / std::sqrt(coupled.lambda);
+  out.iterations = coupled.iterations;
+}
+
+}  // namespace
+
+CriticalTimeStep coupled_critical_time_step(Model& model) {
+  CriticalTimeStep out;
+  with_operator(model, [&](std::vector<double>& prev_u, std::vector<double>& prev_w) {
+    estimate_coupled(model, out, prev_u, prev_w);
+  });
+  return out;
+}
+
+void name_limiting_mode(Model& model, CriticalTimeStep& critical) {
+  with_operator(model, [&](std::vector<double>& prev_u, std::vector<double>& prev_w) {
+    name_mode(model, critical, prev_u, prev_w);
+  });
+}
+
+CriticalTimeStep critical_time_step(Model& model) {
+  CriticalTimeStep out;
+  with_operator(model, [&](std::vector<double>& prev_u, std::vector<double>& prev_w) {
+    estimate_coupled(model, out, prev_u, prev_w);
+    name_mode(model, out, prev_u, prev_w);
+  });
   return out;
 }
 

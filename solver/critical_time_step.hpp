@@ -19,8 +19,14 @@ struct CriticalTimeStep {
   int iterations = 0;          // operator applications of the coupled estimate
 };
 
-// Leaves the model's displacement and rotation as they were.
+// Each of these leaves the model's displacement and rotation as they were.
+// The step and the limiting mode, both from the model.
 CriticalTimeStep critical_time_step(Model& model);
+// The step only (the coupled estimate; translational, rotational, limiting_mode and driver unset).
+CriticalTimeStep coupled_critical_time_step(Model& model);
+// Names the mode of a coupled estimate from the model's own block estimates: translational,
+// rotational, limiting_mode and driver (about twice the coupled estimate's cost with rotations).
+void name_limiting_mode(Model& model, CriticalTimeStep& critical);
 
 // time.step: auto -> safety * critical; a given step above the critical one is refused with an
 // InputError naming the limiting mode, its critical value and the parameter driving it. With the

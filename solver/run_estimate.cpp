@@ -28,7 +28,7 @@ SampleSteps sample_block_steps(const Scene& scene) {
   const PointCloud sample = make_regular_lattice(scene.dimension, {cells, cells, cells}, dx, scene.thickness);
   Model model = build_model(sample, model_options(scene));
   SampleSteps s;
-  s.critical = critical_time_step(model).step;
+  s.critical = coupled_critical_time_step(model).step;  // the mode is not named here
   s.damage = model.damage_critical_step(s.critical);
   if (model.fluid) s.fluid = fluid_step_limit(model.points, model.bonds, *model.fluid);
   return s;

@@ -420,11 +420,13 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
 // The critical step of the model, the step the run takes (fit_step_to_end) and the breakage's
 // view of it; the resolved scene records the step.
 void RunDriver::fit_time_step() {
-  plan_.critical = critical_time_step(model());
+  plan_.critical = coupled_critical_time_step(model());
   start_up_.mark("critical time step");
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
                            log_number(plan_.critical.step) + " s): the discrete operator is not positive");
+  name_limiting_mode(model(), plan_.critical);
+  start_up_.mark("mode naming");
   plan_.damage_step = model().damage_critical_step(plan_.critical.step);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
