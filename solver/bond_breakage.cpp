@@ -81,7 +81,11 @@ void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_
   Search::Tree tree(boundary.begin(), boundary.end());
   tree.build();
   const double depth2 = depth * depth;
-  for (std::size_t i = 0; i < p.owned; ++i) {
+  // A built tree answers queries from several threads at once (CGAL's k-d tree is read-only then).
+  const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
     const Search nearest(tree, point(i), 1);
     p.no_fail[i] = nearest.begin()->second < depth2 ? 1 : 0;
   }
@@ -99,7 +103,9 @@ double list_volume(const PointData& p, const BondFamilies& f, std::size_t i) {
 
 std::vector<double> family_volumes(const PointData& p, const BondFamilies& f) {
   std::vector<double> v(p.owned);
-  for (std::size_t i = 0; i < p.owned; ++i) v[i] = list_volume(p, f, i);
+  const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp parallel for schedule(static) if (thread_bond_loop(f.bond_count()))
+  for (std::int64_t i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] = list_volume(p, f, static_cast<std::size_t>(i));
   return v;
 }
 
