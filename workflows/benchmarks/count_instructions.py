@@ -2,6 +2,7 @@
 """Instructions per bond update of each plate effect set, counted by callgrind.
 
 usage: count_instructions.py OUT.csv --bin BIN [--solve-bin BIN] --work DIR --scene plate.yaml [--steps 40]
+       count_instructions.py OUT.csv --bin BIN [--solve-bin BIN] --work DIR --block-scene block.yaml [--steps 40]
 
 Wall times on a shared 2-core machine move by 10-40 % from run to run; an instruction count
 does not (it is the same for every run of the same binary, to a few parts in 1e4 from the
@@ -14,6 +15,11 @@ the bond-work bookkeeping and the integrator, not of breakage events). The energ
 every 0.5 us (20 steps) as in the timed runs, so steps with and without energies are mixed in
 the same proportion.
 
+With --block-scene, the same for the 3-D block's effect sets (run_block3d.py: none, micropolar,
+micropolar+damage, the full model) on a 20^3 block of its lattice (scenes/block20.geo: 8000
+points; the per-bond count of the 60^3 block's kernels, with more of its points at faces), no
+boundary condition, as in the side by side.
+
 Writes OUT.csv with case,effects,steps,bonds,instructions,instructions_per_bond_update.
 Exit codes: 0 written; 2 bad input; 1 a run failed.
 """
@@ -24,6 +30,7 @@ import re
 import shutil
 import subprocess
 
+import run_block3d
 import run_mppm
 from mppm_outputs import run_info  # tools/, on the path run_mppm sets
 from script_exit import InputError, RunError, run_main
@@ -35,7 +42,7 @@ COLUMNS = ["case", "effects", "steps", "bonds", "instructions", "instructions_pe
 TIME_STEP = ["mppm::solver::ExplicitDynamics::advance_to_forces*", "mppm::solver::ExplicitDynamics::complete_step*"]
 
 
-def count(args, points, effects, sets, run_dir):
+def count(args, scene, points, effects, sets, run_dir):
     """Instructions callgrind collected inside the time step of one run, and its run_info."""
     shutil.rmtree(run_dir, ignore_errors=True)
     os.makedirs(os.path.dirname(run_dir), exist_ok=True)
@@ -44,7 +51,7 @@ def count(args, points, effects, sets, run_dir):
     end = args.steps * dt
     command = ["valgrind", "--tool=callgrind"] + [f"--toggle-collect={f}" for f in TIME_STEP] + [
                "--callgrind-out-file=/dev/null",
-               f"--log-file={log}", os.path.join(args.solve_bin or args.bin, "mppm-solve"), args.scene, "--points", points,
+               f"--log-file={log}", os.path.join(args.solve_bin or args.bin, "mppm-solve"), scene, "--points", points,
                "-o", run_dir, "--force", "--quiet", "--threads", "1",
                "--set", "effects=[" + ", ".join(effects) + "]", "--set", f"time.step={dt!r}", "--set", f"time.end={end!r}",
                "--set", f"output.interval={end!r}"]
@@ -73,13 +80,28 @@ def main(argv):
     parser.add_argument("--solve-bin", help="where the mppm-solve to count is, if not in --bin (the Makefile's "
                         "x86-64-v3 build: valgrind 3.19 cannot run AVX-512)")
     parser.add_argument("--work", required=True)
-    parser.add_argument("--scene", required=True, help="the plate scene (workflows/benchmarks/scenes/plate.yaml)")
+    parser.add_argument("--scene", help="the plate scene (workflows/benchmarks/scenes/plate.yaml)")
+    parser.add_argument("--block-scene", help="the 3-D block scene (workflows/benchmarks/scenes/block.yaml)")
     parser.add_argument("--steps", type=int, default=40)
     args = parser.parse_args(argv)
     if args.steps < 1:
         raise InputError("--steps: expected a positive integer")
+    if (args.scene is None) == (args.block_scene is None):
+        raise InputError("expected one of --scene (the plate) and --block-scene (the 3-D block)")
     if not shutil.which("valgrind"):
         raise InputError("valgrind: not found (Debian package 'valgrind'; make installs it)")
+    rows = block_rows(args) if args.block_scene else plate_rows(args)
+    run_mppm.write_csv(args.csv, COLUMNS, rows)
+    return 0
+
+
+def row(case, name, instructions, info):
+    return {"case": case, "effects": name, "steps": info["steps"], "bonds": info["bonds"],
+            "instructions": instructions,
+            "instructions_per_bond_update": f"{instructions / (info['bonds'] * info['steps']):.2f}"}
+
+
+def plate_rows(args):
     points = os.path.join(args.work, "points.vtp")
     run_mppm.preprocess(args, args.scene, points, [])
     cases = dict((name, (effects, [])) for name, effects in run_mppm.PLATE_SETS.items())
@@ -88,12 +110,21 @@ def main(argv):
     rows = []
     for name, (effects, sets) in cases.items():
         run_dir = os.path.join(args.work, name.replace("(", "-").replace(")", ""))
-        instructions, info = count(args, points, effects, sets, run_dir)
-        rows.append({"case": "plate", "effects": name, "steps": info["steps"], "bonds": info["bonds"],
-                     "instructions": instructions,
-                     "instructions_per_bond_update": f"{instructions / (info['bonds'] * info['steps']):.2f}"})
-    run_mppm.write_csv(args.csv, COLUMNS, rows)
-    return 0
+        instructions, info = count(args, args.scene, points, effects, sets, run_dir)
+        rows.append(row("plate", name, instructions, info))
+    return rows
+
+
+def block_rows(args):
+    sets = ["geometry.file=block20.geo", "boundary_conditions=[]"]
+    points = os.path.join(args.work, "block20", "points.vtp")
+    run_mppm.preprocess(args, args.block_scene, points, sets)
+    rows = []
+    for name, effects in run_block3d.EFFECT_SETS.items():
+        run_dir = os.path.join(args.work, "block20", name.replace("+", "-"))
+        instructions, info = count(args, args.block_scene, points, effects, sets, run_dir)
+        rows.append(row("block20-3d", name, instructions, info))
+    return rows
 
 
 if __name__ == "__main__":

@@ -7,7 +7,10 @@ and the start-up against the loop (the start-up in time steps: target <= 10); th
 crack-branching plate's 500-step runs (case plate-500): the whole run's two-thread efficiency,
 start-up included (target >= 90 %).
 
-usage: report_block3d.py MPPM.csv LAMMPS.csv OUT.md
+With INSTRUCTIONS.csv (count_instructions.py --block-scene), also the instructions per bond update
+of each effect set on a 20^3 block of the same lattice.
+
+usage: report_block3d.py MPPM.csv LAMMPS.csv OUT.md [INSTRUCTIONS.csv]
 """
 import csv
 import datetime
@@ -60,8 +63,25 @@ def plate_lines(plate):
     return lines
 
 
+def instruction_lines(rows):
+    """Instructions per bond update of each effect set (callgrind, 1 thread, inside the time step)."""
+    if not rows:
+        return []
+    first = rows[0]
+    none = next((float(r["instructions_per_bond_update"]) for r in rows if r["effects"] == "none"), None)
+    lines = ["", f"Instructions per bond update inside the time step (callgrind, 1 thread, {first['steps']} steps of a "
+             f"20^3 block of the same lattice, {first['bonds']} bonds; count_instructions.py --block-scene): the same "
+             "for every run of the same binary. Counted on a build for x86-64-v3 (valgrind 3.19 cannot run the "
+             "AVX-512 of the timed build).", "",
+             "| effects | instructions per bond update | relative to none |", "|---|---|---|"]
+    for r in rows:
+        per = float(r["instructions_per_bond_update"])
+        lines.append(f"| {r['effects']} | {per:.1f} | {per / none:.2f} |" if none else f"| {r['effects']} | {per:.1f} | |")
+    return lines
+
+
 def main(argv):
-    if len(argv) != 3:
+    if len(argv) not in (3, 4):
         raise InputError(__doc__.strip().splitlines()[-1])
     rows, lammps = read(argv[0]), read(argv[1])
     mppm = [r for r in rows if r["case"] != "plate-500"]
@@ -96,6 +116,8 @@ def main(argv):
         lines.append(f"| start-up <= {START_UP_STEPS:g} steps, {r['effects']} | {r['threads']} | {steps:.0f} steps | "
                      f"{'yes' if steps <= START_UP_STEPS else 'no'} |")
     lines += plate_lines(plate)
+    if len(argv) == 4:
+        lines += instruction_lines(read(argv[3]))
     with atomic_open(argv[2]) as f:
         f.write("\n".join(lines) + "\n")
     print(f"wrote {argv[2]}")
