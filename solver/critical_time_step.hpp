@@ -25,7 +25,8 @@ CriticalTimeStep critical_time_step(Model& model);
 // The step only (the coupled estimate; translational, rotational, limiting_mode and driver unset).
 CriticalTimeStep coupled_critical_time_step(Model& model);
 // Names the mode of a coupled estimate from the model's own block estimates: translational,
-// rotational, limiting_mode and driver (about twice the coupled estimate's cost with rotations).
+// rotational, limiting_mode and driver (with rotations about 1.4 times the coupled estimate's cost:
+// coarser estimates, critical_time_step.cpp).
 void name_limiting_mode(Model& model, CriticalTimeStep& critical);
 
 // time.step: auto -> safety * critical; a given step above the critical one is refused with an
