@@ -133,13 +133,14 @@ double pressure_from_content(const PointData& p, const FluidConstants& fl, std::
   return fl.biot_modulus * (p.fluid_content_change[i] - fl.biot_coefficient * volumetric_strain(p, i));
 }
 
-// k_r(p) of every point (the layers' at their prescribed pressure) for the flow rates.
-void refresh_relative_permeability(PointData& p, const RetentionCurve& curve) {
+// k_r(p) of every point at its present pressure (the layers' at their prescribed one) into `kr`
+// (sized p.total()): the flow rates' (points.relative_permeability) and the flow limit's.
+void fill_relative_permeability(const PointData& p, const RetentionCurve& curve, std::vector<double>& kr) {
   const auto n = static_cast<std::int64_t>(p.total());
 #pragma omp parallel for schedule(static) if (thread_point_loop(p.total()))
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
-    p.relative_permeability[i] = relative_permeability(curve, p.pore_pressure[i]);
+    kr[i] = relative_permeability(curve, p.pore_pressure[i]);
   }
 }
 
@@ -257,7 +258,7 @@ void start_fluid(PointData& p, const FluidConstants& fl, double initial_pressure
 
 void fluid_rates(PointData& p, const BondFamilies& f, const FluidConstants& fl) {
   if (fl.retention) {
-    refresh_relative_permeability(p, *fl.retention);
+    fill_relative_permeability(p, *fl.retention, p.relative_permeability);
     if (p.dimension == 2)
       fluid_rates_d<2, true>(p, f, fl);
     else
@@ -322,11 +323,7 @@ double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidCo
   std::vector<double> kr;
   if (unsaturated) {
     kr.resize(p.total());
-    const auto total = static_cast<std::int64_t>(p.total());
-#pragma omp parallel for schedule(static) if (thread_point_loop(p.total()))
-    for (std::int64_t s = 0; s < total; ++s)
-      kr[static_cast<std::size_t>(s)] =
-          relative_permeability(*fl.retention, p.pore_pressure[static_cast<std::size_t>(s)]);
+    fill_relative_permeability(p, *fl.retention, kr);
   }
   const auto factor = [&](std::size_t i, std::size_t j) { return unsaturated ? 0.5 * (kr[i] + kr[j]) : 1.0; };
   const auto n = static_cast<std::int64_t>(p.owned);

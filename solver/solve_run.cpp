@@ -383,9 +383,7 @@ class RunDriver {
   SolveResult result_;
 };
 
-// The scene reader takes material.pore_fluid.retention (and writes it back), but the flow, the
-// stress and the undrained update of the solver are the saturated ones (docs/theory.md section 12):
-// running it would be a silent wrong answer, so it stops here.
+// The points against the scene, the end time, and whether the run fits in memory.
 void RunDriver::check_inputs(const PointCloud& cloud) {
   check_points_match_scene(scene_, cloud, options_.points_file);
   if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");

@@ -17,7 +17,7 @@ import shutil
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from run_mppm import CSV_COLUMNS, preprocess, row, solve, write_csv  # noqa: E402
+from run_mppm import CSV_COLUMNS, fastest_row, preprocess, solve, write_csv  # noqa: E402
 from script_exit import InputError, run_main  # noqa: E402
 
 EFFECT_SETS = {
@@ -38,10 +38,9 @@ def fastest_rows(case, name, runs, key):
     """One row per thread count: the run fastest by `key`, with the slowest loop beside it."""
     rows = []
     for t, done in runs.items():
-        info, peak = min(done, key=lambda run: run[0][key])
-        slowest = max(run[0]["loop_wall_seconds"] for run in done)
-        r = row(case, name, t, info, peak, slowest, len(done))
-        r["start_up_seconds"] = f"{info['start_up_total_seconds']:.4g}"
+        r = fastest_row(case, name, t, done, key)
+        fastest = min(done, key=lambda run: run[0][key])[0]
+        r["start_up_seconds"] = f"{fastest['start_up_total_seconds']:.4g}"
         rows.append(r)
     return rows
 

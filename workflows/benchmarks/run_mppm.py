@@ -140,6 +140,14 @@ def solve(args, scene, points, run_dir, effects, threads, extra_sets):
     return info, int(peak[-1].split()[1]) * 1024
 
 
+def fastest_row(case, effects_name, threads, done, key="loop_wall_seconds"):
+    """The row of the run in `done` ((run_info, peak) pairs of one case and thread count) fastest by
+    `key`, with the slowest loop beside it."""
+    info, peak = min(done, key=lambda run: run[0][key])
+    slowest = max(run[0]["loop_wall_seconds"] for run in done)
+    return row(case, effects_name, threads, info, peak, slowest, len(done))
+
+
 def row(case, effects_name, threads, info, peak_bytes, slowest_loop=None, repeats=1):
     loop = info["loop_wall_seconds"]
     return {"case": case, "effects": effects_name, "threads": threads, "points": info["points"],
@@ -184,9 +192,7 @@ def main(argv):
                         raise RunError(f"{name}: an inactive effect changed the results ({why}: {run_dir} vs {reference})")
                 runs[threads].append((info, peak))
         for threads in args.threads:
-            info, peak = min(runs[threads], key=lambda run: run[0]["loop_wall_seconds"])
-            slowest = max(run[0]["loop_wall_seconds"] for run in runs[threads])
-            rows.append(row("plate", name, threads, info, peak, slowest, args.repeats))
+            rows.append(fastest_row("plate", name, threads, runs[threads]))
 
     # The crack-branching base case is held to an absolute time (10 s), not to a ratio of runs
     # made side by side, so its repeats are spread over the plate runs, one after each plate case:
