@@ -15,6 +15,7 @@
 #include "common/lattice_offsets.hpp"
 #include "solver/bond_kinematics.hpp"
 #include "solver/damage_calibration.hpp"
+#include "solver/exact_sum.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
@@ -407,21 +408,23 @@ void BreakageUpdater::break_bonds_of_detached() {
 // which also refreshes the per-point energies of the affected points. The stored energy the breaks
 // release is what these points stored before minus what they store now, at the same displacements
 // and rotations (only their energies changed: a point's energy depends on its own family only).
-// Summed in the order the points were met, which does not depend on the thread count. (The
+// Summed exactly (exact_sum.hpp): the same bits for any thread count or partition. (The
 // integrator adds the kick's share, from the forces before the refresh.)
 void BreakageUpdater::refresh_and_measure_release() {
   w.sorted.assign(w.affected.begin(), w.affected.end());
   std::sort(w.sorted.begin(), w.sorted.end());
   kernel.refresh_after_breakage(p, f, c, w.sorted);
+  ExactSum released;
   for (std::size_t k = 0; k < w.affected.size(); ++k) {
     const std::size_t i = w.affected[k];
     const StoredEnergy elastic = kernel.elastic_energy(p, c, i);
     double after = elastic.force_stress + p.stabilization_energy[i];
     if (!p.rotation.empty()) after += elastic.couple_stress;
     if (!p.fluid_content_change.empty()) after += elastic.fluid;
-    u.released_energy += w.energy_before[k] - after;
+    released += w.energy_before[k] - after;
     w.affected_index[i] = -1;
   }
+  u.released_energy = released.value();
 }
 
 }  // namespace

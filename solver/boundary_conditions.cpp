@@ -3,13 +3,26 @@
 #include "solver/boundary_conditions.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
 #include "common/input_error.hpp"
 #include "solver/compiled_effects.hpp"
+#include "solver/exact_sum.hpp"
 
 namespace mppm::solver {
+
+namespace {
+
+// The volume of a loaded or fed surface's points, summed exactly (the same bits for any partition).
+double volume_sum(const std::vector<double>& volume, const std::vector<std::int32_t>& points) {
+  ExactSum sum;
+  for (const auto i : points) sum += volume[static_cast<std::size_t>(i)];
+  return sum.value();
+}
+
+}  // namespace
 
 double history_integral(const History& h, double t, std::size_t c) {
   if (h.times.empty() || t <= 0.0) return 0.0;
@@ -169,7 +182,7 @@ void BoundaryConditions::add_loaded_surface(const BoundaryCondition& bc, std::si
   }
   s.value = bc.value;
   s.area = cloud.boundaries[k].area;
-  for (auto i : s.points) s.volume_sum += volume[i];
+  s.volume_sum = volume_sum(volume, s.points);
   if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
     throw InputError(points_file + ": loaded boundary '" + bc.name + "' has no loaded points or no area (boundary_id " +
                      std::to_string(k + 1) + ")");
@@ -216,7 +229,7 @@ void BoundaryConditions::add_fed_surface(const Scene& scene, const PointCloud& c
   s.points = by.loaded[k + 1];
   if (s.points.empty())
     if (const auto shared = shared_boundary(cloud.boundaries, k)) s.points = by.loaded[*shared + 1];
-  for (auto i : s.points) s.volume_sum += volume[i];
+  s.volume_sum = volume_sum(volume, s.points);
   if (s.points.empty() || !(s.volume_sum > 0.0) || !(s.area > 0.0))
     throw InputError(scene.path + ":" + std::to_string(bc.line) + ": boundary_conditions[" + std::to_string(k) +
                      "] ('" + bc.name + "'): a fluid-flux boundary with no fed points or no area in " + points_file +
@@ -319,21 +332,25 @@ std::vector<BoundaryConditions::LoadValues> BoundaryConditions::load_values(cons
     out[k].displacement.assign(D, 0.0);
     out[k].force.assign(D, 0.0);
   }
+  // Exact sums (exact_sum.hpp): the same bits however the points are split among processes.
   auto mean_displacement = [&](const std::vector<std::int32_t>& pts, std::vector<double>& u) {
-    double vsum = 0.0;
+    ExactSum vsum;
+    std::array<ExactSum, 3> moment;
     for (auto i : pts) {
       vsum += p.volume[i];
-      for (int c = 0; c < D; ++c) u[c] += p.volume[i] * p.displacement[i * D + c];
+      for (int c = 0; c < D; ++c) moment[c] += p.volume[i] * p.displacement[i * D + c];
     }
-    if (vsum > 0.0)
-      for (int c = 0; c < D; ++c) u[c] /= vsum;
+    if (vsum.value() > 0.0)
+      for (int c = 0; c < D; ++c) u[c] = moment[c].value() / vsum.value();
   };
   for (const KinematicLayer& layer : layers_) {
     LoadValues& v = out[layer.condition];
     mean_displacement(layer.points, v.displacement);
+    std::array<ExactSum, 3> force;
     for (auto i : layer.points)
       for (int c = 0; c < D; ++c)
-        if (layer.constrained[c]) v.force[c] -= p.force[i * D + c] * p.volume[i];
+        if (layer.constrained[c]) force[c] -= p.force[i * D + c] * p.volume[i];
+    for (int c = 0; c < D; ++c) v.force[c] = force[c].value();
   }
   for (const LoadedSurface& s : surfaces_) {
     LoadValues& v = out[s.condition];
@@ -341,10 +358,12 @@ std::vector<BoundaryConditions::LoadValues> BoundaryConditions::load_values(cons
     const double scale = s.area / s.volume_sum;
     if (s.pressure) {
       const double pressure = s.value.component_at(t, 0);
+      std::array<ExactSum, 3> force;
       for (std::size_t k = 0; k < s.points.size(); ++k) {
         const auto i = static_cast<std::size_t>(s.points[k]);
-        for (int c = 0; c < D; ++c) v.force[c] -= pressure * scale * s.normal[k * D + c] * p.volume[i];
+        for (int c = 0; c < D; ++c) force[c] -= pressure * scale * s.normal[k * D + c] * p.volume[i];
       }
+      for (int c = 0; c < D; ++c) v.force[c] = force[c].value();
     } else {
       for (int c = 0; c < D; ++c) v.force[c] = s.value.component_at(t, c) * s.area;
     }

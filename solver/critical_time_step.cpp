@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "common/input_error.hpp"
+#include "solver/exact_point_sums.hpp"
+#include "solver/parallel_policy.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -79,16 +81,18 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence
     for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u ? start_value(static_cast<std::int64_t>(i), c) : 0.0;
     for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w ? start_value(static_cast<std::int64_t>(i), D + c) : 0.0;
   }
+  // Summed exactly over the points (exact_point_sums.hpp): the same bits for any thread count or
+  // partition.
   auto mass_dot = [&](const std::vector<double>& au, const std::vector<double>& aw, const std::vector<double>& bu,
                       const std::vector<double>& bw) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      double su = 0.0, sw = 0.0;
-      for (int c = 0; c < D; ++c) su += au[i * D + c] * bu[i * D + c];
-      for (int c = 0; c < R; ++c) sw += aw[i * R + c] * bw[i * R + c];
-      sum += p.volume[i] * (rho * su + inertia * sw);
-    }
-    return sum;
+    return exact_point_sums<1>(n, thread_point_loop(n), [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        double su = 0.0, sw = 0.0;
+        for (int c = 0; c < D; ++c) su += au[i * D + c] * bu[i * D + c];
+        for (int c = 0; c < R; ++c) sw += aw[i * R + c] * bw[i * R + c];
+        acc[0] += p.volume[i] * (rho * su + inertia * sw);
+      }
+    })[0];
   };
   double norm = std::sqrt(mass_dot(q_u, q_w, q_u, q_w));
   for (std::size_t k = 0; k < n * D; ++k) q_u[k] /= norm;

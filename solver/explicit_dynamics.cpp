@@ -1,6 +1,6 @@
 // Velocity-Verlet stepping with prescribed layers and energy bookkeeping. Every loop writes only
-// per-point data; sums over points are in index order, serially or in chunks fixed by the point
-// count (ordered_point_sums.hpp), so any thread count gives the same bits.
+// per-point data; sums over points are exact (exact_sum.hpp, exact_point_sums.hpp), so any thread
+// count gives the same bits.
 #include "solver/explicit_dynamics.hpp"
 
 #include <omp.h>
@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 
-#include "solver/ordered_point_sums.hpp"
+#include "solver/exact_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/pressure_change_forces.hpp"
 
@@ -124,40 +124,39 @@ std::array<double, 3> ExplicitDynamics::kinetic_sums() const {
   // the trapezoid-rule work of the loads for a linear elastic model (the plain 1/2 M v^n . v^n
   // differs from it by O((omega dt)^2) in the highest modes).
   const double h2 = 0.25 * dt_ * dt_;
-  // Summed in chunks fixed by the point count (ordered_point_sums.hpp): the same bits for any
-  // thread count.
-  return ordered_point_sums<3>(p.owned, thread_point_loop(p.owned),
-                               [&](std::size_t lo, std::size_t hi, std::array<double, 3>& acc) {
-                                 for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
-                                   // A point that is not tracked has no body force.
-                                   const bool tracked = tracked_at >= 0;
-                                   const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
-                                   const unsigned fixed = conditions_.prescribed(i);
-                                   double v2 = 0.0, t2 = 0.0;
-                                   for (int c = 0; c < D; ++c) {
-                                     const std::size_t k = i * D + c;
-                                     if ((fixed >> c) & 1u) continue;
-                                     const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
-                                     v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
-                                     t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
+  // Summed exactly (exact_point_sums.hpp): the same bits for any thread count.
+  return exact_point_sums<3>(p.owned, thread_point_loop(p.owned),
+                             [&](std::size_t lo, std::size_t hi, ExactSums<3>& acc) {
+                               for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
+                                 // A point that is not tracked has no body force.
+                                 const bool tracked = tracked_at >= 0;
+                                 const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
+                                 const unsigned fixed = conditions_.prescribed(i);
+                                 double v2 = 0.0, t2 = 0.0;
+                                 for (int c = 0; c < D; ++c) {
+                                   const std::size_t k = i * D + c;
+                                   if ((fixed >> c) & 1u) continue;
+                                   const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
+                                   v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
+                                   t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
+                                 }
+                                 acc[0] += 0.5 * rho * p.volume[i] * v2;
+                                 acc[2] += 0.5 * rho * p.volume[i] * t2;
+                                 if (R > 0) {
+                                   double s2 = 0.0, r2 = 0.0;
+                                   for (int c = 0; c < R; ++c) {
+                                     const std::size_t k = i * R + c;
+                                     if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
+                                     const double a = p.moment[k] / inertia;
+                                     s2 += p.spin[k] * p.spin[k] - h2 * a * a;
+                                     r2 += p.spin[k] * p.spin[k] + h2 * a * a;
                                    }
-                                   acc[0] += 0.5 * rho * p.volume[i] * v2;
-                                   acc[2] += 0.5 * rho * p.volume[i] * t2;
-                                   if (R > 0) {
-                                     double s2 = 0.0, r2 = 0.0;
-                                     for (int c = 0; c < R; ++c) {
-                                       const std::size_t k = i * R + c;
-                                       if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
-                                       const double a = p.moment[k] / inertia;
-                                       s2 += p.spin[k] * p.spin[k] - h2 * a * a;
-                                       r2 += p.spin[k] * p.spin[k] + h2 * a * a;
-                                     }
-                                     acc[1] += 0.5 * inertia * p.volume[i] * s2;
-                                     acc[2] += 0.5 * inertia * p.volume[i] * r2;
-                                   }
-                                   return 0;
-                                 });
+                                   acc[1] += 0.5 * inertia * p.volume[i] * s2;
+                                   acc[2] += 0.5 * inertia * p.volume[i] * r2;
+                                 }
+                                 return 0;
                                });
+                             });
 }
 
 void ExplicitDynamics::evaluate_energy() {
@@ -402,7 +401,7 @@ ExplicitDynamics::BreakageEnergy ExplicitDynamics::breakage_energy(const StepCon
   const PointData& p = model_.points;
   const int D = sc.D, R = sc.R;
   const double half = sc.half;
-  double breakage_kick = 0.0, breakage_work = 0.0;
+  ExactSum breakage_kick, breakage_work;
   const auto& refreshed = p.refreshed_points;
   for (std::size_t r = 0; r < refreshed.size(); ++r) {
     const std::size_t i = refreshed[r];
@@ -425,7 +424,7 @@ ExplicitDynamics::BreakageEnergy ExplicitDynamics::breakage_energy(const StepCon
         breakage_kick += half * p.spin[k] * change * p.volume[i];
     }
   }
-  return {breakage_kick, breakage_work};
+  return {breakage_kick.value(), breakage_work.value()};
 }
 
 // Second half kick, work increments (trapezoid: mean of the start and end forces times the
@@ -503,13 +502,16 @@ int ExplicitDynamics::second_half_kick_tracked(const StepConstants& sc, double d
 // with damage, the breaks' share.
 void ExplicitDynamics::book_step_energy(const BreakageEnergy& breakage) {
   const PointData& p = model_.points;
-  double work = 0.0;
-  for (const double w : work_increment_) work += w;  // in point order
-  energy_.external_work += work;
+  ExactSum work;
+  for (const double w : work_increment_) work += w;
+  energy_.external_work += work.value();
   if (!p.plastic_dissipation.empty()) {
-    double dissipated = 0.0;
-    for (std::size_t i = 0; i < p.owned; ++i) dissipated += p.plastic_dissipation[i];
-    energy_.plastic_dissipation += dissipated;
+    const auto dissipated = exact_point_sums<1>(p.owned, thread_point_loop(p.owned),
+                                                [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+                                                  for (std::size_t i = lo; i < hi; ++i)
+                                                    acc[0] += p.plastic_dissipation[i];
+                                                });
+    energy_.plastic_dissipation += dissipated[0];
   }
   if (model_.effects.damage) {
     energy_.external_work += breakage.work;

@@ -235,7 +235,7 @@ class ExplicitDynamics {
   std::vector<double> body_force_prev_;
   std::vector<double> force_prev_, moment_prev_;           // D, R
   std::vector<double> displacement_prev_, rotation_prev_;  // D, R
-  std::vector<double> work_increment_;                     // summed serially, in point order (book_step_energy)
+  std::vector<double> work_increment_;                     // summed exactly (book_step_energy)
   EnergyState energy_;
   double initial_total_ = 0.0;
   // Pore fluid boundaries: per scene condition, the volume through it so far and the last rate;

@@ -26,8 +26,8 @@
 #include "solver/bond_work_policy.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
+#include "solver/exact_point_sums.hpp"
 #include "solver/internal_forces.hpp"
-#include "solver/ordered_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
@@ -245,20 +245,20 @@ StoredEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants
 
 // The sums over the owned points of elastic_energy_of_point and of the stabilization energies of
 // the last evaluation with energies (PointData::stabilization_energy): the stored energy of an
-// energy row. Summed in chunks fixed by the point count (ordered_point_sums), so the same bits for
-// any thread count; the chunks run in parallel (a stress evaluation per point).
+// energy row. Summed exactly (exact_point_sums), so the same bits for any thread count; the chunks
+// run in parallel (a stress evaluation per point).
 template <int D, class Effects>
 StoredEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
-  const auto sums = ordered_point_sums<4>(p.owned, thread_point_loop(p.owned),
-                                          [&](std::size_t lo, std::size_t hi, std::array<double, 4>& acc) {
-                                            for (std::size_t i = lo; i < hi; ++i) {
-                                              const StoredEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
-                                              acc[0] += e.force_stress;
-                                              acc[1] += e.couple_stress;
-                                              acc[2] += p.stabilization_energy[i];
-                                              acc[3] += e.fluid;
-                                            }
-                                          });
+  const auto sums =
+      exact_point_sums<4>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<4>& acc) {
+        for (std::size_t i = lo; i < hi; ++i) {
+          const StoredEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
+          acc[0] += e.force_stress;
+          acc[1] += e.couple_stress;
+          acc[2] += p.stabilization_energy[i];
+          acc[3] += e.fluid;
+        }
+      });
   StoredEnergy sum;
   sum.force_stress = sums[0];
   sum.couple_stress = sums[1];

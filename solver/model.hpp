@@ -111,8 +111,8 @@ Model build_model(const PointCloud& cloud, const ModelOptions& options, PhaseTim
 // of it after the call is its pre-cracks and boundaries.
 Model build_model(PointCloud&& cloud, const ModelOptions& options, PhaseTimer* phases = nullptr);
 
-// Totals of the per-point energies of the last evaluation with energies [J], summed in chunks
-// fixed by the point count (ordered_point_sums.hpp: the same result for any thread count).
+// Totals of the per-point energies of the last evaluation with energies [J], summed exactly
+// (exact_point_sums.hpp: the same result for any thread count).
 StoredEnergy internal_energy(const Model& model);
 
 }  // namespace mppm::solver
