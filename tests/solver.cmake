@@ -3,6 +3,7 @@
 set(MPPM_TEST_LIBS mppm_solver)
 mppm_add_gtest(test_solver_unit unit
   unit/test_exact_sum.cpp
+  unit/test_distributed_partition.cpp
   unit/test_solver_kinematics.cpp
   unit/test_solver_energy_gradient.cpp
   unit/test_solver_momentum.cpp

@@ -1,0 +1,20 @@
+// The ghosts of a part of a distributed run (docs/theory.md section 13): every point of another
+// part within the bond reach of one of the part's points, found with the families' own test
+// (horizon_search.hpp), so a process holds exactly the neighbours its families name. The search
+// goes by distance, not by adjacent parts: a part thinner than the horizon gets its ghosts from
+// every part they lie in.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "solver/horizon_search.hpp"
+
+namespace mppm::solver {
+
+// The indices (ascending) of the points not in `part` within `reach` (bond_reach) of a point of it.
+std::vector<std::size_t> halo_points(const PointPositions& points, std::span<const std::int32_t> part_of,
+                                     std::int32_t part, double reach);
+
+}  // namespace mppm::solver

@@ -1,0 +1,67 @@
+// The process group over MPI (process_group.hpp).
+#include "solver/process_group.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <stdexcept>
+
+namespace mppm::solver {
+
+ProcessGroup ProcessGroup::world() {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (!initialized) throw std::logic_error("ProcessGroup::world: MPI is not initialized");
+  ProcessGroup g;
+  MPI_Comm_rank(MPI_COMM_WORLD, &g.rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &g.size_);
+  g.distributed_ = true;
+  return g;
+}
+
+std::vector<double> ProcessGroup::sum(std::span<const ExactSum> local) const {
+  std::vector<double> out(local.size());
+  if (!distributed_) {
+    for (std::size_t k = 0; k < local.size(); ++k) out[k] = local[k].value();
+    return out;
+  }
+  // Integer addition of the normalized digits is exact and does not depend on the order in which
+  // MPI combines the processes' contributions.
+  constexpr auto words = static_cast<std::size_t>(ExactSum::kWireWords);
+  std::vector<std::int64_t> mine(local.size() * words), all(local.size() * words);
+  for (std::size_t k = 0; k < local.size(); ++k) {
+    const ExactSum::Wire w = local[k].wire();
+    std::copy(w.begin(), w.end(), mine.begin() + static_cast<std::ptrdiff_t>(k * words));
+  }
+  MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  for (std::size_t k = 0; k < local.size(); ++k)
+    out[k] =
+        ExactSum::from_wire(std::span<const std::int64_t, ExactSum::kWireWords>(all.data() + k * words, words)).value();
+  return out;
+}
+
+bool ProcessGroup::any(bool local) const {
+  if (!distributed_) return local;
+  int mine = local ? 1 : 0, all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+  return all != 0;
+}
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (initialized) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  owns_ = true;
+  if (provided < MPI_THREAD_FUNNELED) {
+    MPI_Finalize();
+    throw std::runtime_error("MPI does not support threads calling it from the main thread (MPI_THREAD_FUNNELED)");
+  }
+}
+
+MpiSession::~MpiSession() {
+  if (owns_) MPI_Finalize();
+}
+
+}  // namespace mppm::solver

@@ -1,0 +1,51 @@
+// The processes of a run (docs/theory.md section 13): one in a plain run, the ranks of
+// MPI_COMM_WORLD under mpirun. The solver asks it for the global sums and agreements it needs; the
+// sums go through exact accumulators merged by integer addition (exact_sum.hpp), never MPI_SUM on
+// doubles, so every process gets the same bits for any number of processes. A plain run's group
+// makes no MPI call.
+#pragma once
+#include <span>
+#include <vector>
+
+#include "solver/exact_sum.hpp"
+
+namespace mppm::solver {
+
+class ProcessGroup {
+ public:
+  // One process, no MPI.
+  static ProcessGroup single() { return ProcessGroup(); }
+  // Every process of MPI_COMM_WORLD (MPI initialized: MpiSession).
+  static ProcessGroup world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool distributed() const { return distributed_; }
+
+  // The sums over all processes of each accumulator, rounded once: the same on every process.
+  std::vector<double> sum(std::span<const ExactSum> local) const;
+  double sum(const ExactSum& local) const { return sum(std::span<const ExactSum>(&local, 1))[0]; }
+  // True on every process when it is true on any (a stop or a refusal decided anywhere).
+  bool any(bool local) const;
+
+ private:
+  ProcessGroup() = default;
+  int rank_ = 0;
+  int size_ = 1;
+  bool distributed_ = false;
+};
+
+// MPI for the life of the object (MPI_Init_thread with funneled threads: only the thread that
+// started OpenMP's parallel regions calls MPI), or nothing when MPI is already initialized.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+
+ private:
+  bool owns_ = false;
+};
+
+}  // namespace mppm::solver
