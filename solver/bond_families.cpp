@@ -51,7 +51,14 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
     for_each_in_horizon(positions, g, o.period, i, reach2, [&](std::size_t j, const double* xi) {
       found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
     });
-    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    // By global id: a distributed run's process then sums each point's bonds in the order of the
+    // single process (its local indices put the ghosts after the owned points).
+    if (p.global_id.empty())
+      std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    else
+      std::sort(found.begin(), found.end(), [&](const auto& a, const auto& b) {
+        return p.global_id[static_cast<std::size_t>(a.first)] < p.global_id[static_cast<std::size_t>(b.first)];
+      });
     std::int64_t b = f.offset[i];
     for (const auto& [j, xi] : found) {
       f.neighbor[b] = j;

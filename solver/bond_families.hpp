@@ -97,7 +97,10 @@ struct FamilyOptions {
 };
 
 // Cell-list search (brute force with minimum images when periodic). Neighbours of each point
-// are sorted by index, so the storage does not depend on the search order or thread count.
+// are sorted by index (by global id in a distributed run: PointData::global_id), so the storage
+// does not depend on the search order, the thread count or the partition. The bisections below
+// (first_bond_above, mirror_bond) and the bond pairs of damage assume the order by index: a
+// distributed run does not yet support damage.
 BondFamilies build_families(const PointData& points, const FamilyOptions& options);
 
 // Fills pair_offset and sizes work (zero) for the bond pairs (damage). Families must be symmetric

@@ -84,4 +84,8 @@ void for_each_in_horizon(const PointPositions& points, const CellGrid* grid, con
       }
 }
 
+// The number of points within `reach` of each point (its bonds before any cut): the weights of
+// the partition (coordinate_bisection.hpp).
+std::vector<std::int64_t> bond_counts(const PointPositions& points, double reach);
+
 }  // namespace mppm::solver

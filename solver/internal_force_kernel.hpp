@@ -531,38 +531,62 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   work.finish(p, i);
 }
 
-template <int D, class Effects, bool WithEnergy>
-void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
-                     [[maybe_unused]] const StepAdvance* advance) {
+template <int D, class Effects, bool StoredXi>
+void pass1_points(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance) {
   const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp for schedule(static)
+  for (std::int64_t s = 0; s < n; ++s) pass1_point<D, Effects, StoredXi>(p, f, c, static_cast<std::size_t>(s), advance);
+}
+
+template <int D, class Effects, bool WithEnergy, bool StoredXi>
+void pass2_points(PointData& p, BondFamilies& f, const CosseratConstants& c, bool accumulate_work) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+#pragma omp for schedule(static)
+  for (std::int64_t s = 0; s < n; ++s)
+    pass2_point<D, Effects, WithEnergy, StoredXi>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
+  // Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2).
+  BondWorkPolicy<D, Effects>::remember_state(p, n);
+}
+
+// A distributed run's ghosts get their owners' pass-1 tensors between the passes (one thread calls
+// MPI, outside the parallel regions).
+template <int D, class Effects>
+void update_ghost_tensors(PointData& p) {
+  constexpr int R = rotation_components<D>;
+  p.ghost_source->update_ghosts(p.force_tensor, D * D);
+  if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.moment_tensor, R * D);
+}
+
+template <int D, class Effects, bool WithEnergy, bool StoredXi>
+void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance) {
   const bool accumulate_work = Effects::damage && advance != nullptr;
   const bool threaded = thread_bond_loop(f.bond_count());
-  const bool stored_xi = !f.xi.empty();
-
+  if (p.ghost > 0 && p.ghost_source) {
+#pragma omp parallel if (threaded)
+    pass1_points<D, Effects, StoredXi>(p, f, c, advance);
+    update_ghost_tensors<D, Effects>(p);
+#pragma omp parallel if (threaded)
+    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work);
+    return;
+  }
   // One parallel region for both passes (one fork/join per evaluation); the barrier at the end
   // of pass 1 makes every neighbour's tensors ready for pass 2.
 #pragma omp parallel if (threaded)
   {
-    // The bond vectors come from the positions, or stored for periodic lattices: two loop
-    // bodies, chosen once, so the bond loops carry no branch for it.
-    if (stored_xi) {
-#pragma omp for schedule(static)
-      for (std::int64_t s = 0; s < n; ++s) pass1_point<D, Effects, true>(p, f, c, static_cast<std::size_t>(s), advance);
-#pragma omp for schedule(static)
-      for (std::int64_t s = 0; s < n; ++s)
-        pass2_point<D, Effects, WithEnergy, true>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
-    } else {
-#pragma omp for schedule(static)
-      for (std::int64_t s = 0; s < n; ++s)
-        pass1_point<D, Effects, false>(p, f, c, static_cast<std::size_t>(s), advance);
-#pragma omp for schedule(static)
-      for (std::int64_t s = 0; s < n; ++s)
-        pass2_point<D, Effects, WithEnergy, false>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
-    }
+    pass1_points<D, Effects, StoredXi>(p, f, c, advance);
+    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work);
+  }
+}
 
-    // Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2).
-    BondWorkPolicy<D, Effects>::remember_state(p, n);
-  }  // omp parallel
+// The bond vectors come from the positions, or stored for periodic lattices: two kernels, chosen
+// once per evaluation, so the bond loops carry no branch for it.
+template <int D, class Effects, bool WithEnergy>
+void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
+                     [[maybe_unused]] const StepAdvance* advance) {
+  if (!f.xi.empty())
+    internal_forces<D, Effects, WithEnergy, true>(p, f, c, advance);
+  else
+    internal_forces<D, Effects, WithEnergy, false>(p, f, c, advance);
 }
 
 // After bonds broke (damage): the forces of this step again, now without the broken bonds, so

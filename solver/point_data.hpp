@@ -1,5 +1,5 @@
 // Per-point storage of the solver: one array per field (structure of arrays), owned points
-// first and ghost points (copies of other ranks' points, none yet) after them, so that a
+// first and ghost points (copies of other processes' points) after them, so that a
 // distributed decomposition can be added without touching the kernels: kernels loop over owned
 // points and read neighbours by local index, owned or ghost; with ghosts, their kinematic state
 // and pass-1 tensors come from a halo exchange between passes. A single process owns every
@@ -14,6 +14,7 @@
 
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "solver/ghost_exchange.hpp"
 
 namespace mppm::solver {
 
@@ -23,6 +24,11 @@ struct PointData {
   std::size_t owned = 0;        // points this process integrates
   std::size_t ghost = 0;        // read-only copies after the owned ones
   std::size_t total() const { return owned + ghost; }
+  // Distributed runs: each local point's index in the points file (its global id; owned points and
+  // ghosts each in ascending order), and where the ghosts' values come from. A single process
+  // leaves both empty: there the local index is the global id.
+  std::vector<std::int64_t> global_id;
+  const GhostExchange* ghost_source = nullptr;
 
   std::vector<double> position;  // reference, D per point
   std::vector<double> volume;

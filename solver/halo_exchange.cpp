@@ -1,0 +1,127 @@
+// The halo exchange over MPI (halo_exchange.hpp).
+#include "solver/halo_exchange.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <climits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace mppm::solver {
+
+namespace {
+
+int as_count(std::size_t n) {
+  if (n > static_cast<std::size_t>(INT_MAX))
+    throw std::length_error("halo exchange: " + std::to_string(n) + " values exceed one MPI message");
+  return static_cast<int>(n);
+}
+
+// Tells every owner which of its points this process holds as ghosts: returns, per process, the
+// global ids that process asked this one for.
+std::vector<std::vector<std::int64_t>> exchange_requests(const std::vector<std::vector<std::int64_t>>& asked) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  std::vector<int> send_count(static_cast<std::size_t>(size)), receive_count(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r)
+    send_count[static_cast<std::size_t>(r)] = as_count(asked[static_cast<std::size_t>(r)].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> send_offset(static_cast<std::size_t>(size), 0), receive_offset(static_cast<std::size_t>(size), 0);
+  std::vector<std::int64_t> send_ids;
+  std::size_t receive_total = 0;
+  for (int r = 0; r < size; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    send_offset[k] = as_count(send_ids.size());
+    send_ids.insert(send_ids.end(), asked[k].begin(), asked[k].end());
+    receive_offset[k] = as_count(receive_total);
+    receive_total += static_cast<std::size_t>(receive_count[k]);
+  }
+  std::vector<std::int64_t> receive_ids(receive_total);
+  MPI_Alltoallv(send_ids.data(), send_count.data(), send_offset.data(), MPI_INT64_T, receive_ids.data(),
+                receive_count.data(), receive_offset.data(), MPI_INT64_T, MPI_COMM_WORLD);
+  std::vector<std::vector<std::int64_t>> requested(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    const auto first = receive_ids.begin() + receive_offset[k];
+    requested[k].assign(first, first + receive_count[k]);
+  }
+  return requested;
+}
+
+}  // namespace
+
+HaloExchange::HaloExchange(const LocalPoints& local, std::span<const std::int32_t> part_of) {
+  int size = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  // The ghosts by owner, in ascending global id (the order of the local ghosts).
+  std::vector<std::vector<std::int64_t>> asked(static_cast<std::size_t>(size));
+  std::map<int, Link> links;
+  for (std::size_t k = local.owned; k < local.global_id.size(); ++k) {
+    const std::int64_t id = local.global_id[k];
+    const int owner = part_of[static_cast<std::size_t>(id)];
+    if (owner == rank || owner < 0 || owner >= size)
+      throw std::logic_error("halo exchange: ghost " + std::to_string(id) + " has owner " + std::to_string(owner));
+    asked[static_cast<std::size_t>(owner)].push_back(id);
+    links[owner].rank = owner;
+    links[owner].receive.push_back(k);
+  }
+  const std::vector<std::vector<std::int64_t>> requested = exchange_requests(asked);
+  const auto owned_first = local.global_id.begin();
+  const auto owned_last = local.global_id.begin() + static_cast<std::ptrdiff_t>(local.owned);
+  for (int r = 0; r < size; ++r) {
+    for (const std::int64_t id : requested[static_cast<std::size_t>(r)]) {
+      const auto it = std::lower_bound(owned_first, owned_last, id);
+      if (it == owned_last || *it != id)
+        throw std::logic_error("halo exchange: process " + std::to_string(r) + " asked for point " +
+                               std::to_string(id) + ", which this process does not own");
+      links[r].rank = r;
+      links[r].send.push_back(static_cast<std::size_t>(it - owned_first));
+    }
+  }
+  for (auto& [r, link] : links) links_.push_back(std::move(link));
+  send_buffer_.resize(links_.size());
+  receive_buffer_.resize(links_.size());
+}
+
+void HaloExchange::update_ghosts(std::vector<double>& values, int components) const {
+  const auto c = static_cast<std::size_t>(components);
+  constexpr int kTag = 23;
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * links_.size());
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    std::vector<double>& in = receive_buffer_[l];
+    in.resize(links_[l].receive.size() * c);
+    if (in.empty()) continue;
+    requests.emplace_back();
+    MPI_Irecv(in.data(), as_count(in.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
+  }
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    std::vector<double>& out = send_buffer_[l];
+    out.resize(links_[l].send.size() * c);
+    if (out.empty()) continue;
+    for (std::size_t k = 0; k < links_[l].send.size(); ++k) std::copy_n(&values[links_[l].send[k] * c], c, &out[k * c]);
+    requests.emplace_back();
+    MPI_Isend(out.data(), as_count(out.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  for (std::size_t l = 0; l < links_.size(); ++l)
+    for (std::size_t k = 0; k < links_[l].receive.size(); ++k)
+      std::copy_n(&receive_buffer_[l][k * c], c, &values[links_[l].receive[k] * c]);
+}
+
+std::size_t HaloExchange::points_sent() const {
+  std::size_t n = 0;
+  for (const Link& l : links_) n += l.send.size();
+  return n;
+}
+
+std::size_t HaloExchange::points_received() const {
+  std::size_t n = 0;
+  for (const Link& l : links_) n += l.receive.size();
+  return n;
+}
+
+}  // namespace mppm::solver

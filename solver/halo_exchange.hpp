@@ -1,0 +1,39 @@
+// The halo exchange of a distributed run over MPI (docs/theory.md section 13): each process sends
+// its owned points' values to the processes that hold them as ghosts and receives its ghosts'
+// values from their owners, with one message per neighbouring process and field. The lists are
+// agreed once, when the run starts: each process asks every owner for its ghosts by global id.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "solver/ghost_exchange.hpp"
+#include "solver/local_points.hpp"
+
+namespace mppm::solver {
+
+class HaloExchange final : public GhostExchange {
+ public:
+  // Collective: every process of MPI_COMM_WORLD calls it with its local points and the part (the
+  // process) of every point.
+  HaloExchange(const LocalPoints& local, std::span<const std::int32_t> part_of);
+
+  void update_ghosts(std::vector<double>& values, int components) const override;
+
+  // The processes this one exchanges with, and the points it sends and receives per exchange.
+  std::size_t neighbours() const { return links_.size(); }
+  std::size_t points_sent() const;
+  std::size_t points_received() const;
+
+ private:
+  struct Link {
+    int rank = 0;
+    std::vector<std::size_t> send;     // local indices of owned points, in the receiver's order
+    std::vector<std::size_t> receive;  // local indices of ghosts (ascending global id)
+  };
+  std::vector<Link> links_;
+  mutable std::vector<std::vector<double>> send_buffer_, receive_buffer_;
+};
+
+}  // namespace mppm::solver

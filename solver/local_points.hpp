@@ -1,0 +1,35 @@
+// The points one process of a distributed run holds (docs/theory.md section 13): the points of its
+// part, then its ghosts (halo_points.hpp), each in ascending global id (the index in the points
+// file), and their point data with the global ids.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/point_cloud.hpp"
+#include "common/scene.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver {
+
+struct LocalPoints {
+  std::vector<std::int64_t> global_id;  // of each local point: owned, then ghosts
+  std::size_t owned = 0;
+};
+
+// The local points of `part` among all the points' parts, with the ghosts within `reach` (bond_reach).
+LocalPoints local_points(const PointCloud& cloud, std::span<const std::int32_t> part_of, std::int32_t part,
+                         double reach);
+
+// The cloud of the local points, in their local order; its pre-cracks and boundary descriptions are
+// the whole cloud's.
+PointCloud local_cloud(const PointCloud& cloud, const LocalPoints& local);
+
+// The point data of the local points: owned first, ghosts after, with their global ids.
+PointData make_local_point_data(const PointCloud& cloud, const LocalPoints& local, const EffectSet& effects);
+
+// The cloud's positions, D per point (the form the horizon search and the partition read).
+std::vector<double> cloud_positions(const PointCloud& cloud);
+
+}  // namespace mppm::solver

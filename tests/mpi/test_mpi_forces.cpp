@@ -1,0 +1,144 @@
+// Run under mpirun with 1 to 4 processes (tests/mpi.cmake): the force kernel on a partitioned
+// lattice, each process holding its part and its ghosts and exchanging the ghosts' displacement,
+// rotation, shape-tensor terms and pass-1 tensors (solver/halo_exchange.hpp), gives every owned
+// point the force, moment and stabilization energy of the one-process model to the last bit.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "solver/bond_families.hpp"
+#include "solver/coordinate_bisection.hpp"
+#include "solver/halo_exchange.hpp"
+#include "solver/horizon_search.hpp"
+#include "solver/internal_forces.hpp"
+#include "solver/local_points.hpp"
+#include "solver/model.hpp"
+#include "solver/process_group.hpp"
+#include "solver/shape_tensor.hpp"
+#include "tests/verification/problems/generic_scene.hpp"
+#include "tests/verification/problems/periodic_lattice.hpp"
+
+namespace {
+
+using namespace mppm;
+using namespace mppm::solver;
+
+// A displacement and rotation field of every point from its global id and position: a smooth part
+// (strain of 1e-3) and a pseudo-random part of the same size, so that every bond is strained
+// differently.
+double field_value(std::int64_t id, int component, double x) {
+  std::uint64_t h = static_cast<std::uint64_t>(id) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(component + 7);
+  h ^= h >> 29;
+  h *= 0xBF58476D1CE4E5B9ull;
+  h ^= h >> 32;
+  const double noise = static_cast<double>(h >> 11) * 0x1.0p-53 - 0.5;
+  return 1e-3 * x * (component + 1) + 1e-6 * noise;
+}
+
+void set_field(PointData& p, std::size_t points, const std::vector<std::int64_t>& id) {
+  const int D = p.dimension, R = p.rotation_components;
+  for (std::size_t i = 0; i < points; ++i) {
+    const std::int64_t g = id.empty() ? static_cast<std::int64_t>(i) : id[i];
+    for (int c = 0; c < D; ++c) p.displacement[i * D + c] = field_value(g, c, p.position[i * D]);
+    for (int c = 0; c < R; ++c) p.rotation[i * R + c] = 1e-3 * field_value(g, D + c, p.position[i * D + 1]);
+  }
+}
+
+std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+struct Case {
+  std::string name;
+  int dimension;
+  std::array<int, 3> n;
+  bool micropolar;
+};
+
+void expect_distributed_forces_equal_whole(const Case& k) {
+  const ProcessGroup group = ProcessGroup::world();
+  const double dx = 1e-3;
+  const Scene scene = verification::make_scene(k.dimension, k.micropolar, dx, 3.05);
+  const PointCloud cloud = verification::make_lattice(k.dimension, k.n, dx, scene.thickness);
+  const ModelOptions o = model_options(scene);
+  const int D = k.dimension;
+
+  // The one-process model, on every process.
+  Model whole = verification::make_model(cloud, scene);
+  set_field(whole.points, whole.points.owned, {});
+  whole.kernel.forces_and_energy(whole.points, whole.bonds, whole.constants, nullptr);
+
+  // This process's part.
+  const std::vector<double> x = cloud_positions(cloud);
+  const double reach = bond_reach(o.horizon, o.spacing);
+  const std::vector<std::int64_t> weight = bond_counts({D, x.data(), cloud.size()}, reach);
+  std::vector<std::int64_t> id(cloud.size());
+  std::iota(id.begin(), id.end(), std::int64_t{0});
+  const std::vector<std::int32_t> part = coordinate_bisection({D, x, weight, id}, group.size());
+  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
+  PointData p = make_local_point_data(cloud, local, o.effects);
+  const HaloExchange halo(local, part);
+  p.ghost_source = &halo;
+  FamilyOptions fo;
+  fo.horizon = o.horizon;
+  fo.spacing = o.spacing;
+  BondFamilies f = build_families(p, fo);
+  update_shape_tensors(p, f, o.constants);
+  halo.update_ghosts(p.stabilization_ck, D * (D + 1) / 2);
+  if (k.micropolar) halo.update_ghosts(p.stabilization_rot, 1);
+  set_field(p, p.owned, p.global_id);
+  halo.update_ghosts(p.displacement, D);
+  if (k.micropolar) halo.update_ghosts(p.rotation, p.rotation_components);
+  const InternalForceFunctions kernel = internal_force_functions(D, o.effects);
+  kernel.forces_and_energy(p, f, o.constants, nullptr);
+
+  // Every ghost is a neighbour of an owned point, and every owned point's bonds are the whole
+  // model's.
+  EXPECT_EQ(halo.points_received(), p.ghost) << k.name;
+  if (group.size() > 1) {
+    EXPECT_GT(halo.neighbours(), 0u) << k.name;
+  }
+  const int R = p.rotation_components;
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const auto g = static_cast<std::size_t>(p.global_id[i]);
+    ASSERT_EQ(f.offset[i + 1] - f.offset[i], whole.bonds.offset[g + 1] - whole.bonds.offset[g]) << k.name;
+    for (int c = 0; c < D; ++c) differing += bits(p.force[i * D + c]) != bits(whole.points.force[g * D + c]);
+    for (int c = 0; c < R; ++c) differing += bits(p.moment[i * R + c]) != bits(whole.points.moment[g * R + c]);
+    differing += bits(p.stabilization_energy[i]) != bits(whole.points.stabilization_energy[g]);
+  }
+  EXPECT_EQ(differing, 0u) << k.name << ", process " << group.rank() << " of " << group.size() << ": " << p.owned
+                           << " owned, " << p.ghost << " ghosts";
+  // The owned points add up to the lattice.
+  EXPECT_EQ(group.sum(ExactSum(static_cast<double>(p.owned))), static_cast<double>(cloud.size())) << k.name;
+}
+
+TEST(MpiForces, MicropolarPlateGivesTheOneProcessBits) {
+  expect_distributed_forces_equal_whole({"2-D micro-polar 30 x 20", 2, {30, 20, 1}, true});
+}
+
+TEST(MpiForces, NonPolarPlateGivesTheOneProcessBits) {
+  expect_distributed_forces_equal_whole({"2-D non-polar 30 x 20", 2, {30, 20, 1}, false});
+}
+
+// 4 processes on 12 columns: parts 3 columns wide, thinner than the horizon (3.05 spacings), so
+// ghosts come from parts beyond the adjacent ones.
+TEST(MpiForces, PartsThinnerThanTheHorizonGiveTheOneProcessBits) {
+  expect_distributed_forces_equal_whole({"2-D strip 12 x 4", 2, {12, 4, 1}, true});
+}
+
+TEST(MpiForces, MicropolarBlockGivesTheOneProcessBits) {
+  expect_distributed_forces_equal_whole({"3-D micro-polar 9 x 8 x 7", 3, {9, 8, 7}, true});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  mppm::solver::MpiSession mpi(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (mppm::solver::ProcessGroup::world().rank() != 0) GTEST_FLAG_SET(brief, true);
+  return RUN_ALL_TESTS();
+}
