@@ -10,7 +10,6 @@
 
 #include "common/input_error.hpp"
 #include "solver/exact_point_sums.hpp"
-#include "solver/parallel_policy.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -20,7 +19,8 @@ namespace {
 
 enum class Block { coupled, translational, rotational };
 
-// A deterministic start vector from the point's index in the points file (no dependence on threads).
+// A deterministic start vector from the point's index in the points file (its global id): the same
+// for any thread count or partition.
 double start_value(std::int64_t id, int component) {
   std::uint64_t x = static_cast<std::uint64_t>(id) * 0x9E3779B97F4A7C15ull +
                     static_cast<std::uint64_t>(component + 1) * 0xBF58476D1CE4E5B9ull;
@@ -78,14 +78,15 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence
   prev_u.assign(q_u.size(), 0.0);
   prev_w.assign(q_w.size(), 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u ? start_value(static_cast<std::int64_t>(i), c) : 0.0;
-    for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w ? start_value(static_cast<std::int64_t>(i), D + c) : 0.0;
+    const std::int64_t id = p.global_id.empty() ? static_cast<std::int64_t>(i) : p.global_id[i];
+    for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u ? start_value(id, c) : 0.0;
+    for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w ? start_value(id, D + c) : 0.0;
   }
   // Summed exactly over the points (exact_point_sums.hpp): the same bits for any thread count or
   // partition.
   auto mass_dot = [&](const std::vector<double>& au, const std::vector<double>& aw, const std::vector<double>& bu,
                       const std::vector<double>& bw) {
-    return exact_point_sums<1>(n, thread_point_loop(n), [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+    return exact_point_sums<1>(p, [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
       for (std::size_t i = lo; i < hi; ++i) {
         double su = 0.0, sw = 0.0;
         for (int c = 0; c < D; ++c) su += au[i * D + c] * bu[i * D + c];

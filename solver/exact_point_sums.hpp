@@ -1,11 +1,18 @@
 // Sums over the owned points that do not depend on the thread count nor, in a distributed run, on
 // the partition: each thread adds its points' terms to exact accumulators (exact_sum.hpp), which
-// are merged and rounded once. The energy rows and the fluid's energy and volume use it.
+// are merged (across processes too) and rounded once. The energy rows, the fluid's energy and
+// volume and the critical step's inner products use it.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <utility>
+#include <vector>
 
 #include "solver/exact_sum.hpp"
+#include "solver/parallel_policy.hpp"
+#include "solver/point_data.hpp"
+#include "solver/process_group.hpp"
 
 namespace mppm::solver {
 
@@ -19,7 +26,8 @@ using ExactSums = std::array<ExactSum, K>;
 // add_range(lo, hi, acc) adds the K terms of the points lo..hi-1 to acc[0..K) (acc[k] += term; a
 // range, so that a caller can walk a sorted list alongside). Returns the K sums, rounded once.
 template <int K, class AddRange>
-std::array<double, K> exact_point_sums(std::size_t n, bool threaded, AddRange&& add_range) {
+std::array<double, K> exact_point_sums(std::size_t n, bool threaded, AddRange&& add_range,
+                                       const ProcessGroup* processes = nullptr) {
   ExactSums<K> total;
   const auto chunks = static_cast<std::ptrdiff_t>(kPointSumChunks);
 #pragma omp parallel if (threaded)
@@ -35,8 +43,20 @@ std::array<double, K> exact_point_sums(std::size_t n, bool threaded, AddRange&& 
     for (int k = 0; k < K; ++k) total[k] += acc[k];  // exact: the merge order does not matter
   }
   std::array<double, K> sum{};
+  if (processes) {
+    const std::vector<double> global = processes->sum(total);
+    std::copy(global.begin(), global.end(), sum.begin());
+    return sum;
+  }
   for (int k = 0; k < K; ++k) sum[k] = total[k].value();
   return sum;
+}
+
+// The same over the owned points of `p`, threaded when they are many, and in a distributed run
+// summed over all processes (PointData::processes): the same bits on every process.
+template <int K, class AddRange>
+std::array<double, K> exact_point_sums(const PointData& p, AddRange&& add_range) {
+  return exact_point_sums<K>(p.owned, thread_point_loop(p.owned), std::forward<AddRange>(add_range), p.processes);
 }
 
 }  // namespace mppm::solver

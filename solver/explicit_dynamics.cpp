@@ -125,38 +125,37 @@ std::array<double, 3> ExplicitDynamics::kinetic_sums() const {
   // differs from it by O((omega dt)^2) in the highest modes).
   const double h2 = 0.25 * dt_ * dt_;
   // Summed exactly (exact_point_sums.hpp): the same bits for any thread count.
-  return exact_point_sums<3>(p.owned, thread_point_loop(p.owned),
-                             [&](std::size_t lo, std::size_t hi, ExactSums<3>& acc) {
-                               for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
-                                 // A point that is not tracked has no body force.
-                                 const bool tracked = tracked_at >= 0;
-                                 const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
-                                 const unsigned fixed = conditions_.prescribed(i);
-                                 double v2 = 0.0, t2 = 0.0;
-                                 for (int c = 0; c < D; ++c) {
-                                   const std::size_t k = i * D + c;
-                                   if ((fixed >> c) & 1u) continue;
-                                   const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
-                                   v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
-                                   t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
-                                 }
-                                 acc[0] += 0.5 * rho * p.volume[i] * v2;
-                                 acc[2] += 0.5 * rho * p.volume[i] * t2;
-                                 if (R > 0) {
-                                   double s2 = 0.0, r2 = 0.0;
-                                   for (int c = 0; c < R; ++c) {
-                                     const std::size_t k = i * R + c;
-                                     if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
-                                     const double a = p.moment[k] / inertia;
-                                     s2 += p.spin[k] * p.spin[k] - h2 * a * a;
-                                     r2 += p.spin[k] * p.spin[k] + h2 * a * a;
-                                   }
-                                   acc[1] += 0.5 * inertia * p.volume[i] * s2;
-                                   acc[2] += 0.5 * inertia * p.volume[i] * r2;
-                                 }
-                                 return 0;
-                               });
-                             });
+  return exact_point_sums<3>(p, [&](std::size_t lo, std::size_t hi, ExactSums<3>& acc) {
+    for_each_point_in(lo, hi, [&](std::size_t i, std::ptrdiff_t tracked_at) {
+      // A point that is not tracked has no body force.
+      const bool tracked = tracked_at >= 0;
+      const auto row = static_cast<std::size_t>(tracked ? tracked_at : 0);
+      const unsigned fixed = conditions_.prescribed(i);
+      double v2 = 0.0, t2 = 0.0;
+      for (int c = 0; c < D; ++c) {
+        const std::size_t k = i * D + c;
+        if ((fixed >> c) & 1u) continue;
+        const double a = (p.force[k] + (tracked ? body_force_[row * D + c] : 0.0)) / rho;
+        v2 += p.velocity[k] * p.velocity[k] - h2 * a * a;
+        t2 += p.velocity[k] * p.velocity[k] + h2 * a * a;
+      }
+      acc[0] += 0.5 * rho * p.volume[i] * v2;
+      acc[2] += 0.5 * rho * p.volume[i] * t2;
+      if (R > 0) {
+        double s2 = 0.0, r2 = 0.0;
+        for (int c = 0; c < R; ++c) {
+          const std::size_t k = i * R + c;
+          if ((fixed >> (BoundaryConditions::kRotationBit + c)) & 1u) continue;
+          const double a = p.moment[k] / inertia;
+          s2 += p.spin[k] * p.spin[k] - h2 * a * a;
+          r2 += p.spin[k] * p.spin[k] + h2 * a * a;
+        }
+        acc[1] += 0.5 * inertia * p.volume[i] * s2;
+        acc[2] += 0.5 * inertia * p.volume[i] * r2;
+      }
+      return 0;
+    });
+  });
 }
 
 void ExplicitDynamics::evaluate_energy() {
@@ -504,13 +503,11 @@ void ExplicitDynamics::book_step_energy(const BreakageEnergy& breakage) {
   const PointData& p = model_.points;
   ExactSum work;
   for (const double w : work_increment_) work += w;
-  energy_.external_work += work.value();
+  energy_.external_work += p.processes ? p.processes->sum(work) : work.value();
   if (!p.plastic_dissipation.empty()) {
-    const auto dissipated = exact_point_sums<1>(p.owned, thread_point_loop(p.owned),
-                                                [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
-                                                  for (std::size_t i = lo; i < hi; ++i)
-                                                    acc[0] += p.plastic_dissipation[i];
-                                                });
+    const auto dissipated = exact_point_sums<1>(p, [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+      for (std::size_t i = lo; i < hi; ++i) acc[0] += p.plastic_dissipation[i];
+    });
     energy_.plastic_dissipation += dissipated[0];
   }
   if (model_.effects.damage) {

@@ -249,16 +249,15 @@ StoredEnergy elastic_energy_of_point(const PointData& p, const CosseratConstants
 // run in parallel (a stress evaluation per point).
 template <int D, class Effects>
 StoredEnergy stored_energy_sums(const PointData& p, const CosseratConstants& c) {
-  const auto sums =
-      exact_point_sums<4>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<4>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          const StoredEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
-          acc[0] += e.force_stress;
-          acc[1] += e.couple_stress;
-          acc[2] += p.stabilization_energy[i];
-          acc[3] += e.fluid;
-        }
-      });
+  const auto sums = exact_point_sums<4>(p, [&](std::size_t lo, std::size_t hi, ExactSums<4>& acc) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const StoredEnergy e = elastic_energy_of_point<D, Effects>(p, c, i);
+      acc[0] += e.force_stress;
+      acc[1] += e.couple_stress;
+      acc[2] += p.stabilization_energy[i];
+      acc[3] += e.fluid;
+    }
+  });
   StoredEnergy sum;
   sum.force_stress = sums[0];
   sum.couple_stress = sums[1];
@@ -548,8 +547,14 @@ void pass2_points(PointData& p, BondFamilies& f, const CosseratConstants& c, boo
   BondWorkPolicy<D, Effects>::remember_state(p, n);
 }
 
-// A distributed run's ghosts get their owners' pass-1 tensors between the passes (one thread calls
-// MPI, outside the parallel regions).
+// A distributed run's ghosts get their owners' displacement and rotation before pass 1 and their
+// pass-1 tensors between the passes (one thread calls MPI, outside the parallel regions).
+template <int D, class Effects>
+void update_ghost_kinematics(PointData& p) {
+  constexpr int R = rotation_components<D>;
+  p.ghost_source->update_ghosts(p.displacement, D);
+  if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.rotation, R);
+}
 template <int D, class Effects>
 void update_ghost_tensors(PointData& p) {
   constexpr int R = rotation_components<D>;
@@ -562,6 +567,7 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, 
   const bool accumulate_work = Effects::damage && advance != nullptr;
   const bool threaded = thread_bond_loop(f.bond_count());
   if (p.ghost > 0 && p.ghost_source) {
+    update_ghost_kinematics<D, Effects>(p);
 #pragma omp parallel if (threaded)
     pass1_points<D, Effects, StoredXi>(p, f, c, advance);
     update_ghost_tensors<D, Effects>(p);

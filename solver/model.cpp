@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "common/precrack_crossing.hpp"
 #include "solver/bond_breakage.hpp"
@@ -16,6 +18,11 @@
 namespace mppm::solver {
 
 namespace {
+
+// The point's index in the points file.
+std::int64_t global_id(const PointData& p, std::size_t i) {
+  return p.global_id.empty() ? static_cast<std::int64_t>(i) : p.global_id[i];
+}
 
 // The bond entries whose segment touches a pre-crack element (empty without pre-cracks). The
 // crossing test is symmetric in its end points, so a bond is cut from both ends or from neither.
@@ -33,11 +40,11 @@ std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const 
     Point3 a{0, 0, 0}, b{0, 0, 0};
     for (int c = 0; c < D; ++c) a[c] = p.position[i * D + c];
     for (std::int64_t k = f.offset[i]; k < f.offset[i + 1]; ++k) {
-      // The same call (lower index first, stored positions) from both ends gives the same
-      // answer, so a bond is cut from both ends or from neither.
+      // The same call (lower global id first, stored positions) from both ends gives the same
+      // answer, so a bond is cut from both ends or from neither, on any process.
       const auto j = static_cast<std::size_t>(f.neighbor[k]);
       for (int c = 0; c < D; ++c) b[c] = p.position[j * D + c];
-      cut[k] = (j > i ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
+      cut[k] = (global_id(p, j) > global_id(p, i) ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
     }
   }
   return cut;
@@ -153,6 +160,12 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
       m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
   mark("damage set-up");
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
+  if (m.points.ghost > 0 && m.points.ghost_source) {
+    // Pass 2 reads the neighbours' shape-tensor terms: the ghosts' come from their owners.
+    const int D = m.points.dimension;
+    m.points.ghost_source->update_ghosts(m.points.stabilization_ck, D * (D + 1) / 2);
+    if (m.points.rotation_components > 0) m.points.ghost_source->update_ghosts(m.points.stabilization_rot, 1);
+  }
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)
       throw std::logic_error("build_model: the viscoplasticity effect needs ModelOptions::viscoplastic_model");
@@ -185,6 +198,24 @@ Model build_model(const PointCloud& cloud, const ModelOptions& o, PhaseTimer* ph
 
 Model build_model(PointCloud&& cloud, const ModelOptions& o, PhaseTimer* phases) {
   PointData points = make_point_data(std::move(cloud), o.effects);
+  if (phases) phases->mark("point data");
+  return complete_model(std::move(points), cloud, o, phases);
+}
+
+Model build_local_model(const PointCloud& cloud, const LocalPoints& local, const GhostExchange& ghosts,
+                        const ProcessGroup& processes, const ModelOptions& o, PhaseTimer* phases) {
+  std::string missing;
+  for (const auto& [on, name] :
+       {std::pair{o.effects.damage, "damage"}, std::pair{o.effects.viscoplasticity, "viscoplasticity"},
+        std::pair{o.effects.pore_fluid, "pore_fluid"}})
+    if (on) missing += (missing.empty() ? "" : ", ") + std::string(name);
+  if (!missing.empty())
+    throw std::invalid_argument("effects " + missing + " do not run across processes yet (run them on one process)");
+  if (o.period[0] > 0.0 || o.period[1] > 0.0 || o.period[2] > 0.0)
+    throw std::invalid_argument("periodic lattices do not run across processes");
+  PointData points = make_local_point_data(cloud, local, o.effects);
+  points.ghost_source = &ghosts;
+  points.processes = &processes;
   if (phases) phases->mark("point data");
   return complete_model(std::move(points), cloud, o, phases);
 }

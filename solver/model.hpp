@@ -13,6 +13,7 @@
 #include "solver/crack_area.hpp"
 #include "solver/crack_arrivals.hpp"
 #include "solver/internal_forces.hpp"
+#include "solver/local_points.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/plasticity/viscoplastic_model.hpp"
 #include "solver/point_data.hpp"
@@ -110,6 +111,13 @@ Model build_model(const PointCloud& cloud, const ModelOptions& options, PhaseTim
 // The same, taking over or releasing the cloud's per-point arrays (make_point_data): what is left
 // of it after the call is its pre-cracks and boundaries.
 Model build_model(PointCloud&& cloud, const ModelOptions& options, PhaseTimer* phases = nullptr);
+
+// A distributed run's model on one process (docs/theory.md section 13): the local points of the
+// whole cloud (local_points.hpp), the ghosts' values from `ghosts` (their shape-tensor terms fetched
+// here), the global sums over `processes`; both must outlive the model. Damage, viscoplasticity
+// and the pore fluid do not run across processes yet: std::invalid_argument names them.
+Model build_local_model(const PointCloud& cloud, const LocalPoints& local, const GhostExchange& ghosts,
+                        const ProcessGroup& processes, const ModelOptions& options, PhaseTimer* phases = nullptr);
 
 // Totals of the per-point energies of the last evaluation with energies [J], summed exactly
 // (exact_point_sums.hpp: the same result for any thread count).

@@ -15,6 +15,7 @@
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
 #include "solver/ghost_exchange.hpp"
+#include "solver/process_group.hpp"
 
 namespace mppm::solver {
 
@@ -29,6 +30,8 @@ struct PointData {
   // leaves both empty: there the local index is the global id.
   std::vector<std::int64_t> global_id;
   const GhostExchange* ghost_source = nullptr;
+  // The processes whose points make up the model, for the global sums (null: this one alone).
+  const ProcessGroup* processes = nullptr;
 
   std::vector<double> position;  // reference, D per point
   std::vector<double> volume;

@@ -148,35 +148,33 @@ void fill_relative_permeability(const PointData& p, const RetentionCurve& curve,
 // stored fluid energy of each attached point booked as the trapezoid of p d zeta
 // (solver/unsaturated_coupling.hpp). Returns the energy the update released.
 double unsaturated_flow_update(PointData& p, const FluidConstants& fl, double dt) {
-  const auto sums =
-      exact_point_sums<1>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i)) continue;
-          const double before = p.pore_pressure[i];
-          const double increment = dt * p.fluid_rate[i];
-          p.fluid_content_change[i] += increment;
-          p.pore_pressure[i] = pressure_from_content(p, fl, i);
-          if (p.detached[i]) continue;  // as in flow_update
-          const double change = flow_energy_change(p, i, before, increment);
-          p.fluid_energy[i] += change;
-          acc[0] -= change;
-        }
-      });
+  const auto sums = exact_point_sums<1>(p, [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!carries_fluid(p, i)) continue;
+      const double before = p.pore_pressure[i];
+      const double increment = dt * p.fluid_rate[i];
+      p.fluid_content_change[i] += increment;
+      p.pore_pressure[i] = pressure_from_content(p, fl, i);
+      if (p.detached[i]) continue;  // as in flow_update
+      const double change = flow_energy_change(p, i, before, increment);
+      p.fluid_energy[i] += change;
+      acc[0] -= change;
+    }
+  });
   return sums[0];
 }
 
 // The same booking for a super step that changed the contents by `increment` from the pressures `before`.
 double unsaturated_energy_released(PointData& p, const std::vector<double>& before,
                                    const std::vector<double>& increment) {
-  const auto sums =
-      exact_point_sums<1>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i) || p.detached[i]) continue;
-          const double change = flow_energy_change(p, i, before[i], increment[i]);
-          p.fluid_energy[i] += change;
-          acc[0] -= change;
-        }
-      });
+  const auto sums = exact_point_sums<1>(p, [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!carries_fluid(p, i) || p.detached[i]) continue;
+      const double change = flow_energy_change(p, i, before[i], increment[i]);
+      p.fluid_energy[i] += change;
+      acc[0] -= change;
+    }
+  });
   return sums[0];
 }
 
@@ -195,14 +193,13 @@ double stored_energy_released(PointData& p, const FluidConstants& fl, const std:
                               const std::vector<double>& content_increment) {
   if (fl.retention) return unsaturated_energy_released(p, before, content_increment);
   const double inv_2m = 0.5 / fl.biot_modulus;
-  const auto sums =
-      exact_point_sums<1>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i) || p.detached[i]) continue;  // as in flow_update
-          const double after = p.pore_pressure[i];
-          acc[0] += p.volume[i] * inv_2m * (before[i] * before[i] - after * after);
-        }
-      });
+  const auto sums = exact_point_sums<1>(p, [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!carries_fluid(p, i) || p.detached[i]) continue;  // as in flow_update
+      const double after = p.pore_pressure[i];
+      acc[0] += p.volume[i] * inv_2m * (before[i] * before[i] - after * after);
+    }
+  });
   return sums[0];
 }
 
@@ -296,20 +293,19 @@ double flow_update(PointData& p, const BondFamilies& f, const FluidConstants& fl
   }
   if (fl.retention) return unsaturated_flow_update(p, fl, dt);
   const double inv_2m = 0.5 / fl.biot_modulus;
-  const auto sums =
-      exact_point_sums<1>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i)) continue;
-          const double before = p.pore_pressure[i];
-          p.fluid_content_change[i] += dt * p.fluid_rate[i];
-          const double after = pressure_from_content(p, fl, i);
-          p.pore_pressure[i] = after;
-          // A detached point keeps its fluid (the mass balance counts it) but
-          // stores no energy (kernel::elastic_energy_of_point; its strain is zero):
-          // its change is not the flow's.
-          if (!p.detached[i]) acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
-        }
-      });
+  const auto sums = exact_point_sums<1>(p, [&](std::size_t lo, std::size_t hi, ExactSums<1>& acc) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!carries_fluid(p, i)) continue;
+      const double before = p.pore_pressure[i];
+      p.fluid_content_change[i] += dt * p.fluid_rate[i];
+      const double after = pressure_from_content(p, fl, i);
+      p.pore_pressure[i] = after;
+      // A detached point keeps its fluid (the mass balance counts it) but
+      // stores no energy (kernel::elastic_energy_of_point; its strain is zero):
+      // its change is not the flow's.
+      if (!p.detached[i]) acc[0] += p.volume[i] * inv_2m * (before * before - after * after);
+    }
+  });
   return sums[0];
 }
 
@@ -352,14 +348,13 @@ double fluid_step_limit(const PointData& p, const BondFamilies& f, const FluidCo
 }
 
 double fluid_volume(const PointData& p, const FluidConstants& fl) {
-  const auto sums =
-      exact_point_sums<2>(p.owned, thread_point_loop(p.owned), [&](std::size_t lo, std::size_t hi, ExactSums<2>& acc) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          if (!carries_fluid(p, i)) continue;
-          acc[0] += p.volume[i];
-          acc[1] += p.volume[i] * p.fluid_content_change[i];
-        }
-      });
+  const auto sums = exact_point_sums<2>(p, [&](std::size_t lo, std::size_t hi, ExactSums<2>& acc) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!carries_fluid(p, i)) continue;
+      acc[0] += p.volume[i];
+      acc[1] += p.volume[i] * p.fluid_content_change[i];
+    }
+  });
   return fl.porosity * sums[0] + sums[1];
 }
 

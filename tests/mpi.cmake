@@ -22,3 +22,4 @@ endfunction()
 
 mppm_add_mpi_test(reductions mpi/test_mpi_reductions.cpp)
 mppm_add_mpi_test(forces mpi/test_mpi_forces.cpp)
+mppm_add_mpi_test(run mpi/test_mpi_run.cpp)

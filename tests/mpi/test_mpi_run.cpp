@@ -1,0 +1,156 @@
+// Run under mpirun with 1 to 4 processes (tests/mpi.cmake): a free vibration integrated on a
+// partitioned lattice (build_local_model, ExplicitDynamics with the ghosts fetched in every force
+// evaluation and the energies summed over all processes) gives the one-process critical step,
+// energy rows and final state to the last bit.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "solver/boundary_conditions.hpp"
+#include "solver/coordinate_bisection.hpp"
+#include "solver/critical_time_step.hpp"
+#include "solver/explicit_dynamics.hpp"
+#include "solver/halo_exchange.hpp"
+#include "solver/horizon_search.hpp"
+#include "solver/local_points.hpp"
+#include "solver/model.hpp"
+#include "solver/process_group.hpp"
+#include "tests/verification/problems/generic_scene.hpp"
+#include "tests/verification/problems/periodic_lattice.hpp"
+
+namespace {
+
+using namespace mppm;
+using namespace mppm::solver;
+
+std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+// An initial velocity and spin from each point's global id and position: a smooth part and a
+// pseudo-random part, so that every mode is excited.
+double initial_rate(std::int64_t id, int component, double x) {
+  std::uint64_t h = static_cast<std::uint64_t>(id) * 0xD1B54A32D192ED03ull + static_cast<std::uint64_t>(component + 3);
+  h ^= h >> 31;
+  h *= 0x94D049BB133111EBull;
+  h ^= h >> 29;
+  const double noise = static_cast<double>(h >> 11) * 0x1.0p-53 - 0.5;
+  return std::sin(300.0 * x + component) + noise;
+}
+
+void set_initial_rates(PointData& p) {
+  const int D = p.dimension, R = p.rotation_components;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const std::int64_t g = p.global_id.empty() ? static_cast<std::int64_t>(i) : p.global_id[i];
+    for (int c = 0; c < D; ++c) p.velocity[i * D + c] = initial_rate(g, c, p.position[i * D]);
+    for (int c = 0; c < R; ++c) p.spin[i * R + c] = 100.0 * initial_rate(g, D + c, p.position[i * D + 1]);
+  }
+}
+
+// The energies of a row, in the order of energy.csv's energy columns.
+std::vector<double> energy_row(const ExplicitDynamics& d) {
+  const EnergyState& e = d.energy();
+  return {e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization, e.external_work, e.kinetic_terms};
+}
+
+struct History {
+  double step = 0.0;
+  std::vector<std::vector<double>> rows;
+};
+
+History integrate(Model& model, const Scene& scene, const PointCloud& cloud, int steps) {
+  History h;
+  h.step = 0.8 * critical_time_step(model).step;
+  const BoundaryConditions conditions(scene, cloud, model.points, "in-memory lattice");
+  set_initial_rates(model.points);
+  ExplicitDynamics dynamics(model, conditions, h.step);
+  dynamics.initialize();
+  h.rows.push_back(energy_row(dynamics));
+  for (int s = 0; s < steps; ++s) {
+    dynamics.step(true);
+    h.rows.push_back(energy_row(dynamics));
+  }
+  return h;
+}
+
+void expect_distributed_run_equals_whole(int dimension, std::array<int, 3> n, bool micropolar) {
+  const ProcessGroup group = ProcessGroup::world();
+  const std::string name = std::to_string(dimension) + "-D " + (micropolar ? "micro-polar" : "non-polar");
+  const double dx = 1e-3;
+  const Scene scene = verification::make_scene(dimension, micropolar, dx, 3.05);
+  const PointCloud cloud = verification::make_lattice(dimension, n, dx, scene.thickness);
+  const ModelOptions o = model_options(scene);
+  const int steps = 40;
+
+  Model whole = verification::make_model(cloud, scene);
+  const History expected = integrate(whole, scene, cloud, steps);
+
+  const std::vector<double> x = cloud_positions(cloud);
+  const double reach = bond_reach(o.horizon, o.spacing);
+  std::vector<std::int64_t> id(cloud.size());
+  std::iota(id.begin(), id.end(), std::int64_t{0});
+  const std::vector<std::int32_t> part =
+      coordinate_bisection({dimension, x, bond_counts({dimension, x.data(), cloud.size()}, reach), id}, group.size());
+  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
+  const HaloExchange halo(local, part);
+  Model model = build_local_model(cloud, local, halo, group, o);
+  const History got = integrate(model, scene, local_cloud(cloud, local), steps);
+
+  EXPECT_EQ(bits(got.step), bits(expected.step)) << name << ": critical step";
+  ASSERT_EQ(got.rows.size(), expected.rows.size());
+  std::size_t differing_rows = 0;
+  for (std::size_t r = 0; r < got.rows.size(); ++r)
+    for (std::size_t k = 0; k < got.rows[r].size(); ++k)
+      differing_rows += bits(got.rows[r][k]) != bits(expected.rows[r][k]);
+  EXPECT_EQ(differing_rows, 0u) << name << ": energy entries differing";
+  EXPECT_GT(expected.rows.back()[0], 0.0);
+  const PointData& p = model.points;
+  const int D = p.dimension, R = p.rotation_components;
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const auto g = static_cast<std::size_t>(p.global_id[i]);
+    for (int c = 0; c < D; ++c) {
+      differing += bits(p.displacement[i * D + c]) != bits(whole.points.displacement[g * D + c]);
+      differing += bits(p.velocity[i * D + c]) != bits(whole.points.velocity[g * D + c]);
+    }
+    for (int c = 0; c < R; ++c) differing += bits(p.rotation[i * R + c]) != bits(whole.points.rotation[g * R + c]);
+  }
+  EXPECT_EQ(differing, 0u) << name << ", process " << group.rank() << " of " << group.size();
+}
+
+TEST(MpiRun, MicropolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole(2, {24, 16, 1}, true); }
+
+TEST(MpiRun, NonPolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole(2, {24, 16, 1}, false); }
+
+TEST(MpiRun, MicropolarBlockVibratesAsOnOneProcess) { expect_distributed_run_equals_whole(3, {8, 7, 6}, true); }
+
+TEST(MpiRun, DamageIsRefusedAcrossProcesses) {
+  const ProcessGroup group = ProcessGroup::world();
+  Scene scene = verification::make_scene(2, true, 1e-3, 3.05);
+  const PointCloud cloud = verification::make_lattice(2, {8, 8, 1}, 1e-3, scene.thickness);
+  ModelOptions o = model_options(scene);
+  o.effects.damage = true;
+  std::vector<std::int32_t> part(cloud.size());
+  for (std::size_t i = 0; i < part.size(); ++i)
+    part[i] = static_cast<std::int32_t>(i % static_cast<std::size_t>(group.size()));
+  const LocalPoints local = local_points(cloud, part, group.rank(), bond_reach(o.horizon, o.spacing));
+  const HaloExchange halo(local, part);
+  try {
+    build_local_model(cloud, local, halo, group, o);
+    ADD_FAILURE() << "a damage model was built across processes";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("damage"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  mppm::solver::MpiSession mpi(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (mppm::solver::ProcessGroup::world().rank() != 0) GTEST_FLAG_SET(brief, true);
+  return RUN_ALL_TESTS();
+}
