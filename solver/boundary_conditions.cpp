@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
 #include "solver/compiled_effects.hpp"
@@ -324,51 +325,113 @@ void BoundaryConditions::add_surface_loads(const PointData&, double t, std::vect
   }
 }
 
+namespace {
+
+// The sums of one condition's load.csv entries: the volume of its points, their volume-weighted
+// displacement, and its force.
+struct LoadSums {
+  ExactSum volume;
+  std::array<ExactSum, 3> moment, force;
+  bool has_force = false;  // else the force is the applied traction times the area
+};
+
+void add_displacement_moment(const PointData& p, const std::vector<std::int32_t>& points, LoadSums& s) {
+  const int D = p.dimension;
+  for (const auto i : points) {
+    s.volume += p.volume[i];
+    for (int c = 0; c < D; ++c) s.moment[c] += p.volume[i] * p.displacement[i * D + c];
+  }
+}
+
+}  // namespace
+
 std::vector<BoundaryConditions::LoadValues> BoundaryConditions::load_values(const PointData& p, double t) const {
   const int D = dimension_;
+  // Exact sums (exact_sum.hpp), over all processes in a distributed run: the same bits however the
+  // points are split.
+  std::vector<LoadSums> sums(condition_count_);
+  for (const KinematicLayer& layer : layers_) {
+    LoadSums& s = sums[layer.condition];
+    add_displacement_moment(p, layer.points, s);
+    s.has_force = true;
+    for (auto i : layer.points)
+      for (int c = 0; c < D; ++c)
+        if (layer.constrained[c]) s.force[c] -= p.force[i * D + c] * p.volume[i];
+  }
+  for (const LoadedSurface& surface : surfaces_) {
+    LoadSums& s = sums[surface.condition];
+    add_displacement_moment(p, surface.points, s);
+    if (!surface.pressure) continue;
+    s.has_force = true;
+    const double pressure = surface.value.component_at(t, 0);
+    const double scale = surface.area / surface.volume_sum;
+    for (std::size_t k = 0; k < surface.points.size(); ++k) {
+      const auto i = static_cast<std::size_t>(surface.points[k]);
+      for (int c = 0; c < D; ++c) s.force[c] -= pressure * scale * surface.normal[k * D + c] * p.volume[i];
+    }
+  }
+  std::vector<ExactSum> flat;
+  for (const LoadSums& s : sums) {
+    flat.push_back(s.volume);
+    flat.insert(flat.end(), s.moment.begin(), s.moment.end());
+    flat.insert(flat.end(), s.force.begin(), s.force.end());
+  }
+  std::vector<double> value(flat.size());
+  if (p.processes)
+    value = p.processes->sum(flat);
+  else
+    for (std::size_t k = 0; k < flat.size(); ++k) value[k] = flat[k].value();
   std::vector<LoadValues> out(condition_count_);
   for (std::size_t k = 0; k < condition_count_; ++k) {
+    const double* v = &value[k * 7];  // volume, moment (3), force (3)
     out[k].name = names_[k];
     out[k].displacement.assign(D, 0.0);
     out[k].force.assign(D, 0.0);
+    if (v[0] > 0.0)
+      for (int c = 0; c < D; ++c) out[k].displacement[c] = v[1 + c] / v[0];
+    for (int c = 0; c < D; ++c) out[k].force[c] = sums[k].has_force ? v[4 + c] : 0.0;
   }
-  // Exact sums (exact_sum.hpp): the same bits however the points are split among processes.
-  auto mean_displacement = [&](const std::vector<std::int32_t>& pts, std::vector<double>& u) {
-    ExactSum vsum;
-    std::array<ExactSum, 3> moment;
-    for (auto i : pts) {
-      vsum += p.volume[i];
-      for (int c = 0; c < D; ++c) moment[c] += p.volume[i] * p.displacement[i * D + c];
-    }
-    if (vsum.value() > 0.0)
-      for (int c = 0; c < D; ++c) u[c] = moment[c].value() / vsum.value();
-  };
-  for (const KinematicLayer& layer : layers_) {
-    LoadValues& v = out[layer.condition];
-    mean_displacement(layer.points, v.displacement);
-    std::array<ExactSum, 3> force;
-    for (auto i : layer.points)
-      for (int c = 0; c < D; ++c)
-        if (layer.constrained[c]) force[c] -= p.force[i * D + c] * p.volume[i];
-    for (int c = 0; c < D; ++c) v.force[c] = force[c].value();
-  }
-  for (const LoadedSurface& s : surfaces_) {
-    LoadValues& v = out[s.condition];
-    mean_displacement(s.points, v.displacement);
-    const double scale = s.area / s.volume_sum;
-    if (s.pressure) {
-      const double pressure = s.value.component_at(t, 0);
-      std::array<ExactSum, 3> force;
-      for (std::size_t k = 0; k < s.points.size(); ++k) {
-        const auto i = static_cast<std::size_t>(s.points[k]);
-        for (int c = 0; c < D; ++c) force[c] -= pressure * scale * s.normal[k * D + c] * p.volume[i];
-      }
-      for (int c = 0; c < D; ++c) v.force[c] = force[c].value();
-    } else {
-      for (int c = 0; c < D; ++c) v.force[c] = s.value.component_at(t, c) * s.area;
-    }
-  }
+  for (const LoadedSurface& surface : surfaces_)
+    if (!surface.pressure)
+      for (int c = 0; c < D; ++c) out[surface.condition].force[c] = surface.value.component_at(t, c) * surface.area;
   return out;
+}
+
+void BoundaryConditions::keep_owned(const LocalPoints& local) {
+  if (!drained_.empty() || !fed_.empty())
+    throw std::invalid_argument("the pore fluid's boundary conditions do not run across processes yet");
+  const auto first = local.global_id.begin();
+  const auto last = first + static_cast<std::ptrdiff_t>(local.owned);
+  // The local index of global point g, or -1 when this process does not own it.
+  auto local_index = [&](std::int32_t g) -> std::int32_t {
+    const auto it = std::lower_bound(first, last, static_cast<std::int64_t>(g));
+    return it != last && *it == g ? static_cast<std::int32_t>(it - first) : -1;
+  };
+  for (KinematicLayer& layer : layers_) {
+    std::vector<std::int32_t> kept;
+    for (const std::int32_t g : layer.points)
+      if (const std::int32_t i = local_index(g); i >= 0) kept.push_back(i);
+    layer.points = std::move(kept);
+  }
+  const auto D = static_cast<std::size_t>(dimension_);
+  for (LoadedSurface& s : surfaces_) {
+    std::vector<std::int32_t> kept;
+    std::vector<double> normal;
+    for (std::size_t k = 0; k < s.points.size(); ++k) {
+      const std::int32_t i = local_index(s.points[k]);
+      if (i < 0) continue;
+      kept.push_back(i);
+      if (s.pressure)
+        normal.insert(normal.end(), s.normal.begin() + static_cast<std::ptrdiff_t>(k * D),
+                      s.normal.begin() + static_cast<std::ptrdiff_t>((k + 1) * D));
+    }
+    s.points = std::move(kept);
+    s.normal = std::move(normal);
+  }
+  std::vector<std::uint8_t> prescribed(local.global_id.size(), 0);
+  for (std::size_t k = 0; k < local.owned; ++k)
+    prescribed[k] = prescribed_[static_cast<std::size_t>(local.global_id[k])];
+  prescribed_ = std::move(prescribed);
 }
 
 }  // namespace mppm::solver

@@ -14,6 +14,7 @@
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
 #include "solver/fluid_boundaries.hpp"
+#include "solver/local_points.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
@@ -128,6 +129,12 @@ class BoundaryConditions {
   std::vector<LoadValues> load_values(const PointData& points, double t) const;
 
   std::size_t condition_count() const { return condition_count_; }
+
+  // A distributed run's process (docs/theory.md section 13): the conditions matched against the
+  // whole points file (their checks and loaded volumes are the whole model's) keep the points this
+  // process owns, renumbered to its local indices. The pore fluid's conditions are refused
+  // (std::invalid_argument).
+  void keep_owned(const LocalPoints& local);
 
  private:
   // The points' rotation components R, count, region, boundary id and volume (empty region or

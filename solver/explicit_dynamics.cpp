@@ -316,6 +316,8 @@ void ExplicitDynamics::complete_step(bool with_energy) {
   const StepConstants sc = step_constants();
   const BreakageEnergy breakage = model_.effects.damage ? breakage_energy(sc) : BreakageEnergy{};
   if (second_half_kick(sc)) finite_ = false;
+  // Distributed: every process stops at the step any one of them found a non-finite value.
+  if (const ProcessGroup* group = model_.points.processes) finite_ = !group->any(!finite_);
   book_step_energy(breakage);
   ++steps_;
   // The flow at the skeleton's new configuration, before the energies of the step's end

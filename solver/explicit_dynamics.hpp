@@ -126,7 +126,8 @@ class ExplicitDynamics {
   // (total + dissipated - initial - external work) / max(|external work|, |total + dissipated|,
   // total, initial, kinetic_terms, |each dissipation|, tiny)
   double balance_error() const;
-  // False once a non-finite displacement, velocity or rotation has appeared.
+  // False once a non-finite displacement, velocity or rotation has appeared (on any process of a
+  // distributed run: all agree at the same step).
   bool finite() const { return finite_; }
   // The points holding non-finite values now (a full scan: call it when finite() turned false).
   // The lowest body point whose pore pressure is not finite (the unsaturated retention inverse found no

@@ -1,12 +1,14 @@
-// Run under mpirun with 1 to 4 processes (tests/mpi.cmake): a free vibration integrated on a
-// partitioned lattice (build_local_model, ExplicitDynamics with the ghosts fetched in every force
-// evaluation and the energies summed over all processes) gives the one-process critical step,
-// energy rows and final state to the last bit.
+// Run under mpirun with 1 to 4 processes (tests/mpi.cmake): a free vibration and a bar pulled by
+// its end layers, integrated on a partitioned lattice (build_local_model, the conditions keeping
+// each process's owned points, ExplicitDynamics with the ghosts fetched in every force evaluation
+// and every sum over all processes), give the one-process critical step, energy and load rows and
+// final state to the last bit.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "solver/process_group.hpp"
 #include "tests/verification/problems/generic_scene.hpp"
 #include "tests/verification/problems/periodic_lattice.hpp"
+#include "tests/verification/solver_test_lattice.hpp"
 
 namespace {
 
@@ -56,37 +59,70 @@ std::vector<double> energy_row(const ExplicitDynamics& d) {
   return {e.kinetic, e.rotational_kinetic, e.elastic, e.stabilization, e.external_work, e.kinetic_terms};
 }
 
+// The rows of load.csv's values: each condition's mean displacement and force.
+std::vector<double> load_row(const BoundaryConditions& conditions, const ExplicitDynamics& d, const PointData& p) {
+  std::vector<double> row;
+  for (const auto& v : conditions.load_values(p, d.time())) {
+    row.insert(row.end(), v.displacement.begin(), v.displacement.end());
+    row.insert(row.end(), v.force.begin(), v.force.end());
+  }
+  return row;
+}
+
 struct History {
   double step = 0.0;
   std::vector<std::vector<double>> rows;
 };
 
-History integrate(Model& model, const Scene& scene, const PointCloud& cloud, int steps) {
+// `local`: the process's points (the conditions keep its owned ones), or null for one process.
+History integrate(Model& model, const Scene& scene, const PointCloud& cloud, const LocalPoints* local, int steps) {
   History h;
   h.step = 0.8 * critical_time_step(model).step;
-  const BoundaryConditions conditions(scene, cloud, model.points, "in-memory lattice");
+  BoundaryConditions conditions(scene, cloud, "in-memory lattice");
+  if (local) conditions.keep_owned(*local);
   set_initial_rates(model.points);
   ExplicitDynamics dynamics(model, conditions, h.step);
   dynamics.initialize();
-  h.rows.push_back(energy_row(dynamics));
+  auto record = [&] {
+    std::vector<double> row = energy_row(dynamics);
+    const std::vector<double> loads = load_row(conditions, dynamics, model.points);
+    row.insert(row.end(), loads.begin(), loads.end());
+    h.rows.push_back(row);
+  };
+  record();
   for (int s = 0; s < steps; ++s) {
     dynamics.step(true);
-    h.rows.push_back(energy_row(dynamics));
+    record();
   }
   return h;
 }
 
-void expect_distributed_run_equals_whole(int dimension, std::array<int, 3> n, bool micropolar) {
+struct Case {
+  int dimension;
+  std::array<int, 3> n;
+  bool micropolar;
+  bool pulled = false;  // end layers: the left held, the right pulled by a velocity pulse
+};
+
+void expect_distributed_run_equals_whole(const Case& k) {
   const ProcessGroup group = ProcessGroup::world();
-  const std::string name = std::to_string(dimension) + "-D " + (micropolar ? "micro-polar" : "non-polar");
+  const std::string name =
+      std::to_string(k.dimension) + "-D " + (k.micropolar ? "micro-polar" : "non-polar") + (k.pulled ? ", pulled" : "");
+  const int dimension = k.dimension;
   const double dx = 1e-3;
-  const Scene scene = verification::make_scene(dimension, micropolar, dx, 3.05);
-  const PointCloud cloud = verification::make_lattice(dimension, n, dx, scene.thickness);
+  Scene scene = verification::make_scene(dimension, k.micropolar, dx, 3.05);
+  PointCloud cloud = verification::make_lattice(dimension, k.n, dx, scene.thickness);
+  if (k.pulled) {
+    solver::testing::add_end_layers(cloud, k.n[0], 4, "displacement", "velocity");
+    scene.boundary_conditions = {
+        solver::testing::kinematic_condition("left", BoundaryType::displacement, {0.0}, {{0.0, 0.0}}),
+        solver::testing::kinematic_condition("right", BoundaryType::velocity, {0.0, 2e-6}, {{0.0, 0.0}, {1.0, 0.5}})};
+  }
   const ModelOptions o = model_options(scene);
   const int steps = 40;
 
   Model whole = verification::make_model(cloud, scene);
-  const History expected = integrate(whole, scene, cloud, steps);
+  const History expected = integrate(whole, scene, cloud, nullptr, steps);
 
   const std::vector<double> x = cloud_positions(cloud);
   const double reach = bond_reach(o.horizon, o.spacing);
@@ -97,16 +133,19 @@ void expect_distributed_run_equals_whole(int dimension, std::array<int, 3> n, bo
   const LocalPoints local = local_points(cloud, part, group.rank(), reach);
   const HaloExchange halo(local, part);
   Model model = build_local_model(cloud, local, halo, group, o);
-  const History got = integrate(model, scene, local_cloud(cloud, local), steps);
+  const History got = integrate(model, scene, cloud, &local, steps);
 
   EXPECT_EQ(bits(got.step), bits(expected.step)) << name << ": critical step";
   ASSERT_EQ(got.rows.size(), expected.rows.size());
   std::size_t differing_rows = 0;
   for (std::size_t r = 0; r < got.rows.size(); ++r)
-    for (std::size_t k = 0; k < got.rows[r].size(); ++k)
-      differing_rows += bits(got.rows[r][k]) != bits(expected.rows[r][k]);
-  EXPECT_EQ(differing_rows, 0u) << name << ": energy entries differing";
+    for (std::size_t e = 0; e < got.rows[r].size(); ++e)
+      differing_rows += bits(got.rows[r][e]) != bits(expected.rows[r][e]);
+  EXPECT_EQ(differing_rows, 0u) << name << ": energy and load entries differing";
   EXPECT_GT(expected.rows.back()[0], 0.0);
+  if (k.pulled) {
+    EXPECT_NE(expected.rows.back()[4], 0.0) << name << ": the layers did work";
+  }
   const PointData& p = model.points;
   const int D = p.dimension, R = p.rotation_components;
   std::size_t differing = 0;
@@ -121,11 +160,53 @@ void expect_distributed_run_equals_whole(int dimension, std::array<int, 3> n, bo
   EXPECT_EQ(differing, 0u) << name << ", process " << group.rank() << " of " << group.size();
 }
 
-TEST(MpiRun, MicropolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole(2, {24, 16, 1}, true); }
+TEST(MpiRun, MicropolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({2, {24, 16, 1}, true}); }
 
-TEST(MpiRun, NonPolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole(2, {24, 16, 1}, false); }
+TEST(MpiRun, NonPolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({2, {24, 16, 1}, false}); }
 
-TEST(MpiRun, MicropolarBlockVibratesAsOnOneProcess) { expect_distributed_run_equals_whole(3, {8, 7, 6}, true); }
+TEST(MpiRun, MicropolarBlockVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({3, {8, 7, 6}, true}); }
+
+// Layers held and pulled: their prescribed motion, reactions, mean displacements and work.
+TEST(MpiRun, PulledMicropolarBarGivesTheOneProcessLoadsAndWork) {
+  expect_distributed_run_equals_whole({2, {48, 8, 1}, true, true});
+}
+
+TEST(MpiRun, PulledNonPolarBarGivesTheOneProcessLoadsAndWork) {
+  expect_distributed_run_equals_whole({2, {48, 8, 1}, false, true});
+}
+
+// A NaN in the force of one point owned by the last process (the step's after-forces hook, as
+// mppm-solve --inject-nan does): every process finds the run non-finite at that very step, so that
+// all stop together instead of waiting for each other.
+TEST(MpiRun, EveryProcessStopsAtTheStepOfANaNOnOne) {
+  const ProcessGroup group = ProcessGroup::world();
+  const Scene scene = verification::make_scene(2, true, 1e-3, 3.05);
+  const PointCloud cloud = verification::make_lattice(2, {24, 16, 1}, 1e-3, scene.thickness);
+  const ModelOptions o = model_options(scene);
+  const std::vector<double> x = cloud_positions(cloud);
+  const double reach = bond_reach(o.horizon, o.spacing);
+  std::vector<std::int64_t> id(cloud.size());
+  std::iota(id.begin(), id.end(), std::int64_t{0});
+  const std::vector<std::int32_t> part =
+      coordinate_bisection({2, x, bond_counts({2, x.data(), cloud.size()}, reach), id}, group.size());
+  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
+  const HaloExchange halo(local, part);
+  Model model = build_local_model(cloud, local, halo, group, o);
+  BoundaryConditions conditions(scene, cloud, "in-memory lattice");
+  conditions.keep_owned(local);
+  ExplicitDynamics dynamics(model, conditions, 0.8 * critical_time_step(model).step);
+  dynamics.initialize();
+  const bool injecting = group.rank() == group.size() - 1;
+  constexpr std::int64_t kNanStep = 5;
+  std::int64_t stopped_at = -1;
+  for (int s = 0; s < 10 && stopped_at < 0; ++s) {
+    dynamics.step(false, [&](PointData& p, std::int64_t step) {
+      if (injecting && step == kNanStep) p.force[p.owned / 2 * 2] = std::numeric_limits<double>::quiet_NaN();
+    });
+    if (!dynamics.finite()) stopped_at = dynamics.steps();
+  }
+  EXPECT_EQ(stopped_at, kNanStep) << "process " << group.rank() << " of " << group.size();
+}
 
 TEST(MpiRun, DamageIsRefusedAcrossProcesses) {
   const ProcessGroup group = ProcessGroup::world();
