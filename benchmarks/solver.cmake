@@ -15,3 +15,8 @@ target_link_libraries(mppm-bench-checkpoint PRIVATE mppm_solver mppm_warnings)
 # calibration (workflows/crack-initiation). Uses the verification problems' stress-wave plate.
 add_executable(mppm-crack-initiation ${CMAKE_CURRENT_LIST_DIR}/crack_initiation.cpp)
 target_link_libraries(mppm-crack-initiation PRIVATE mppm_verification_problems mppm_solver mppm_warnings)
+# mppm-bench-mpi: the distributed integrator's throughput and halo traffic under mpirun
+# (workflows/benchmarks: make mpi).
+add_executable(mppm-bench-mpi ${CMAKE_CURRENT_LIST_DIR}/bench_mpi.cpp)
+target_link_libraries(mppm-bench-mpi PRIVATE mppm_solver mppm_warnings MPI::MPI_C)
+target_include_directories(mppm-bench-mpi PRIVATE ${PROJECT_SOURCE_DIR})

@@ -87,6 +87,7 @@ HaloExchange::HaloExchange(const LocalPoints& local, std::span<const std::int32_
 }
 
 void HaloExchange::update_ghosts(std::vector<double>& values, int components) const {
+  const double start = MPI_Wtime();
   const auto c = static_cast<std::size_t>(components);
   constexpr int kTag = 23;
   std::vector<MPI_Request> requests;
@@ -103,6 +104,8 @@ void HaloExchange::update_ghosts(std::vector<double>& values, int components) co
     out.resize(links_[l].send.size() * c);
     if (out.empty()) continue;
     for (std::size_t k = 0; k < links_[l].send.size(); ++k) std::copy_n(&values[links_[l].send[k] * c], c, &out[k * c]);
+    traffic_.values_sent += static_cast<std::int64_t>(out.size());
+    ++traffic_.messages_sent;
     requests.emplace_back();
     MPI_Isend(out.data(), as_count(out.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
   }
@@ -110,6 +113,8 @@ void HaloExchange::update_ghosts(std::vector<double>& values, int components) co
   for (std::size_t l = 0; l < links_.size(); ++l)
     for (std::size_t k = 0; k < links_[l].receive.size(); ++k)
       std::copy_n(&receive_buffer_[l][k * c], c, &values[links_[l].receive[k] * c]);
+  ++traffic_.exchanges;
+  traffic_.seconds += MPI_Wtime() - start;
 }
 
 std::size_t HaloExchange::points_sent() const {

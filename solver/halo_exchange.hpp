@@ -26,6 +26,14 @@ class HaloExchange final : public GhostExchange {
   std::size_t points_sent() const;
   std::size_t points_received() const;
 
+  // What the exchanges since construction cost this process: their number, the values (doubles)
+  // and messages it sent, and the wall time inside update_ghosts (packing, waiting, unpacking).
+  struct Traffic {
+    std::int64_t exchanges = 0, values_sent = 0, messages_sent = 0;
+    double seconds = 0.0;
+  };
+  const Traffic& traffic() const { return traffic_; }
+
  private:
   struct Link {
     int rank = 0;
@@ -34,6 +42,7 @@ class HaloExchange final : public GhostExchange {
   };
   std::vector<Link> links_;
   mutable std::vector<std::vector<double>> send_buffer_, receive_buffer_;
+  mutable Traffic traffic_;
 };
 
 }  // namespace mppm::solver

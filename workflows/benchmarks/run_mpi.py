@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""The distributed integrator against the threaded one on this machine (make mpi): mppm-bench-mpi
+on the crack-branching plate's lattice (2-D) and the 3-D benchmark block, micro-polar, elastic, at
+1 process x 1 thread, 1 process x 2 threads and 2 processes x 1 thread, the runs taking turns and
+the fastest of REPEATS kept; and weak scaling, 1 process on the plate against 2 on a plate twice as
+long (plate-wide). Writes the CSV and results_mpi.md, with the targets: 2 processes x 1 thread at
+most 10 % slower than 1 process x 2 threads, and the weak-scaling efficiency.
+
+    run_mpi.py --bin BUILD/bin --csv out/mpi.csv --report results_mpi.md [--repeats 3] [--steps 200]
+"""
+import argparse
+import csv
+import io
+import os
+import subprocess
+import sys
+
+RUNS = [("plate", 1, 1), ("plate", 1, 2), ("plate", 2, 1), ("block", 1, 1), ("block", 1, 2), ("block", 2, 1),
+        ("plate-wide", 2, 1)]
+# Steps per case: the block's step costs about 60 times the plate's.
+STEPS = {"plate": 1.0, "plate-wide": 1.0, "block": 0.1}
+
+
+def run_once(binary, case, processes, threads, steps):
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    # One core per single-threaded process; a process with threads may use every core.
+    binding = "core" if threads == 1 else "none"
+    command = ["mpirun", "--oversubscribe", "--bind-to", binding, "-np", str(processes), binary, case, str(steps)]
+    result = subprocess.run(command, env=env, capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit(f"run_mpi.py: {' '.join(command)} failed ({result.returncode}):\n{result.stderr}")
+    rows = list(csv.DictReader(io.StringIO(result.stdout)))
+    if len(rows) != 1:
+        sys.exit(f"run_mpi.py: {' '.join(command)} printed no row:\n{result.stdout}")
+    return rows[0]
+
+
+def measure(binary, repeats, steps):
+    fastest = {}
+    for _ in range(repeats):
+        for case, processes, threads in RUNS:
+            row = run_once(binary, case, processes, threads, max(1, int(steps * STEPS[case])))
+            key = (case, processes, threads)
+            if key not in fastest or float(row["loop_seconds"]) < float(fastest[key]["loop_seconds"]):
+                fastest[key] = row
+    return fastest
+
+
+def report(fastest, path, machine):
+    def loop(case, processes, threads):
+        return float(fastest[(case, processes, threads)]["loop_seconds"])
+
+    lines = ["# Distributed runs on this machine (workflows/benchmarks: make mpi)", "",
+             f"Written by `run_mpi.py` from `mppm-bench-mpi` ({machine}). Elastic micro-polar steps without "
+             "energy rows, the fastest of the repeats; bond updates per second over all processes; the halo's "
+             "time is the slowest process's time inside the exchanges (packing, waiting, unpacking).", "",
+             "| case | processes x threads | points | bonds | steps | loop [s] | bond updates/s | halo [s] | halo share "
+             "| values sent / step | messages / step | ghosts | imbalance |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for (case, processes, threads), r in fastest.items():
+        lines.append(f"| {case} | {processes} x {threads} | {r['points']} | {r['bonds']} | {r['steps']} | "
+                     f"{float(r['loop_seconds']):.3f} | {float(r['bond_updates_per_second']):.3g} | "
+                     f"{float(r['halo_seconds']):.3f} | {100 * float(r['halo_share']):.1f} % | "
+                     f"{float(r['values_sent_per_step']):.0f} | {float(r['messages_per_step']):.0f} | {r['ghosts']} | "
+                     f"{float(r['imbalance']):.4f} |")
+    lines += ["", "| check | measured | target |", "|---|---|---|"]
+    for case in ("plate", "block"):
+        ratio = loop(case, 2, 1) / loop(case, 1, 2)
+        mark = "met" if ratio <= 1.10 else "not met"
+        lines.append(f"| {case}: 2 processes x 1 thread over 1 process x 2 threads (loop time) | {ratio:.3f} | "
+                     f"<= 1.10 ({mark}) |")
+    # Weak scaling: twice the points on twice the processes; per-step time against one process.
+    steps_1 = float(fastest[("plate", 1, 1)]["steps"])
+    steps_2 = float(fastest[("plate-wide", 2, 1)]["steps"])
+    efficiency = (loop("plate", 1, 1) / steps_1) / (loop("plate-wide", 2, 1) / steps_2)
+    lines.append(f"| weak scaling, plate on 1 process against plate-wide (twice as long) on 2 | {efficiency:.3f} | "
+                 "1 = ideal |")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--bin", required=True)
+    p.add_argument("--csv", required=True)
+    p.add_argument("--report", required=True)
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--steps", type=int, default=200)
+    p.add_argument("--machine", default="")
+    args = p.parse_args(argv)
+    fastest = measure(os.path.join(args.bin, "mppm-bench-mpi"), args.repeats, args.steps)
+    rows = list(fastest.values())
+    with open(args.csv, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    report(fastest, args.report, args.machine)
+    print(open(args.report).read())
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
