@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/parallel_policy.hpp"
+
 namespace mppm::solver {
 
 namespace {
@@ -48,6 +50,21 @@ std::vector<std::vector<std::int64_t>> exchange_requests(const std::vector<std::
     requested[k].assign(first, first + receive_count[k]);
   }
   return requested;
+}
+
+// Packs (`pack`: rows[k] of `values` to row k of `buffer`) or unpacks (the reverse) `c` values per
+// point, on every thread when there are many: each row is its own, so the threads write apart.
+void copy_rows(const std::vector<std::size_t>& rows, std::vector<double>& values, std::vector<double>& buffer,
+               std::size_t c, bool pack) {
+  const auto n = static_cast<std::int64_t>(rows.size());
+#pragma omp parallel for schedule(static) if (thread_point_loop(rows.size()))
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto k = static_cast<std::size_t>(s);
+    if (pack)
+      std::copy_n(&values[rows[k] * c], c, &buffer[k * c]);
+    else
+      std::copy_n(&buffer[k * c], c, &values[rows[k] * c]);
+  }
 }
 
 }  // namespace
@@ -103,16 +120,14 @@ void HaloExchange::update_ghosts(std::vector<double>& values, int components) co
     std::vector<double>& out = send_buffer_[l];
     out.resize(links_[l].send.size() * c);
     if (out.empty()) continue;
-    for (std::size_t k = 0; k < links_[l].send.size(); ++k) std::copy_n(&values[links_[l].send[k] * c], c, &out[k * c]);
+    copy_rows(links_[l].send, values, out, c, true);
     traffic_.values_sent += static_cast<std::int64_t>(out.size());
     ++traffic_.messages_sent;
     requests.emplace_back();
     MPI_Isend(out.data(), as_count(out.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  for (std::size_t l = 0; l < links_.size(); ++l)
-    for (std::size_t k = 0; k < links_[l].receive.size(); ++k)
-      std::copy_n(&receive_buffer_[l][k * c], c, &values[links_[l].receive[k] * c]);
+  for (std::size_t l = 0; l < links_.size(); ++l) copy_rows(links_[l].receive, values, receive_buffer_[l], c, false);
   ++traffic_.exchanges;
   traffic_.seconds += MPI_Wtime() - start;
 }
