@@ -4,7 +4,8 @@
 // CSV row (process 0): the case, processes, threads, points, bonds, steps, the loop's wall time (the
 // slowest process), bond updates per second, the halo exchanges' wall time (the slowest process) and
 // share, the values and messages sent per step (all processes), the ghosts and the partition's
-// imbalance. Not a test: workflows/benchmarks/run_mpi.py runs it and writes results_mpi.md.
+// imbalance (the heaviest process's bonds over the mean). Not a test: workflows/benchmarks/run_mpi.py
+// runs it and writes results_mpi.md.
 //
 //   mpirun -np 2 mppm-bench-mpi plate|plate-wide|block [STEPS]
 #include <mpi.h>
@@ -12,13 +13,12 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <numeric>
 #include <string>
 #include <vector>
 
 #include "solver/boundary_conditions.hpp"
-#include "solver/coordinate_bisection.hpp"
 #include "solver/critical_time_step.hpp"
+#include "solver/distributed_model.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/halo_exchange.hpp"
 #include "solver/horizon_search.hpp"
@@ -74,15 +74,9 @@ int main(int argc, char** argv) {
   const PointCloud cloud = verification::make_lattice(k.dimension, k.n, dx, scene.thickness);
   const ModelOptions o = model_options(scene);
 
-  const std::vector<double> x = cloud_positions(cloud);
-  const double reach = bond_reach(o.horizon, o.spacing);
-  const std::vector<std::int64_t> weight = bond_counts({k.dimension, x.data(), cloud.size()}, reach);
-  std::vector<std::int64_t> id(cloud.size());
-  std::iota(id.begin(), id.end(), std::int64_t{0});
-  const std::vector<std::int32_t> part = coordinate_bisection({k.dimension, x, weight, id}, group.size());
-  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
-  const HaloExchange halo(local, part);
-  Model model = build_local_model(cloud, local, halo, group, o);
+  DistributedModel distributed = build_distributed_model(cloud, o, group);
+  Model& model = distributed.model;
+  const LocalPoints& local = distributed.local;
   BoundaryConditions conditions(scene, cloud, "in-memory lattice");
   conditions.keep_owned(local);
   ExplicitDynamics dynamics(model, conditions, 0.8 * critical_time_step(model).step);
@@ -90,18 +84,20 @@ int main(int argc, char** argv) {
     model.points.velocity[i] = 1e-3 * static_cast<double>(i % 7);
   dynamics.initialize();
 
-  const HaloExchange::Traffic before = halo.traffic();
+  const HaloExchange::Traffic before = distributed.halo->traffic();
   MPI_Barrier(MPI_COMM_WORLD);
   const double start = MPI_Wtime();
   for (int s = 0; s < steps; ++s) dynamics.step(false);
   const double loop = max_over_processes(MPI_Wtime() - start);
-  const HaloExchange::Traffic& after = halo.traffic();
+  const HaloExchange::Traffic& after = distributed.halo->traffic();
   const double halo_seconds = max_over_processes(after.seconds - before.seconds);
   const std::int64_t values = total_over_processes(after.values_sent - before.values_sent);
   const std::int64_t messages = total_over_processes(after.messages_sent - before.messages_sent);
   const std::int64_t bonds = total_over_processes(static_cast<std::int64_t>(model.bonds.bond_count()));
   const std::int64_t ghosts = total_over_processes(static_cast<std::int64_t>(model.points.ghost));
-  const double imbalance = partition_imbalance(weight, part, group.size());
+  // The heaviest process's bonds over the mean.
+  const double imbalance =
+      max_over_processes(static_cast<double>(model.bonds.bond_count())) * group.size() / static_cast<double>(bonds);
   if (group.rank() == 0) {
     std::printf(
         "case,processes,threads,points,bonds,steps,loop_seconds,bond_updates_per_second,halo_seconds,halo_share,"

@@ -4,7 +4,9 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "solver/coordinate_bisection.hpp"
 #include "solver/halo_points.hpp"
+#include "solver/horizon_search.hpp"
 
 namespace mppm::solver {
 
@@ -16,6 +18,14 @@ std::vector<double> cloud_positions(const PointCloud& cloud) {
     for (std::size_t c = 0; c < D; ++c) x[i * D + c] = xyz[c];
   }
   return x;
+}
+
+std::vector<std::int32_t> partition_cloud(const PointCloud& cloud, double reach, int parts) {
+  const std::vector<double> x = cloud_positions(cloud);
+  std::vector<std::int64_t> id(cloud.size());
+  std::iota(id.begin(), id.end(), std::int64_t{0});
+  const std::vector<std::int64_t> weight = bond_counts({cloud.dimension, x.data(), cloud.size()}, reach);
+  return coordinate_bisection({cloud.dimension, x, weight, id}, parts);
 }
 
 LocalPoints local_points(const PointCloud& cloud, std::span<const std::int32_t> part_of, std::int32_t part,

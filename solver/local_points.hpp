@@ -13,6 +13,11 @@
 
 namespace mppm::solver {
 
+// The part (process) of every point of the cloud among `parts`: coordinate bisection weighted by each
+// point's bonds within `reach` (bond_reach), ties by the index in the points file
+// (coordinate_bisection.hpp).
+std::vector<std::int32_t> partition_cloud(const PointCloud& cloud, double reach, int parts);
+
 struct LocalPoints {
   std::vector<std::int64_t> global_id;  // of each local point: owned, then ghosts
   std::size_t owned = 0;

@@ -6,7 +6,7 @@ set(MPPM_MPI_ENVIRONMENT OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
 
 # mppm_add_mpi_test(NAME SOURCES...): one executable, run as mpi.NAME.npP.threadsT.
 function(mppm_add_mpi_test name)
-  add_executable(test_mpi_${name} ${ARGN})
+  add_executable(test_mpi_${name} ${ARGN} mpi/mpi_test_main.cpp)
   target_link_libraries(test_mpi_${name} PRIVATE GTest::gtest mppm_solver mppm_warnings MPI::MPI_C)
   foreach(processes 1 2 3 4)
     foreach(threads 1 2)

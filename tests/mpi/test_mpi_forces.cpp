@@ -7,12 +7,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <string>
 #include <vector>
 
 #include "solver/bond_families.hpp"
-#include "solver/coordinate_bisection.hpp"
 #include "solver/halo_exchange.hpp"
 #include "solver/horizon_search.hpp"
 #include "solver/internal_forces.hpp"
@@ -72,12 +70,8 @@ void expect_distributed_forces_equal_whole(const Case& k) {
   whole.kernel.forces_and_energy(whole.points, whole.bonds, whole.constants, nullptr);
 
   // This process's part.
-  const std::vector<double> x = cloud_positions(cloud);
   const double reach = bond_reach(o.horizon, o.spacing);
-  const std::vector<std::int64_t> weight = bond_counts({D, x.data(), cloud.size()}, reach);
-  std::vector<std::int64_t> id(cloud.size());
-  std::iota(id.begin(), id.end(), std::int64_t{0});
-  const std::vector<std::int32_t> part = coordinate_bisection({D, x, weight, id}, group.size());
+  const std::vector<std::int32_t> part = partition_cloud(cloud, reach, group.size());
   const LocalPoints local = local_points(cloud, part, group.rank(), reach);
   PointData p = make_local_point_data(cloud, local, o.effects);
   const HaloExchange halo(local, part);
@@ -135,10 +129,3 @@ TEST(MpiForces, MicropolarBlockGivesTheOneProcessBits) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  mppm::solver::MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (mppm::solver::ProcessGroup::world().rank() != 0) GTEST_FLAG_SET(brief, true);
-  return RUN_ALL_TESTS();
-}

@@ -107,12 +107,3 @@ TEST(MpiReductions, EveryProcessComputesThePartitionAndItsGhostsCoverTheLattice)
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  mppm::solver::MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  // The first process prints every test, the others only their failures; every process runs every
-  // test, and a failure on any of them fails the run (mpirun returns a nonzero exit code).
-  if (mppm::solver::ProcessGroup::world().rank() != 0) GTEST_FLAG_SET(brief, true);
-  return RUN_ALL_TESTS();
-}

@@ -9,13 +9,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 #include <string>
 #include <vector>
 
 #include "solver/boundary_conditions.hpp"
-#include "solver/coordinate_bisection.hpp"
 #include "solver/critical_time_step.hpp"
+#include "solver/distributed_model.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/halo_exchange.hpp"
 #include "solver/horizon_search.hpp"
@@ -124,15 +123,9 @@ void expect_distributed_run_equals_whole(const Case& k) {
   Model whole = verification::make_model(cloud, scene);
   const History expected = integrate(whole, scene, cloud, nullptr, steps);
 
-  const std::vector<double> x = cloud_positions(cloud);
-  const double reach = bond_reach(o.horizon, o.spacing);
-  std::vector<std::int64_t> id(cloud.size());
-  std::iota(id.begin(), id.end(), std::int64_t{0});
-  const std::vector<std::int32_t> part =
-      coordinate_bisection({dimension, x, bond_counts({dimension, x.data(), cloud.size()}, reach), id}, group.size());
-  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
-  const HaloExchange halo(local, part);
-  Model model = build_local_model(cloud, local, halo, group, o);
+  DistributedModel distributed = build_distributed_model(cloud, o, group);
+  Model& model = distributed.model;
+  const LocalPoints& local = distributed.local;
   const History got = integrate(model, scene, cloud, &local, steps);
 
   EXPECT_EQ(bits(got.step), bits(expected.step)) << name << ": critical step";
@@ -183,15 +176,9 @@ TEST(MpiRun, EveryProcessStopsAtTheStepOfANaNOnOne) {
   const Scene scene = verification::make_scene(2, true, 1e-3, 3.05);
   const PointCloud cloud = verification::make_lattice(2, {24, 16, 1}, 1e-3, scene.thickness);
   const ModelOptions o = model_options(scene);
-  const std::vector<double> x = cloud_positions(cloud);
-  const double reach = bond_reach(o.horizon, o.spacing);
-  std::vector<std::int64_t> id(cloud.size());
-  std::iota(id.begin(), id.end(), std::int64_t{0});
-  const std::vector<std::int32_t> part =
-      coordinate_bisection({2, x, bond_counts({2, x.data(), cloud.size()}, reach), id}, group.size());
-  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
-  const HaloExchange halo(local, part);
-  Model model = build_local_model(cloud, local, halo, group, o);
+  DistributedModel distributed = build_distributed_model(cloud, o, group);
+  Model& model = distributed.model;
+  const LocalPoints& local = distributed.local;
   BoundaryConditions conditions(scene, cloud, "in-memory lattice");
   conditions.keep_owned(local);
   ExplicitDynamics dynamics(model, conditions, 0.8 * critical_time_step(model).step);
@@ -228,10 +215,3 @@ TEST(MpiRun, DamageIsRefusedAcrossProcesses) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  mppm::solver::MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (mppm::solver::ProcessGroup::world().rank() != 0) GTEST_FLAG_SET(brief, true);
-  return RUN_ALL_TESTS();
-}
