@@ -3,6 +3,7 @@
 
 #include <omp.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <utility>
 
@@ -140,9 +141,35 @@ int start_run(const mppm::CommandLine& cl, const TestHooks& hooks) {
   return exit_code(solve(scene, std::move(cloud), options), options);
 }
 
+// The number of processes and this one's rank when a launcher (mpirun of OpenMPI, or a PMI launcher
+// such as MPICH's or Slurm's) started several copies; {1, 0} otherwise.
+std::pair<int, int> launched_processes() {
+  for (const auto& [size, rank] : {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
+                                   std::pair{"PMI_SIZE", "PMI_RANK"}, std::pair{"PMIX_SIZE", "PMIX_RANK"}})
+    if (const char* n = std::getenv(size)) {
+      const char* r = std::getenv(rank);
+      return {std::atoi(n), r ? std::atoi(r) : 0};
+    }
+  return {1, 0};
+}
+
+// mppm-solve does not yet run across processes (docs/theory.md section 13): copies started by mpirun
+// would each run the whole model into the same run directory. Refused before anything is read or
+// written, with the message from the first process only.
+int refuse_several_processes(int processes, int rank) {
+  if (rank == 0)
+    std::cerr << "mppm-solve: " << processes
+              << " processes were started (mpirun), but a run across processes is not built yet: each would run "
+                 "the whole model into the same run directory. Run one process and give it the cores with "
+                 "--threads N (the results are the same bits for any N).\n";
+  return mppm::kExitBadInput;
+}
+
 }  // namespace
 
 int solve_command(int argc, char** argv) {
+  if (const auto [processes, rank] = launched_processes(); processes > 1)
+    return refuse_several_processes(processes, rank);
   return mppm::run_stage(argc, argv, solve_command_spec(), [](const mppm::CommandLine& cl) {
     // The test hooks of both forms; continue_run refuses the two that a restart cannot take.
     TestHooks hooks;

@@ -23,3 +23,15 @@ endfunction()
 mppm_add_mpi_test(reductions mpi/test_mpi_reductions.cpp)
 mppm_add_mpi_test(forces mpi/test_mpi_forces.cpp)
 mppm_add_mpi_test(run mpi/test_mpi_run.cpp)
+
+# mppm-solve does not run across processes yet: under mpirun it refuses (exit 2, one message from the
+# first process) before it reads or writes anything, instead of running N copies into one directory.
+add_test(NAME mpi.solve_refuses_several_processes
+  COMMAND sh -c "rm -rf mpi_refused_run; ${MPIEXEC_EXECUTABLE} --oversubscribe -np 2 $<TARGET_FILE:mppm-solve> \
+${PROJECT_SOURCE_DIR}/tests/data/scenes/solver_case1_block.yaml --points absent.vtp -o mpi_refused_run 2> refused.txt; \
+code=$?; cat refused.txt; test $code -ne 0 && test ! -e mpi_refused_run && \
+test $(grep -c 'a run across processes is not built yet' refused.txt) -eq 1 && \
+test $(grep -c 'Exit code:    2' refused.txt) -eq 1"
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(mpi.solve_refuses_several_processes PROPERTIES LABELS mpi TIMEOUT 60
+  ENVIRONMENT "${MPPM_MPI_ENVIRONMENT}")
