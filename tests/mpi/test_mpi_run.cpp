@@ -8,6 +8,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -15,12 +18,14 @@
 #include "solver/boundary_conditions.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/distributed_model.hpp"
+#include "solver/distributed_snapshot.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/halo_exchange.hpp"
 #include "solver/horizon_search.hpp"
 #include "solver/local_points.hpp"
 #include "solver/model.hpp"
 #include "solver/process_group.hpp"
+#include "solver/snapshot_fields.hpp"
 #include "tests/verification/problems/generic_scene.hpp"
 #include "tests/verification/problems/periodic_lattice.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
@@ -71,6 +76,7 @@ std::vector<double> load_row(const BoundaryConditions& conditions, const Explici
 struct History {
   double step = 0.0;
   std::vector<std::vector<double>> rows;
+  double time = 0.0;  // at the end
 };
 
 // `local`: the process's points (the conditions keep its owned ones), or null for one process.
@@ -93,6 +99,7 @@ History integrate(Model& model, const Scene& scene, const PointCloud& cloud, con
     dynamics.step(true);
     record();
   }
+  h.time = dynamics.time();
   return h;
 }
 
@@ -171,6 +178,45 @@ TEST(MpiRun, PulledNonPolarBarGivesTheOneProcessLoadsAndWork) {
 // A NaN in the force of one point owned by the last process (the step's after-forces hook, as
 // mppm-solve --inject-nan does): every process finds the run non-finite at that very step, so that
 // all stop together instead of waiting for each other.
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The snapshot of every field, written by the first process from the owners' values chunk by
+// chunk (with_gathered_fields), is the one-process snapshot file byte for byte.
+void expect_gathered_snapshot_equals_whole(int dimension, std::array<int, 3> n) {
+  const ProcessGroup group = ProcessGroup::world();
+  const Scene scene = verification::make_scene(dimension, true, 1e-3, 3.05);
+  const PointCloud cloud = verification::make_lattice(dimension, n, 1e-3, scene.thickness);
+  const int steps = 12;
+  Model whole = verification::make_model(cloud, scene);
+  const History expected = integrate(whole, scene, cloud, nullptr, steps);
+  DistributedModel distributed = build_distributed_model(cloud, model_options(scene), group);
+  const History got = integrate(distributed.model, scene, cloud, &distributed.local, steps);
+  const std::vector<std::string> fields = available_fields(whole);
+  const std::string directory = "mpi_snapshot_" + std::to_string(group.size()) + "_" + std::to_string(dimension);
+  const std::string whole_path = directory + "_whole.snap", gathered_path = directory + "_gathered.snap";
+  if (group.rank() == 0)
+    write_snapshot(dimension, steps, expected.time, cloud.size(), snapshot_sources(whole, fields), whole_path);
+  with_gathered_fields(distributed.model, fields, distributed.part, group,
+                       [&](const std::vector<SnapshotFieldSource>& sources, std::uint64_t points) {
+                         write_snapshot(dimension, steps, got.time, points, sources, gathered_path);
+                       });
+  if (group.rank() == 0) {
+    const std::string a = file_bytes(whole_path), b = file_bytes(gathered_path);
+    EXPECT_GT(a.size(), cloud.size() * 8 * 10) << "the snapshot holds the fields";
+    EXPECT_TRUE(a == b) << dimension << "-D: the gathered snapshot differs from the one-process file";
+    std::remove(whole_path.c_str());
+    std::remove(gathered_path.c_str());
+  }
+}
+
+TEST(MpiRun, GatheredSnapshotsAreTheOneProcessFiles) {
+  expect_gathered_snapshot_equals_whole(2, {30, 20, 1});
+  expect_gathered_snapshot_equals_whole(3, {8, 7, 6});
+}
+
 TEST(MpiRun, EveryProcessStopsAtTheStepOfANaNOnOne) {
   const ProcessGroup group = ProcessGroup::world();
   const Scene scene = verification::make_scene(2, true, 1e-3, 3.05);

@@ -1,0 +1,109 @@
+// Gathered snapshot fields (distributed_snapshot.hpp): a request (field, first global id, end) to
+// each owner of a chunk's points, its values in ascending global id back, placed by the partition.
+#include "solver/distributed_snapshot.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <array>
+
+#include "solver/snapshot_fields.hpp"
+
+namespace mppm::solver {
+
+namespace {
+
+constexpr int kRequestTag = 41, kValuesTag = 42;
+using Request = std::array<std::int64_t, 3>;  // field (-1: done), first global id, end
+
+// The local range of the owned points whose global ids lie in [first, end) (owned ids ascend).
+std::pair<std::size_t, std::size_t> owned_range(const PointData& p, std::int64_t first, std::int64_t end) {
+  const auto begin = p.global_id.begin(), last = p.global_id.begin() + static_cast<std::ptrdiff_t>(p.owned);
+  return {static_cast<std::size_t>(std::lower_bound(begin, last, first) - begin),
+          static_cast<std::size_t>(std::lower_bound(begin, last, end) - begin)};
+}
+
+// This process's values of field `f` for its owned points with global ids in [first, end).
+std::vector<double> own_values(const PointData& p, const std::vector<SnapshotFieldSource>& local, std::int64_t f,
+                               std::int64_t first, std::int64_t end) {
+  const SnapshotFieldSource& source = local[static_cast<std::size_t>(f)];
+  const auto [lo, hi] = owned_range(p, first, end);
+  std::vector<double> v((hi - lo) * static_cast<std::size_t>(source.components));
+  if (hi > lo) source.values(lo, hi - lo, v.data());
+  return v;
+}
+
+// The other processes: values for each request of the first, until it says done.
+void serve(const PointData& p, const std::vector<SnapshotFieldSource>& local) {
+  for (;;) {
+    Request r{};
+    MPI_Recv(r.data(), 3, MPI_INT64_T, 0, kRequestTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (r[0] < 0) return;
+    const std::vector<double> v = own_values(p, local, r[0], r[1], r[2]);
+    MPI_Send(v.data(), static_cast<int>(v.size()), MPI_DOUBLE, 0, kValuesTag, MPI_COMM_WORLD);
+  }
+}
+
+// The first process: chunk [first, first + count) of field f, from every owner, in global-id order.
+void gather_chunk(const PointData& p, const std::vector<SnapshotFieldSource>& local, std::span<const std::int32_t> part,
+                  int processes, std::int64_t f, std::uint64_t first, std::uint64_t count, double* out) {
+  const auto c = static_cast<std::size_t>(local[static_cast<std::size_t>(f)].components);
+  const auto begin = static_cast<std::int64_t>(first), end = static_cast<std::int64_t>(first + count);
+  std::vector<std::size_t> expected(static_cast<std::size_t>(processes), 0);
+  for (std::int64_t g = begin; g < end; ++g) ++expected[static_cast<std::size_t>(part[static_cast<std::size_t>(g)])];
+  std::vector<std::vector<double>> received(static_cast<std::size_t>(processes));
+  std::vector<MPI_Request> pending;
+  const Request request{f, begin, end};
+  for (int r = 1; r < processes; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (expected[k] == 0) continue;
+    received[k].resize(expected[k] * c);
+    pending.emplace_back();
+    MPI_Irecv(received[k].data(), static_cast<int>(received[k].size()), MPI_DOUBLE, r, kValuesTag, MPI_COMM_WORLD,
+              &pending.back());
+    MPI_Send(request.data(), 3, MPI_INT64_T, r, kRequestTag, MPI_COMM_WORLD);
+  }
+  received[0] = own_values(p, local, f, begin, end);
+  MPI_Waitall(static_cast<int>(pending.size()), pending.data(), MPI_STATUSES_IGNORE);
+  std::vector<std::size_t> next(static_cast<std::size_t>(processes), 0);
+  for (std::int64_t g = begin; g < end; ++g) {
+    const auto r = static_cast<std::size_t>(part[static_cast<std::size_t>(g)]);
+    std::copy_n(&received[r][next[r] * c], c, &out[static_cast<std::size_t>(g - begin) * c]);
+    ++next[r];
+  }
+}
+
+}  // namespace
+
+void with_gathered_fields(const Model& model, const std::vector<std::string>& fields,
+                          std::span<const std::int32_t> part_of, const ProcessGroup& group,
+                          const GatheredWrite& write) {
+  const std::vector<SnapshotFieldSource> local = snapshot_sources(model, fields);
+  if (group.rank() != 0) {
+    serve(model.points, local);
+    return;
+  }
+  std::vector<SnapshotFieldSource> whole;
+  for (std::size_t f = 0; f < local.size(); ++f) {
+    SnapshotFieldSource s;
+    s.name = local[f].name;
+    s.components = local[f].components;
+    s.values = [&, f](std::uint64_t first, std::uint64_t count, double* out) {
+      gather_chunk(model.points, local, part_of, group.size(), static_cast<std::int64_t>(f), first, count, out);
+    };
+    whole.push_back(std::move(s));
+  }
+  auto release_others = [&] {
+    const Request done{-1, 0, 0};
+    for (int r = 1; r < group.size(); ++r) MPI_Send(done.data(), 3, MPI_INT64_T, r, kRequestTag, MPI_COMM_WORLD);
+  };
+  try {
+    write(whole, part_of.size());
+  } catch (...) {
+    release_others();
+    throw;
+  }
+  release_others();
+}
+
+}  // namespace mppm::solver
