@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
+#include <limits>
 
 #include "solver/exact_point_sums.hpp"
 #include "solver/parallel_policy.hpp"
@@ -531,7 +533,7 @@ std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite() const {
   if (const auto i = first_unrecovered_pressure()) {
     out = NonFinitePoint{*i, "pore_pressure", 0};
     for (std::size_t j = *i; j < p.owned; ++j) out->points += p.region[j] == 0 && !std::isfinite(p.pore_pressure[j]);
-    return out;
+    return p.processes ? first_non_finite_of_all(out) : out;
   }
   for (std::size_t i = 0; i < p.owned; ++i) {
     const char* field = bad(p.displacement, i, D)        ? "displacement"
@@ -543,7 +545,28 @@ std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite() const {
     if (!out) out = NonFinitePoint{i, field, 0};
     ++out->points;
   }
+  if (p.processes) return first_non_finite_of_all(out);
   return out;
+}
+
+// Distributed: the lowest global id holding a non-finite value on any process, its field (from
+// the process that owns it) and the count over all processes, the same on every process.
+std::optional<NonFinitePoint> ExplicitDynamics::first_non_finite_of_all(
+    const std::optional<NonFinitePoint>& mine) const {
+  static constexpr const char* kFields[] = {"pore_pressure", "displacement", "velocity", "rotation", "rotation_rate"};
+  const PointData& p = model_.points;
+  const ProcessGroup& group = *p.processes;
+  constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
+  const std::int64_t id = mine ? p.global_id[mine->point] : kNone;
+  const std::int64_t lowest = group.lowest(id);
+  const std::int64_t points = group.total(mine ? static_cast<std::int64_t>(mine->points) : 0);
+  std::int64_t code = kNone;
+  if (mine && id == lowest)
+    code = std::find_if(std::begin(kFields), std::end(kFields), [&](const char* f) { return mine->field == f; }) -
+           std::begin(kFields);
+  code = group.lowest(code);
+  if (lowest == kNone) return std::nullopt;
+  return NonFinitePoint{static_cast<std::size_t>(lowest), kFields[code], static_cast<std::size_t>(points)};
 }
 
 double ExplicitDynamics::balance_error() const {

@@ -62,7 +62,7 @@ struct EnergyState {
 
 // Where the per-step guard found non-finite values (ExplicitDynamics::first_non_finite).
 struct NonFinitePoint {
-  std::size_t point = 0;   // the lowest index holding a non-finite value
+  std::size_t point = 0;   // the lowest index holding a non-finite value (global id when distributed)
   std::string field;       // "displacement", "velocity", "rotation" or "rotation_rate"
   std::size_t points = 0;  // how many points hold one
 };
@@ -133,6 +133,7 @@ class ExplicitDynamics {
   // The lowest body point whose pore pressure is not finite (the unsaturated retention inverse found no
   // pressure for its fluid content), if any.
   std::optional<std::size_t> first_unrecovered_pressure() const;
+  // In a distributed run every process gets the same answer, with the point's global id.
   std::optional<NonFinitePoint> first_non_finite() const;
 
   Model& model() { return model_; }
@@ -193,6 +194,7 @@ class ExplicitDynamics {
   // advance: the force evaluation of a step (advances the plastic state by dt).
   void compute_loads_and_forces(bool with_energy, bool advance);
   void evaluate_energy();
+  std::optional<NonFinitePoint> first_non_finite_of_all(const std::optional<NonFinitePoint>& mine) const;
   // The scheme's translational and rotational kinetic energies and the size of their terms
   // (evaluate_energy), summed in chunks fixed by the point count.
   std::array<double, 3> kinetic_sums() const;

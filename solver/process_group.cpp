@@ -47,6 +47,20 @@ bool ProcessGroup::any(bool local) const {
   return all != 0;
 }
 
+std::int64_t ProcessGroup::lowest(std::int64_t local) const {
+  if (!distributed_) return local;
+  std::int64_t all = 0;
+  MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_MIN, MPI_COMM_WORLD);
+  return all;
+}
+
+std::int64_t ProcessGroup::total(std::int64_t local) const {
+  if (!distributed_) return local;
+  std::int64_t all = 0;
+  MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return all;
+}
+
 MpiSession::MpiSession(int& argc, char**& argv) {
   int initialized = 0;
   MPI_Initialized(&initialized);

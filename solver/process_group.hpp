@@ -4,6 +4,7 @@
 // doubles, so every process gets the same bits for any number of processes. A plain run's group
 // makes no MPI call.
 #pragma once
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -27,6 +28,9 @@ class ProcessGroup {
   double sum(const ExactSum& local) const { return sum(std::span<const ExactSum>(&local, 1))[0]; }
   // True on every process when it is true on any (a stop or a refusal decided anywhere).
   bool any(bool local) const;
+  // The smallest of the processes' values, and their total (integers: exact).
+  std::int64_t lowest(std::int64_t local) const;
+  std::int64_t total(std::int64_t local) const;
 
  private:
   ProcessGroup() = default;

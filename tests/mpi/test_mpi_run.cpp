@@ -239,6 +239,14 @@ TEST(MpiRun, EveryProcessStopsAtTheStepOfANaNOnOne) {
     if (!dynamics.finite()) stopped_at = dynamics.steps();
   }
   EXPECT_EQ(stopped_at, kNanStep) << "process " << group.rank() << " of " << group.size();
+  // Every process names the same point, by its global id: the one the last process spoiled.
+  const PointData& p = model.points;
+  const std::int64_t spoiled = group.lowest(injecting ? p.global_id[p.owned / 2] : INT64_MAX);
+  const auto found = dynamics.first_non_finite();
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(static_cast<std::int64_t>(found->point), spoiled);
+  EXPECT_EQ(found->field, "velocity");
+  EXPECT_EQ(found->points, 1u);
 }
 
 TEST(MpiRun, DamageIsRefusedAcrossProcesses) {
