@@ -1,6 +1,10 @@
 // A distributed run's model on this process (distributed_model.hpp).
 #include "solver/distributed_model.hpp"
 
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
 #include "solver/horizon_search.hpp"
 
 namespace mppm::solver {
@@ -14,6 +18,32 @@ DistributedModel build_distributed_model(const PointCloud& cloud, const ModelOpt
   d.halo = std::make_unique<HaloExchange>(d.local, d.part);
   d.model = build_local_model(cloud, d.local, *d.halo, group, options);
   return d;
+}
+
+PartitionSummary summarize_partition(const Model& model, const ProcessGroup& group) {
+  PartitionSummary s;
+  s.points = group.gather(static_cast<std::int64_t>(model.points.owned));
+  s.ghosts = group.gather(static_cast<std::int64_t>(model.points.ghost));
+  s.bonds = group.gather(static_cast<std::int64_t>(model.bonds.bond_count()));
+  const std::int64_t total = std::accumulate(s.bonds.begin(), s.bonds.end(), std::int64_t{0});
+  if (total > 0)
+    s.imbalance = static_cast<double>(*std::max_element(s.bonds.begin(), s.bonds.end())) *
+                  static_cast<double>(s.bonds.size()) / static_cast<double>(total);
+  return s;
+}
+
+std::string describe(const PartitionSummary& summary) {
+  auto list = [](const std::vector<std::int64_t>& v) {
+    std::string out;
+    for (std::size_t k = 0; k < v.size(); ++k) out += (k ? " / " : "") + std::to_string(v[k]);
+    return out;
+  };
+  std::ostringstream s;
+  s.precision(4);
+  s << summary.points.size() << (summary.points.size() == 1 ? " process" : " processes") << ": points "
+    << list(summary.points) << ", ghosts " << list(summary.ghosts) << ", bonds " << list(summary.bonds)
+    << ", imbalance " << summary.imbalance;
+  return s.str();
 }
 
 }  // namespace mppm::solver

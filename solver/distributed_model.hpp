@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "solver/halo_exchange.hpp"
@@ -24,5 +25,19 @@ struct DistributedModel {
 // outlive the model (its sums go through it).
 DistributedModel build_distributed_model(const PointCloud& cloud, const ModelOptions& options,
                                          const ProcessGroup& group);
+
+// How the points and the work are shared (run_info.json and log.txt of a distributed run): per
+// process its owned points, ghosts and bonds, and the imbalance, the heaviest process's bonds over
+// the mean (1 = even). The same on every process.
+struct PartitionSummary {
+  std::vector<std::int64_t> points, ghosts, bonds;
+  double imbalance = 1.0;
+};
+
+// Collective.
+PartitionSummary summarize_partition(const Model& model, const ProcessGroup& group);
+
+// "2 processes: points 8000 / 8000, ghosts 320 / 320, bonds 372854 / 372854, imbalance 1.000"
+std::string describe(const PartitionSummary& summary);
 
 }  // namespace mppm::solver

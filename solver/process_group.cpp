@@ -61,6 +61,12 @@ std::int64_t ProcessGroup::total(std::int64_t local) const {
   return all;
 }
 
+std::vector<std::int64_t> ProcessGroup::gather(std::int64_t local) const {
+  std::vector<std::int64_t> all(static_cast<std::size_t>(size_), local);
+  if (distributed_) MPI_Allgather(&local, 1, MPI_INT64_T, all.data(), 1, MPI_INT64_T, MPI_COMM_WORLD);
+  return all;
+}
+
 MpiSession::MpiSession(int& argc, char**& argv) {
   int initialized = 0;
   MPI_Initialized(&initialized);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -247,6 +248,33 @@ TEST(MpiRun, EveryProcessStopsAtTheStepOfANaNOnOne) {
   EXPECT_EQ(static_cast<std::int64_t>(found->point), spoiled);
   EXPECT_EQ(found->field, "velocity");
   EXPECT_EQ(found->points, 1u);
+}
+
+// The partition's summary: the same on every process, its counts the model's, and the bisection
+// even to within a few points' bonds.
+TEST(MpiRun, PartitionSummaryCountsEveryPointAndBondOnce) {
+  const ProcessGroup group = ProcessGroup::world();
+  const Scene scene = verification::make_scene(3, true, 1e-3, 3.05);
+  const PointCloud cloud = verification::make_lattice(3, {10, 9, 8}, 1e-3, scene.thickness);
+  Model whole = verification::make_model(cloud, scene);
+  DistributedModel distributed = build_distributed_model(cloud, model_options(scene), group);
+  const PartitionSummary s = summarize_partition(distributed.model, group);
+  ASSERT_EQ(s.points.size(), static_cast<std::size_t>(group.size()));
+  EXPECT_EQ(std::accumulate(s.points.begin(), s.points.end(), std::int64_t{0}),
+            static_cast<std::int64_t>(cloud.size()));
+  EXPECT_EQ(std::accumulate(s.bonds.begin(), s.bonds.end(), std::int64_t{0}),
+            static_cast<std::int64_t>(whole.bonds.bond_count()));
+  EXPECT_EQ(s.points[static_cast<std::size_t>(group.rank())],
+            static_cast<std::int64_t>(distributed.model.points.owned));
+  EXPECT_EQ(s.ghosts[static_cast<std::size_t>(group.rank())],
+            static_cast<std::int64_t>(distributed.model.points.ghost));
+  // Each cut lands within one point's bonds (at most 122 at this horizon) of its share; a part
+  // inherits at most two cuts' misses for up to 4 processes.
+  const double mean = static_cast<double>(whole.bonds.bond_count()) / group.size();
+  EXPECT_LE(s.imbalance, 1.0 + 2 * 122 / mean);
+  EXPECT_GE(s.imbalance, 1.0);
+  const std::string line = describe(s);
+  EXPECT_NE(line.find("imbalance"), std::string::npos) << line;
 }
 
 TEST(MpiRun, DamageIsRefusedAcrossProcesses) {
