@@ -13,6 +13,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -93,11 +94,10 @@ int main(int argc, char** argv) {
   const double halo_seconds = max_over_processes(after.seconds - before.seconds);
   const std::int64_t values = total_over_processes(after.values_sent - before.values_sent);
   const std::int64_t messages = total_over_processes(after.messages_sent - before.messages_sent);
-  const std::int64_t bonds = total_over_processes(static_cast<std::int64_t>(model.bonds.bond_count()));
-  const std::int64_t ghosts = total_over_processes(static_cast<std::int64_t>(model.points.ghost));
-  // The heaviest process's bonds over the mean.
-  const double imbalance =
-      max_over_processes(static_cast<double>(model.bonds.bond_count())) * group.size() / static_cast<double>(bonds);
+  const PartitionSummary partition = summarize_partition(model, group);
+  const std::int64_t bonds = std::accumulate(partition.bonds.begin(), partition.bonds.end(), std::int64_t{0});
+  const std::int64_t ghosts = std::accumulate(partition.ghosts.begin(), partition.ghosts.end(), std::int64_t{0});
+  const double imbalance = partition.imbalance;
   if (group.rank() == 0) {
     std::printf(
         "case,processes,threads,points,bonds,steps,loop_seconds,bond_updates_per_second,halo_seconds,halo_share,"

@@ -109,16 +109,4 @@ std::vector<std::int32_t> coordinate_bisection(const PartitionPoints& points, in
   return part;
 }
 
-double partition_imbalance(std::span<const std::int64_t> weight, std::span<const std::int32_t> part, int parts) {
-  std::vector<std::int64_t> load(static_cast<std::size_t>(parts), 0);
-  std::int64_t total = 0;
-  for (std::size_t i = 0; i < weight.size(); ++i) {
-    load[static_cast<std::size_t>(part[i])] += weight[i];
-    total += weight[i];
-  }
-  if (total == 0) return 1.0;
-  const std::int64_t heaviest = *std::max_element(load.begin(), load.end());
-  return static_cast<double>(heaviest) * parts / static_cast<double>(total);
-}
-
 }  // namespace mppm::solver

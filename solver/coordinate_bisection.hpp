@@ -22,7 +22,4 @@ struct PartitionPoints {
 // std::invalid_argument when there are fewer points than parts or the spans disagree.
 std::vector<std::int32_t> coordinate_bisection(const PartitionPoints& points, int parts);
 
-// How evenly a partition shares the weight: the heaviest part over the mean (1 = perfect).
-double partition_imbalance(std::span<const std::int64_t> weight, std::span<const std::int32_t> part, int parts);
-
 }  // namespace mppm::solver

@@ -13,8 +13,10 @@ DistributedModel build_distributed_model(const PointCloud& cloud, const ModelOpt
                                          const ProcessGroup& group) {
   const double reach = bond_reach(options.horizon, options.spacing);
   DistributedModel d;
-  d.part = partition_cloud(cloud, reach, group.size());
-  d.local = local_points(cloud, d.part, group.rank(), reach);
+  const std::vector<double> x = cloud_positions(cloud);
+  const PointPositions positions{cloud.dimension, x.data(), cloud.size()};
+  d.part = partition_cloud(positions, reach, group.size());
+  d.local = local_points(positions, d.part, group.rank(), reach);
   d.halo = std::make_unique<HaloExchange>(d.local, d.part);
   d.model = build_local_model(cloud, d.local, *d.halo, group, options);
   return d;

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
-#include <utility>
 #include <vector>
 
 #include "solver/exact_sum.hpp"
@@ -23,14 +22,17 @@ inline constexpr std::size_t kPointSumChunks = 64;
 template <int K>
 using ExactSums = std::array<ExactSum, K>;
 
-// add_range(lo, hi, acc) adds the K terms of the points lo..hi-1 to acc[0..K) (acc[k] += term; a
-// range, so that a caller can walk a sorted list alongside). Returns the K sums, rounded once.
+// add_range(lo, hi, acc) adds the K terms of the owned points lo..hi-1 of `p` to acc[0..K)
+// (acc[k] += term; a range, so that a caller can walk a sorted list alongside), on every thread when
+// they are many. Returns the K sums, rounded once, in a distributed run over all processes
+// (PointData::processes): the same bits on every process.
 template <int K, class AddRange>
-std::array<double, K> exact_point_sums(std::size_t n, bool threaded, AddRange&& add_range,
-                                       const ProcessGroup* processes = nullptr) {
+std::array<double, K> exact_point_sums(const PointData& p, AddRange&& add_range) {
+  const std::size_t n = p.owned;
+  const ProcessGroup* processes = p.processes;
   ExactSums<K> total;
   const auto chunks = static_cast<std::ptrdiff_t>(kPointSumChunks);
-#pragma omp parallel if (threaded)
+#pragma omp parallel if (thread_point_loop(n))
   {
     ExactSums<K> acc;
 #pragma omp for schedule(dynamic) nowait
@@ -50,13 +52,6 @@ std::array<double, K> exact_point_sums(std::size_t n, bool threaded, AddRange&& 
   }
   for (int k = 0; k < K; ++k) sum[k] = total[k].value();
   return sum;
-}
-
-// The same over the owned points of `p`, threaded when they are many, and in a distributed run
-// summed over all processes (PointData::processes): the same bits on every process.
-template <int K, class AddRange>
-std::array<double, K> exact_point_sums(const PointData& p, AddRange&& add_range) {
-  return exact_point_sums<K>(p.owned, thread_point_loop(p.owned), std::forward<AddRange>(add_range), p.processes);
 }
 
 }  // namespace mppm::solver

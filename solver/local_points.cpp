@@ -6,37 +6,24 @@
 
 #include "solver/coordinate_bisection.hpp"
 #include "solver/halo_points.hpp"
-#include "solver/horizon_search.hpp"
 
 namespace mppm::solver {
 
-std::vector<double> cloud_positions(const PointCloud& cloud) {
-  const auto D = static_cast<std::size_t>(cloud.dimension);
-  std::vector<double> x(cloud.size() * D);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const double xyz[3] = {cloud.x[i], cloud.y[i], cloud.z.empty() ? 0.0 : cloud.z[i]};
-    for (std::size_t c = 0; c < D; ++c) x[i * D + c] = xyz[c];
-  }
-  return x;
-}
-
-std::vector<std::int32_t> partition_cloud(const PointCloud& cloud, double reach, int parts) {
-  const std::vector<double> x = cloud_positions(cloud);
-  std::vector<std::int64_t> id(cloud.size());
+std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts) {
+  std::vector<std::int64_t> id(points.count);
   std::iota(id.begin(), id.end(), std::int64_t{0});
-  const std::vector<std::int64_t> weight = bond_counts({cloud.dimension, x.data(), cloud.size()}, reach);
-  return coordinate_bisection({cloud.dimension, x, weight, id}, parts);
+  const std::span<const double> x(points.position, points.count * static_cast<std::size_t>(points.dimension));
+  return coordinate_bisection({points.dimension, x, bond_counts(points, reach), id}, parts);
 }
 
-LocalPoints local_points(const PointCloud& cloud, std::span<const std::int32_t> part_of, std::int32_t part,
+LocalPoints local_points(const PointPositions& points, std::span<const std::int32_t> part_of, std::int32_t part,
                          double reach) {
-  if (part_of.size() != cloud.size()) throw std::invalid_argument("local_points: one part per point expected");
+  if (part_of.size() != points.count) throw std::invalid_argument("local_points: one part per point expected");
   LocalPoints local;
-  for (std::size_t i = 0; i < cloud.size(); ++i)
+  for (std::size_t i = 0; i < points.count; ++i)
     if (part_of[i] == part) local.global_id.push_back(static_cast<std::int64_t>(i));
   local.owned = local.global_id.size();
-  const std::vector<double> x = cloud_positions(cloud);
-  for (const std::size_t j : halo_points({cloud.dimension, x.data(), cloud.size()}, part_of, part, reach))
+  for (const std::size_t j : halo_points(points, part_of, part, reach))
     local.global_id.push_back(static_cast<std::int64_t>(j));
   return local;
 }

@@ -9,14 +9,15 @@
 
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "solver/horizon_search.hpp"
 #include "solver/point_data.hpp"
 
 namespace mppm::solver {
 
-// The part (process) of every point of the cloud among `parts`: coordinate bisection weighted by each
+// The part (process) of every point among `parts`: coordinate bisection weighted by each
 // point's bonds within `reach` (bond_reach), ties by the index in the points file
 // (coordinate_bisection.hpp).
-std::vector<std::int32_t> partition_cloud(const PointCloud& cloud, double reach, int parts);
+std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts);
 
 struct LocalPoints {
   std::vector<std::int64_t> global_id;  // of each local point: owned, then ghosts
@@ -24,7 +25,7 @@ struct LocalPoints {
 };
 
 // The local points of `part` among all the points' parts, with the ghosts within `reach` (bond_reach).
-LocalPoints local_points(const PointCloud& cloud, std::span<const std::int32_t> part_of, std::int32_t part,
+LocalPoints local_points(const PointPositions& points, std::span<const std::int32_t> part_of, std::int32_t part,
                          double reach);
 
 // The cloud of the local points, in their local order; its pre-cracks and boundary descriptions are
@@ -33,8 +34,5 @@ PointCloud local_cloud(const PointCloud& cloud, const LocalPoints& local);
 
 // The point data of the local points: owned first, ghosts after, with their global ids.
 PointData make_local_point_data(const PointCloud& cloud, const LocalPoints& local, const EffectSet& effects);
-
-// The cloud's positions, D per point (the form the horizon search and the partition read).
-std::vector<double> cloud_positions(const PointCloud& cloud);
 
 }  // namespace mppm::solver

@@ -15,11 +15,7 @@ void set_geometry(PointData& p, const PointCloud& cloud, const EffectSet& effect
   p.rotation_components = effects.micropolar ? rotation_components_of(D) : 0;
   p.owned = n;
   p.ghost = 0;
-  p.position.resize(n * D);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double xyz[3] = {cloud.x[i], cloud.y[i], cloud.z.empty() ? 0.0 : cloud.z[i]};
-    for (int c = 0; c < D; ++c) p.position[i * D + c] = xyz[c];
-  }
+  p.position = cloud_positions(cloud);
 }
 
 // The state arrays of the dimension and the effects, zero (an effect that is off allocates nothing).
@@ -32,6 +28,16 @@ void release(std::vector<T>& v) {
 }
 
 }  // namespace
+
+std::vector<double> cloud_positions(const PointCloud& cloud) {
+  const auto D = static_cast<std::size_t>(cloud.dimension);
+  std::vector<double> x(cloud.size() * D);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double xyz[3] = {cloud.x[i], cloud.y[i], cloud.z.empty() ? 0.0 : cloud.z[i]};
+    for (std::size_t c = 0; c < D; ++c) x[i * D + c] = xyz[c];
+  }
+  return x;
+}
 
 PointData make_point_data(const PointCloud& cloud, const EffectSet& effects) {
   PointData p;

@@ -112,6 +112,9 @@ struct PointData {
   std::vector<double> stabilization_energy;
 };
 
+// The cloud's positions, D per point (the form the solver, the horizon search and the partition read).
+std::vector<double> cloud_positions(const PointCloud& cloud);
+
 // Copies positions, volumes, regions of the cloud; allocates the state for the dimension and
 // the effects (an effect that is off allocates nothing). Every point is owned (single process).
 PointData make_point_data(const PointCloud& cloud, const EffectSet& effects);

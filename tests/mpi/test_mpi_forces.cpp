@@ -71,8 +71,10 @@ void expect_distributed_forces_equal_whole(const Case& k) {
 
   // This process's part.
   const double reach = bond_reach(o.horizon, o.spacing);
-  const std::vector<std::int32_t> part = partition_cloud(cloud, reach, group.size());
-  const LocalPoints local = local_points(cloud, part, group.rank(), reach);
+  const std::vector<double> x = cloud_positions(cloud);
+  const PointPositions positions{D, x.data(), cloud.size()};
+  const std::vector<std::int32_t> part = partition_cloud(positions, reach, group.size());
+  const LocalPoints local = local_points(positions, part, group.rank(), reach);
   PointData p = make_local_point_data(cloud, local, o.effects);
   const HaloExchange halo(local, part);
   p.ghost_source = &halo;

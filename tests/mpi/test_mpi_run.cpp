@@ -286,7 +286,9 @@ TEST(MpiRun, DamageIsRefusedAcrossProcesses) {
   std::vector<std::int32_t> part(cloud.size());
   for (std::size_t i = 0; i < part.size(); ++i)
     part[i] = static_cast<std::int32_t>(i % static_cast<std::size_t>(group.size()));
-  const LocalPoints local = local_points(cloud, part, group.rank(), bond_reach(o.horizon, o.spacing));
+  const std::vector<double> x = cloud_positions(cloud);
+  const LocalPoints local =
+      local_points({2, x.data(), cloud.size()}, part, group.rank(), bond_reach(o.horizon, o.spacing));
   const HaloExchange halo(local, part);
   try {
     build_local_model(cloud, local, halo, group, o);
