@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <numeric>
-#include <sstream>
 
 #include "solver/horizon_search.hpp"
 
@@ -32,20 +31,6 @@ PartitionSummary summarize_partition(const Model& model, const ProcessGroup& gro
     s.imbalance = static_cast<double>(*std::max_element(s.bonds.begin(), s.bonds.end())) *
                   static_cast<double>(s.bonds.size()) / static_cast<double>(total);
   return s;
-}
-
-std::string describe(const PartitionSummary& summary) {
-  auto list = [](const std::vector<std::int64_t>& v) {
-    std::string out;
-    for (std::size_t k = 0; k < v.size(); ++k) out += (k ? " / " : "") + std::to_string(v[k]);
-    return out;
-  };
-  std::ostringstream s;
-  s.precision(4);
-  s << summary.points.size() << (summary.points.size() == 1 ? " process" : " processes") << ": points "
-    << list(summary.points) << ", ghosts " << list(summary.ghosts) << ", bonds " << list(summary.bonds)
-    << ", imbalance " << summary.imbalance;
-  return s.str();
 }
 
 }  // namespace mppm::solver

@@ -10,6 +10,7 @@
 #include "solver/halo_exchange.hpp"
 #include "solver/local_points.hpp"
 #include "solver/model.hpp"
+#include "solver/partition_summary.hpp"
 #include "solver/process_group.hpp"
 
 namespace mppm::solver {
@@ -26,18 +27,7 @@ struct DistributedModel {
 DistributedModel build_distributed_model(const PointCloud& cloud, const ModelOptions& options,
                                          const ProcessGroup& group);
 
-// How the points and the work are shared (run_info.json and log.txt of a distributed run): per
-// process its owned points, ghosts and bonds, and the imbalance, the heaviest process's bonds over
-// the mean (1 = even). The same on every process.
-struct PartitionSummary {
-  std::vector<std::int64_t> points, ghosts, bonds;
-  double imbalance = 1.0;
-};
-
-// Collective.
+// Collective: the summary of this run's partition, the same on every process.
 PartitionSummary summarize_partition(const Model& model, const ProcessGroup& group);
-
-// "2 processes: points 8000 / 8000, ghosts 320 / 320, bonds 372854 / 372854, imbalance 1.000"
-std::string describe(const PartitionSummary& summary);
 
 }  // namespace mppm::solver

@@ -78,9 +78,14 @@ void gather_chunk(const PointData& p, const std::vector<SnapshotFieldSource>& lo
 void with_gathered_fields(const Model& model, const std::vector<std::string>& fields,
                           std::span<const std::int32_t> part_of, const ProcessGroup& group,
                           const GatheredWrite& write) {
-  const std::vector<SnapshotFieldSource> local = snapshot_sources(model, fields);
+  with_gathered_fields(model.points, snapshot_sources(model, fields), part_of, group, write);
+}
+
+void with_gathered_fields(const PointData& points, const std::vector<SnapshotFieldSource>& local,
+                          std::span<const std::int32_t> part_of, const ProcessGroup& group,
+                          const GatheredWrite& write) {
   if (group.rank() != 0) {
-    serve(model.points, local);
+    serve(points, local);
     return;
   }
   std::vector<SnapshotFieldSource> whole;
@@ -89,7 +94,7 @@ void with_gathered_fields(const Model& model, const std::vector<std::string>& fi
     s.name = local[f].name;
     s.components = local[f].components;
     s.values = [&, f](std::uint64_t first, std::uint64_t count, double* out) {
-      gather_chunk(model.points, local, part_of, group.size(), static_cast<std::int64_t>(f), first, count, out);
+      gather_chunk(points, local, part_of, group.size(), static_cast<std::int64_t>(f), first, count, out);
     };
     whole.push_back(std::move(s));
   }

@@ -24,5 +24,9 @@ using GatheredWrite = std::function<void(const std::vector<SnapshotFieldSource>&
 // it returns (or throws: the exception is rethrown there, after the others are released).
 void with_gathered_fields(const Model& model, const std::vector<std::string>& fields,
                           std::span<const std::int32_t> part_of, const ProcessGroup& group, const GatheredWrite& write);
+// The same for any fields of the local points (`local`: their values by local index, e.g. the
+// reference configuration's).
+void with_gathered_fields(const PointData& points, const std::vector<SnapshotFieldSource>& local,
+                          std::span<const std::int32_t> part_of, const ProcessGroup& group, const GatheredWrite& write);
 
 }  // namespace mppm::solver

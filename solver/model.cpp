@@ -50,7 +50,8 @@ std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const 
   return cut;
 }
 
-// Removes the cut bonds from both ends before the first step; returns the pairs removed. With
+// Removes the cut bonds from both ends before the first step; returns the bond entries removed (of
+// this process's points: a pair within them counts twice). With
 // `keep`, they are kept aside in `kept` for the crack area (crack_area.hpp).
 std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamilies& f, double horizon, bool keep,
                                PrecrackCutBonds& kept) {
@@ -60,7 +61,7 @@ std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamili
   for (auto v : cut) removed += v;
   if (keep) kept = record_cut_bonds(f, cut);
   remove_bonds(f, [&](std::size_t, std::size_t k) { return cut[k] != 0; });
-  return removed / 2;
+  return removed;
 }
 
 // The drain bonds to inert layers that touch a pre-crack are dropped (cracks do not conduct), with the
@@ -141,10 +142,11 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
     // the notch shows as damage from the start; in 3-D the cut bonds themselves are kept for the
     // crack area, which counts them as broken (crack_area.hpp).
     const std::vector<double> before_cuts = family_volumes(m.points, m.bonds);
-    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, m.dimension() == 3, m.precrack_cuts);
+    m.precrack_cut_entries =
+        cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, m.dimension() == 3, m.precrack_cuts);
     record_precut_family_volumes(m.points, m.bonds, before_cuts);
   } else {
-    m.precrack_cut_bonds = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, false, m.precrack_cuts);
+    m.precrack_cut_entries = cut_precrack_bonds(cloud, m.points, m.bonds, o.horizon, false, m.precrack_cuts);
   }
   cut_precrack_drain_bonds(cloud, m.points, inert_drains, o.horizon);
   mark("pre-crack cuts");

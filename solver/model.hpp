@@ -56,7 +56,9 @@ struct Model {
   // boundary conditions; not counted in detached_points).
   DrainBonds drains;
   std::size_t inert_points = 0;
-  std::size_t precrack_cut_bonds = 0;  // pairs (counted once)
+  // Bond entries the pre-crack cuts removed (each pair at both of its points; a distributed run's
+  // process counts those of its owned points, so that the processes' counts add up).
+  std::size_t precrack_cut_entries = 0;
   // Damage in 3-D: the bonds the pre-crack cuts removed, for the crack area (crack_area.hpp).
   PrecrackCutBonds precrack_cuts;
   std::size_t detached_points = 0;

@@ -1,6 +1,8 @@
 // Construction of the solver's point storage from a point cloud.
 #include "solver/point_data.hpp"
 
+#include <algorithm>
+
 #include "solver/compiled_effects.hpp"
 
 namespace mppm::solver {
@@ -115,5 +117,13 @@ void allocate_state(PointData& p, const EffectSet& effects) {
 }
 
 }  // namespace
+
+std::optional<std::size_t> owned_index(const PointData& p, std::size_t point) {
+  if (p.global_id.empty()) return point;
+  const auto owned_end = p.global_id.begin() + static_cast<std::ptrdiff_t>(p.owned);
+  const auto at = std::lower_bound(p.global_id.begin(), owned_end, static_cast<std::int64_t>(point));
+  if (at == owned_end || *at != static_cast<std::int64_t>(point)) return std::nullopt;
+  return static_cast<std::size_t>(at - p.global_id.begin());
+}
 
 }  // namespace mppm::solver

@@ -10,6 +10,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "common/point_cloud.hpp"
@@ -114,6 +115,11 @@ struct PointData {
 
 // The cloud's positions, D per point (the form the solver, the horizon search and the partition read).
 std::vector<double> cloud_positions(const PointCloud& cloud);
+
+// The local index of the point with index `point` in the points file when this process owns it:
+// `point` itself on one process; found among the owned points' global ids (ascending) in a
+// distributed run; none when another process owns it.
+std::optional<std::size_t> owned_index(const PointData& p, std::size_t point);
 
 // Copies positions, volumes, regions of the cloud; allocates the state for the dimension and
 // the effects (an effect that is off allocates nothing). Every point is owned (single process).

@@ -67,6 +67,25 @@ std::vector<std::int64_t> ProcessGroup::gather(std::int64_t local) const {
   return all;
 }
 
+std::string ProcessGroup::broadcast(const std::string& text, int root) const {
+  if (!distributed_) return text;
+  std::int64_t length = rank_ == root ? static_cast<std::int64_t>(text.size()) : 0;
+  MPI_Bcast(&length, 1, MPI_INT64_T, root, MPI_COMM_WORLD);
+  std::string out = rank_ == root ? text : std::string(static_cast<std::size_t>(length), '\0');
+  MPI_Bcast(out.data(), static_cast<int>(length), MPI_CHAR, root, MPI_COMM_WORLD);
+  return out;
+}
+
+int ProcessGroup::processes_on_this_machine() const {
+  if (!distributed_) return 1;
+  MPI_Comm machine = MPI_COMM_NULL;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &machine);
+  int size = 1;
+  MPI_Comm_size(machine, &size);
+  MPI_Comm_free(&machine);
+  return size;
+}
+
 MpiSession::MpiSession(int& argc, char**& argv) {
   int initialized = 0;
   MPI_Initialized(&initialized);

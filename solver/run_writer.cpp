@@ -48,6 +48,17 @@ std::string start_up_json(const std::vector<PhaseTimer::Phase>& phases) {
   return j + "}";
 }
 
+// {"points": [8000, 8000], "ghosts": [...], "bonds": [...], "imbalance": 1.0}
+std::string partition_json(const PartitionSummary& s) {
+  auto list = [](const std::vector<std::int64_t>& v) {
+    std::string out = "[";
+    for (std::size_t k = 0; k < v.size(); ++k) out += (k ? ", " : "") + std::to_string(v[k]);
+    return out + "]";
+  };
+  return "{\"points\": " + list(s.points) + ", \"ghosts\": " + list(s.ghosts) + ", \"bonds\": " + list(s.bonds) +
+         ", \"imbalance\": " + format_number(s.imbalance) + "}";
+}
+
 double start_up_total(const std::vector<PhaseTimer::Phase>& phases) {
   double total = 0.0;
   for (const PhaseTimer::Phase& p : phases) total += p.seconds;
@@ -74,38 +85,46 @@ RunWriter::RunWriter(std::string directory, ContinueExisting) : directory_(std::
   if (ec) throw InputError(directory_ + ": cannot open the run directory for writing (" + ec.message() + ")");
 }
 
+RunWriter::RunWriter(std::string directory, Silent) : directory_(std::move(directory)), silent_(true) {}
+
 std::string RunWriter::write_resolved_scene(const Scene& scene,
                                             const std::vector<std::pair<std::string, double>>& derived) {
   std::string text = resolved_scene_yaml(scene, derived);
+  if (silent_) return text;
   write_file_atomically(path(run_layout::resolved_scene), [&](std::ostream& out) { out << text; });
   return text;
 }
 
-void RunWriter::write_reference(const PointData& p) {
+std::vector<SnapshotFieldSource> reference_fields(const PointData& p) {
   const int D = p.dimension;
   // Position always with 3 components (z = 0 in 2-D); region and boundary id as doubles.
-  const std::vector<SnapshotFieldSource> fields{
-      {"position", 3,
-       [&p, D](std::uint64_t first, std::uint64_t count, double* out) {
-         for (std::uint64_t k = 0; k < count; ++k)
-           for (int c = 0; c < 3; ++c) out[k * 3 + c] = c < D ? p.position[(first + k) * D + c] : 0.0;
-       }},
-      {"volume", 1,
-       [&p](std::uint64_t first, std::uint64_t count, double* out) {
-         for (std::uint64_t k = 0; k < count; ++k) out[k] = p.volume[first + k];
-       }},
-      {"region", 1,
-       [&p](std::uint64_t first, std::uint64_t count, double* out) {
-         for (std::uint64_t k = 0; k < count; ++k) out[k] = p.region[first + k];
-       }},
-      {"boundary_id", 1, [&p](std::uint64_t first, std::uint64_t count, double* out) {
-         for (std::uint64_t k = 0; k < count; ++k) out[k] = p.boundary_id[first + k];
-       }}};
-  mppm::write_snapshot(p.dimension, 0, 0.0, p.owned, fields, path(run_layout::reference));
+  return {{"position", 3,
+           [&p, D](std::uint64_t first, std::uint64_t count, double* out) {
+             for (std::uint64_t k = 0; k < count; ++k)
+               for (int c = 0; c < 3; ++c) out[k * 3 + c] = c < D ? p.position[(first + k) * D + c] : 0.0;
+           }},
+          {"volume", 1,
+           [&p](std::uint64_t first, std::uint64_t count, double* out) {
+             for (std::uint64_t k = 0; k < count; ++k) out[k] = p.volume[first + k];
+           }},
+          {"region", 1,
+           [&p](std::uint64_t first, std::uint64_t count, double* out) {
+             for (std::uint64_t k = 0; k < count; ++k) out[k] = p.region[first + k];
+           }},
+          {"boundary_id", 1, [&p](std::uint64_t first, std::uint64_t count, double* out) {
+             for (std::uint64_t k = 0; k < count; ++k) out[k] = p.boundary_id[first + k];
+           }}};
+}
+
+void RunWriter::write_reference(int dimension, std::uint64_t point_count,
+                                const std::vector<SnapshotFieldSource>& fields) {
+  if (silent_) return;
+  mppm::write_snapshot(dimension, 0, 0.0, point_count, fields, path(run_layout::reference));
 }
 
 void RunWriter::write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
                                const std::vector<SnapshotFieldSource>& fields) {
+  if (silent_) return;
   const std::string file = std::string(run_layout::snapshot_dir) + "/" + run_layout::snapshot_name(step);
   const std::string target = path(file);
   rename_temporary(mppm::write_snapshot_temporary(dimension, step, time, point_count, fields, target), target);
@@ -151,6 +170,7 @@ void RunWriter::add_crack_path_row(std::uint64_t point, const std::array<double,
 }
 
 void RunWriter::flush(const RunInfo& info) {
+  if (silent_) return;
   make_snapshots_durable();
   write_file_atomically(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
   write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
@@ -169,6 +189,8 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"start_up_seconds\": " + start_up_json(info.start_up) + ",\n";
   j += "  \"start_up_total_seconds\": " + format_number(start_up_total(info.start_up)) + ",\n";
   j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
+  j += "  \"processes\": " + std::to_string(info.partition ? info.partition->points.size() : 1) + ",\n";
+  if (info.partition) j += "  \"partition\": " + partition_json(*info.partition) + ",\n";
   j += "  \"effects\": [";
   for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_quote(info.effects[k]);
   j += "],\n";

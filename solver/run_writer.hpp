@@ -14,6 +14,7 @@
 
 #include "common/scene.hpp"
 #include "common/snapshot_file.hpp"
+#include "solver/partition_summary.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/point_data.hpp"
 #include "solver/pore_fluid.hpp"
@@ -31,7 +32,10 @@ struct RunInfo {
   // The start-up before the first step, phase by phase in their order (solver/phase_timer.hpp);
   // their sum is wall_seconds - loop_wall_seconds.
   std::vector<PhaseTimer::Phase> start_up;
-  int threads = 1;
+  int threads = 1;  // per process
+  // A distributed run (mppm-solve under mpirun): how its points and bonds are shared; written as
+  // "processes" and "partition" (a one-process run: "processes": 1 and no partition).
+  std::optional<PartitionSummary> partition;
   std::vector<std::string> effects;
   int dimension = 2;
   double time_step = 0.0, critical_time_step = 0.0;
@@ -52,6 +56,11 @@ class RunWriter {
   // and snapshot list are put back with restore_* before anything is written.
   struct ContinueExisting {};
   RunWriter(std::string directory, ContinueExisting);
+  // The processes of a distributed run other than the first: the same tables and log are kept, so
+  // that the run loop is the same code on every process, but no file is touched (the first
+  // process writes the run directory; docs/theory.md section 13).
+  struct Silent {};
+  RunWriter(std::string directory, Silent);
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
 
@@ -61,7 +70,8 @@ class RunWriter {
   // `derived`: values the solver derived (written under `derived:`), e.g. the time step.
   // Returns the text written (its fingerprint identifies the scene of a checkpoint).
   std::string write_resolved_scene(const Scene& scene, const std::vector<std::pair<std::string, double>>& derived = {});
-  void write_reference(const PointData& points);
+  // `fields`: reference_fields of the points, or of all processes' points gathered.
+  void write_reference(int dimension, std::uint64_t point_count, const std::vector<SnapshotFieldSource>& fields);
   // Named by its step. The fields are written as they are produced (common/snapshot_file.hpp), not
   // assembled first, to a temporary file, which is then renamed to its name: complete under its
   // name at once for every reader. It is made durable (fsync) with the snapshots since the last
@@ -105,6 +115,7 @@ class RunWriter {
 
  private:
   std::string directory_;
+  bool silent_ = false;
   std::string load_csv_, energy_csv_, log_;
   std::optional<std::string> crack_path_csv_;  // damage runs only
   std::size_t crack_path_rows_ = 0;
@@ -113,6 +124,10 @@ class RunWriter {
   std::vector<SnapshotRecord> not_yet_durable_;
   void make_snapshots_durable();
 };
+
+// The reference configuration's fields (run_layout::reference): position (3 components), volume,
+// region, boundary id.
+std::vector<SnapshotFieldSource> reference_fields(const PointData& points);
 
 // Formats a number for the tables (shortest text that reads back to the same double).
 std::string format_number(double v);

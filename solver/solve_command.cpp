@@ -1,10 +1,13 @@
 // The mppm-solve command line (docs/stages.md "Commands").
 #include "solver/solve_command.hpp"
 
+#include <mpi.h>
 #include <omp.h>
 
 #include <cstdlib>
 #include <iostream>
+#include <optional>
+#include <streambuf>
 #include <utility>
 
 #include "common/checkpoint_file.hpp"
@@ -12,8 +15,10 @@
 #include "common/input_error.hpp"
 #include "common/point_cloud.hpp"
 #include "common/scene.hpp"
+#include "solver/agreed_failure.hpp"
 #include "solver/bond_families.hpp"
 #include "solver/point_data.hpp"
+#include "solver/process_group.hpp"
 #include "solver/run_estimate.hpp"
 #include "solver/solve_run.hpp"
 #include "solver/test_hooks.hpp"
@@ -119,68 +124,124 @@ int estimate_only(const mppm::CommandLine& cl) {
   return mppm::kExitSuccess;
 }
 
-// mppm-solve SCENE.yaml --points POINTS -o RUN_DIR: a new run.
-int start_run(const mppm::CommandLine& cl, const TestHooks& hooks) {
-  if (cl.positional.size() != 1) throw mppm::InputError("expected exactly one scene file (see --help)");
-  const auto points = cl.option("--points");
-  const auto out = cl.option("-o");
-  if (!points) throw mppm::InputError("--points POINTS.vtp is required (see --help)");
-  if (!out) throw mppm::InputError("-o RUN_DIR is required (see --help)");
-  PhaseTimer start_up;
-  const mppm::Scene scene = mppm::load_scene(cl.positional[0], cl.overrides);
-  start_up.mark("read scene");
-  mppm::PointCloud cloud = mppm::read_point_cloud(*points);
-  start_up.mark("read points");
+// mppm-solve SCENE.yaml --points POINTS -o RUN_DIR: a new run, on one process or on every process
+// of `group` (each reads the scene and the points; a failure to read them anywhere stops all).
+int start_run(const mppm::CommandLine& cl, const TestHooks& hooks, const ProcessGroup& group) {
+  std::optional<mppm::Scene> scene;
+  mppm::PointCloud cloud;
   SolveOptions options;
-  options.run_directory = *out;
-  options.points_file = *points;
-  options.force = cl.has_flag("--force");
-  options.quiet = cl.quiet;
-  options.test_hooks = hooks;
-  options.start_up = std::move(start_up);
-  return exit_code(solve(scene, std::move(cloud), options), options);
+  run_agreed(group, [&] {
+    if (cl.positional.size() != 1) throw mppm::InputError("expected exactly one scene file (see --help)");
+    const auto points = cl.option("--points");
+    const auto out = cl.option("-o");
+    if (!points) throw mppm::InputError("--points POINTS.vtp is required (see --help)");
+    if (!out) throw mppm::InputError("-o RUN_DIR is required (see --help)");
+    PhaseTimer start_up;
+    scene = mppm::load_scene(cl.positional[0], cl.overrides);
+    start_up.mark("read scene");
+    cloud = mppm::read_point_cloud(*points);
+    start_up.mark("read points");
+    options.run_directory = *out;
+    options.points_file = *points;
+    options.force = cl.has_flag("--force");
+    options.quiet = cl.quiet || group.rank() != 0;  // one progress display
+    options.test_hooks = hooks;
+    options.start_up = std::move(start_up);
+    if (group.distributed()) options.processes = &group;
+  });
+  return exit_code(solve(*scene, std::move(cloud), options), options);
 }
 
-// The number of processes and this one's rank when a launcher (mpirun of OpenMPI, or a PMI launcher
-// such as MPICH's or Slurm's) started several copies; {1, 0} otherwise.
-std::pair<int, int> launched_processes() {
-  for (const auto& [size, rank] : {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
-                                   std::pair{"PMI_SIZE", "PMI_RANK"}, std::pair{"PMIX_SIZE", "PMIX_RANK"}})
-    if (const char* n = std::getenv(size)) {
-      const char* r = std::getenv(rank);
-      return {std::atoi(n), r ? std::atoi(r) : 0};
+// The number of processes when a launcher (mpirun of OpenMPI, or a PMI launcher such as MPICH's or
+// Slurm's) started several copies; 1 otherwise.
+int launched_processes() {
+  for (const char* size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* n = std::getenv(size)) return std::atoi(n);
+  return 1;
+}
+
+// The test hooks of both forms; continue_run refuses the two that a restart cannot take.
+TestHooks test_hooks_of(const mppm::CommandLine& cl) {
+  TestHooks hooks;
+  if (const auto k = cl.option("--fail-checkpoint-write"))
+    hooks.fail_checkpoint_write = parse_checkpoint_write_failure(*k);
+  if (const auto hook = cl.option("--inject-nan")) hooks.inject_nan = parse_nan_injection(*hook);
+  if (const auto hook = cl.option("--inject-kick")) hooks.inject_kick = parse_velocity_kick(*hook);
+  return hooks;
+}
+
+// One process: the three forms of the command.
+int run_one_process(const mppm::CommandLine& cl) {
+  const TestHooks hooks = test_hooks_of(cl);
+  if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
+  if (cl.has_flag("--estimate")) return estimate_only(cl);
+  return start_run(cl, hooks, ProcessGroup::single());
+}
+
+// Several processes (mpirun): a new run across them (docs/theory.md section 13).
+int run_distributed(const mppm::CommandLine& cl, const ProcessGroup& group) {
+  TestHooks hooks;
+  run_agreed(group, [&] {
+    if (cl.option("--restart"))
+      throw mppm::InputError(
+          "--restart: continuing a run across processes is not built yet (a distributed run "
+          "writes no checkpoint); start the run again, or run on one process with --threads N");
+    if (cl.has_flag("--estimate"))
+      throw mppm::InputError("--estimate runs nothing: run it on one process, without mpirun");
+    hooks = test_hooks_of(cl);
+  });
+  return start_run(cl, hooks, group);
+}
+
+// A writer that drops everything: the output of the processes other than the first.
+class DiscardingBuffer : public std::streambuf {
+ protected:
+  int overflow(int c) override { return traits_type::not_eof(c); }
+};
+
+// mppm-solve under mpirun: every process runs the command; only the first prints. The failures of a
+// run are agreed by all processes (solver/agreed_failure.hpp) and so the same everywhere; a failure
+// on one process alone (an internal error) is printed by that process and ends the whole run
+// (MPI_Abort) instead of leaving the others waiting for it.
+int solve_distributed(int argc, char** argv, const mppm::CommandLineSpec& spec) {
+  MpiSession mpi(argc, argv);
+  const ProcessGroup group = ProcessGroup::world();
+  DiscardingBuffer discard;
+  std::streambuf* const cerr_buffer = std::cerr.rdbuf();
+  std::streambuf* const cout_buffer = std::cout.rdbuf();
+  if (group.rank() != 0) {
+    std::cerr.rdbuf(&discard);
+    std::cout.rdbuf(&discard);
+  }
+  // The streams get their buffers back before `discard` goes (they outlive this function).
+  const auto restore = [&] {
+    std::cerr.rdbuf(cerr_buffer);
+    std::cout.rdbuf(cout_buffer);
+  };
+  bool alone = false;
+  const int code = mppm::run_stage(argc, argv, spec, [&](const mppm::CommandLine& cl) {
+    try {
+      return run_distributed(cl, group);
+    } catch (...) {
+      alone = !failure_was_agreed(std::current_exception());
+      if (alone) restore();
+      throw;
     }
-  return {1, 0};
-}
-
-// mppm-solve does not yet run across processes (docs/theory.md section 13): copies started by mpirun
-// would each run the whole model into the same run directory. Refused before anything is read or
-// written, with the message from the first process only.
-int refuse_several_processes(int processes, int rank) {
-  if (rank == 0)
-    std::cerr << "mppm-solve: " << processes
-              << " processes were started (mpirun), but a run across processes is not built yet: each would run "
-                 "the whole model into the same run directory. Run one process and give it the cores with "
-                 "--threads N (the results are the same bits for any N).\n";
-  return mppm::kExitBadInput;
+  });
+  restore();
+  if (alone) {
+    std::cerr << "mppm-solve: process " << group.rank() << " of " << group.size()
+              << " failed alone: ending the run on every process\n";
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
+  return code;
 }
 
 }  // namespace
 
 int solve_command(int argc, char** argv) {
-  if (const auto [processes, rank] = launched_processes(); processes > 1)
-    return refuse_several_processes(processes, rank);
-  return mppm::run_stage(argc, argv, solve_command_spec(), [](const mppm::CommandLine& cl) {
-    // The test hooks of both forms; continue_run refuses the two that a restart cannot take.
-    TestHooks hooks;
-    if (const auto k = cl.option("--fail-checkpoint-write"))
-      hooks.fail_checkpoint_write = parse_checkpoint_write_failure(*k);
-    if (const auto hook = cl.option("--inject-nan")) hooks.inject_nan = parse_nan_injection(*hook);
-    if (const auto hook = cl.option("--inject-kick")) hooks.inject_kick = parse_velocity_kick(*hook);
-    if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
-    if (cl.has_flag("--estimate")) return estimate_only(cl);
-    return start_run(cl, hooks);
-  });
+  if (launched_processes() > 1) return solve_distributed(argc, argv, solve_command_spec());
+  return mppm::run_stage(argc, argv, solve_command_spec(), run_one_process);
 }
 
 }  // namespace mppm::solver

@@ -20,9 +20,12 @@
 #include "common/memory_estimate.hpp"
 #include "common/progress.hpp"
 #include "common/run_directory.hpp"
+#include "solver/agreed_failure.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/checkpoint.hpp"
 #include "solver/critical_time_step.hpp"
+#include "solver/distributed_model.hpp"
+#include "solver/distributed_snapshot.hpp"
 #include "solver/energy_guard.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/interruption.hpp"
@@ -90,37 +93,67 @@ std::string log_seconds(double seconds) {
   return s.str();
 }
 
-// "1.5e-3, 2e-3" for the position of point i.
-std::string position_of(const PointData& p, std::size_t i) {
-  std::string s;
-  for (int c = 0; c < p.dimension; ++c) s += (c ? ", " : "") + log_number(p.position[i * p.dimension + c]);
-  return "(" + s + ") m";
+// Where a point of the points file is: its position and region, from the process that owns it
+// (collective in a distributed run: the owner's values, exactly, on every process).
+struct PointWhereabouts {
+  std::string position;  // "(1.5e-3, 2e-3) m", and in a distributed run ", on process 2 of 3"
+  std::int64_t region = 0;
+};
+
+PointWhereabouts whereabouts(const PointData& p, std::size_t point) {
+  const auto i = owned_index(p, point);
+  std::vector<ExactSum> x(static_cast<std::size_t>(p.dimension));
+  for (int c = 0; c < p.dimension && i; ++c) x[static_cast<std::size_t>(c)].add(p.position[*i * p.dimension + c]);
+  const std::vector<double> position = p.processes ? p.processes->sum(x) : ProcessGroup::single().sum(x);
+  const std::int64_t region = i ? p.region[*i] : 0;
+  PointWhereabouts w;
+  for (std::size_t c = 0; c < position.size(); ++c) w.position += (c ? ", " : "") + log_number(position[c]);
+  w.position = "(" + w.position + ") m";
+  w.region = p.processes ? p.processes->total(region) : region;
+  if (p.processes)
+    w.position += ", on process " + std::to_string(p.processes->total(i ? p.processes->rank() : 0)) + " of " +
+                  std::to_string(p.processes->size());
+  return w;
 }
 
 // The reason of a stop on non-finite values: which point (the lowest index), which field, how many.
+// Collective in a distributed run.
 std::string non_finite_reason(const ExplicitDynamics& dynamics) {
   const auto bad = dynamics.first_non_finite();
   if (!bad) return "non-finite displacement, rotation or velocity";
   const PointData& p = dynamics.model().points;
+  const PointWhereabouts where = whereabouts(p, bad->point);
   if (bad->field == "pore_pressure")
     return "no pore pressure holds the fluid content of point " + std::to_string(bad->point) +
-           " of the points file (0-based; position " + position_of(p, bad->point) +
+           " of the points file (0-based; position " + where.position +
            "): the retention curve's inverse failed there, the point was drained below the liquid its pores hold "
            "at the largest suction (check the fluid_flux outflow, the permeability or the time step); " +
            std::to_string(bad->points) + " point(s) so";
   return "non-finite " + bad->field + " at point " + std::to_string(bad->point) +
-         " of the points file (0-based; region " + std::to_string(p.region[bad->point]) + ", position " +
-         position_of(p, bad->point) + "); " + std::to_string(bad->points) + " point(s) non-finite";
+         " of the points file (0-based; region " + std::to_string(where.region) + ", position " + where.position +
+         "); " + std::to_string(bad->points) + " point(s) non-finite";
 }
 
 }  // namespace
 
+// The bytes of the points as read (every array of the cloud).
+static std::uint64_t point_cloud_bytes(const PointCloud& c) {
+  auto bytes = [](const auto& v) { return static_cast<std::uint64_t>(v.size() * sizeof(v[0])); };
+  return bytes(c.x) + bytes(c.y) + bytes(c.z) + bytes(c.volume) + bytes(c.region) + bytes(c.boundary_id) +
+         bytes(c.normal_x) + bytes(c.normal_y) + bytes(c.normal_z) + bytes(c.precrack_vertices);
+}
+
 // Before anything big is allocated: the memory estimate (common/memory_estimate.hpp) against what
 // this machine has available (MemAvailable, or MPPM_MEMORY_AVAILABLE in bytes: a budget a user or
-// a test sets), refused with the estimate and the advice.
-static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cloud) {
+// a test sets), refused with the estimate and the advice. In a distributed run each process checks
+// its share against the machine's memory over the processes on it: the largest share of the points
+// (the ghosts, a layer one horizon deep around each share, are not counted) and the whole points
+// file, which every process reads and holds until its model is built.
+static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cloud, const ProcessGroup& group) {
+  const int sharing = group.processes_on_this_machine();  // collective: before any return
   MemoryEstimateInput in;
-  in.points = cloud.size();
+  const auto processes = static_cast<std::uint64_t>(group.size());
+  in.points = (cloud.size() + processes - 1) / processes;
   in.horizon_factor = scene.geometry.horizon_factor;
   in.dimension = scene.dimension;
   in.effects = scene.effects.names();
@@ -138,7 +171,13 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
       throw InputError(std::string("MPPM_MEMORY_AVAILABLE: expected a number of bytes, got '") + budget + "'");
     available = v;
   }
-  if (available) require_memory_fits(estimate_run_memory(in), *available, scene.path);
+  if (!available) return;
+  MemoryEstimate estimate = estimate_run_memory(in);
+  if (!group.distributed()) return require_memory_fits(estimate, *available, scene.path);
+  estimate.total_bytes += point_cloud_bytes(cloud);
+  require_memory_fits(estimate, *available / static_cast<std::uint64_t>(sharing),
+                      scene.path + " (process " + std::to_string(group.rank()) + " of " + std::to_string(group.size()) +
+                          ", one of " + std::to_string(sharing) + " sharing this machine's memory)");
 }
 
 namespace {
@@ -278,6 +317,7 @@ class RunDriver {
   RunDriver(const Scene& scene_in, const SolveOptions& options, const CheckpointFile* resume)
       : scene_in_(scene_in),
         options_(options),
+        group_(options.processes ? *options.processes : one_process_),
         resume_(resume),
         start_up_(options.start_up.value_or(PhaseTimer{})),
         scene_(scene_in),
@@ -286,17 +326,23 @@ class RunDriver {
 
   // `release`: the caller's cloud (the same object as `cloud`), emptied once the model and the
   // boundary conditions are built from it; null to leave it as it is.
+  // In a distributed run every step that may fail on one process alone runs through run_agreed
+  // (solver/agreed_failure.hpp): all processes go on, or all stop with the same failure.
   SolveResult run(const PointCloud& cloud, PointCloud* release) {
-    check_inputs(cloud);
-    build_model_and_conditions(cloud, release);
-    options_.test_hooks.check_against_model(model(), options_.points_file);
-    fit_time_step();
-    options_.test_hooks.check_against_steps(plan_.steps);
-    open_run_directory();
-    log_start();
+    run_agreed(group_, [&] { check_inputs(cloud); });
+    run_agreed(group_, [&] { build_model_and_conditions(cloud, release); });
+    run_agreed(group_, [&] { options_.test_hooks.check_against_model(model(), totals_.points, options_.points_file); });
+    run_agreed(group_, [&] {
+      fit_time_step();
+      options_.test_hooks.check_against_steps(plan_.steps);
+    });
+    run_agreed(group_, [&] {
+      open_run_directory();
+      log_start();
+    });
     start_up_.mark("run directory");
     if (!resume_) write_reference();
-    start_dynamics();
+    run_agreed(group_, [&] { start_dynamics(); });
     start_up_.mark("initial forces");
     if (resume_)
       restore_from_checkpoint();
@@ -311,7 +357,8 @@ class RunDriver {
   }
 
  private:
-  Model& model() { return *model_; }
+  Model& model() { return distributed_ ? distributed_->model : *model_; }
+  const Model& model() const { return distributed_ ? distributed_->model : *model_; }
   RunWriter& writer() { return *writer_; }
   ExplicitDynamics& dynamics() { return *dynamics_; }
 
@@ -319,6 +366,7 @@ class RunDriver {
   // the next one allocates or writes anything.
   void check_inputs(const PointCloud& cloud);
   void build_model_and_conditions(const PointCloud& cloud, PointCloud* release);
+  void build_distributed(const PointCloud& cloud, const ModelOptions& settings);
   void fit_time_step();
   void open_run_directory();
   void write_reference();
@@ -354,6 +402,8 @@ class RunDriver {
 
   const Scene& scene_in_;  // as given: scene_.time.step is the step the run arrives at
   const SolveOptions& options_;
+  const ProcessGroup one_process_ = ProcessGroup::single();
+  const ProcessGroup& group_;     // options_.processes, or one_process_
   const CheckpointFile* resume_;  // null for a new run
   // The start-up phases (run_info.json "start_up_seconds"); their start is that of the run's wall
   // time, their end that of the time loop.
@@ -365,7 +415,13 @@ class RunDriver {
   const bool checkpointing_;
   RunIdentity identity_;
   std::optional<BoundaryConditions> conditions_;
-  std::optional<Model> model_;
+  std::optional<Model> model_;                   // one process ...
+  std::optional<DistributedModel> distributed_;  // ... or this process's part of a distributed run
+  // The whole model's counts (over all processes).
+  struct Totals {
+    std::uint64_t points = 0, bonds = 0, precrack_cut_pairs = 0, detached_points = 0;
+  } totals_;
+  std::uint64_t total_detached_points() const;
   TimeStepPlan plan_;
   std::optional<RunWriter> writer_;
   RunInfo info_;
@@ -387,7 +443,11 @@ class RunDriver {
 void RunDriver::check_inputs(const PointCloud& cloud) {
   check_points_match_scene(scene_, cloud, options_.points_file);
   if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");
-  refuse_runs_that_do_not_fit(scene_, cloud);
+  if (group_.distributed() && checkpointing_)
+    throw InputError(scene_.path +
+                     ": output.checkpoint_interval: checkpoints of a run across processes are not built "
+                     "yet (set it to 0, or run on one process with --threads N)");
+  refuse_runs_that_do_not_fit(scene_, cloud, group_);
   start_up_.mark("memory estimate");
 }
 
@@ -406,13 +466,39 @@ void RunDriver::build_model_and_conditions(const PointCloud& cloud, PointCloud* 
   conditions_.emplace(scene_, cloud, options_.points_file);
   if (scene_.effects.pore_fluid) model_settings.fluid_boundaries = conditions_->fluid_layout();
   start_up_.mark("boundary conditions");
-  model_.emplace(release ? build_model(std::move(*release), model_settings, &start_up_)
-                         : build_model(cloud, model_settings, &start_up_));
+  if (group_.distributed())
+    build_distributed(cloud, model_settings);
+  else
+    model_.emplace(release ? build_model(std::move(*release), model_settings, &start_up_)
+                           : build_model(cloud, model_settings, &start_up_));
   if (release) *release = PointCloud{};
-  if (model().detached_points == model().points.owned)
+  totals_.points = static_cast<std::uint64_t>(group_.total(static_cast<std::int64_t>(model().points.owned)));
+  totals_.bonds = static_cast<std::uint64_t>(group_.total(static_cast<std::int64_t>(model().bonds.bond_count())));
+  totals_.precrack_cut_pairs =
+      static_cast<std::uint64_t>(group_.total(static_cast<std::int64_t>(model().precrack_cut_entries))) / 2;
+  totals_.detached_points = total_detached_points();
+  if (totals_.detached_points == totals_.points)
     throw InputError(options_.points_file + ": every point is detached (fewer than d+1 bonds within the horizon " +
                      log_number(scene_.geometry.horizon()) +
                      " m): nothing holds the body together (expected geometry.horizon_factor of about 2 to 4)");
+}
+
+// A distributed run's model: this process's points and their ghosts (solver/distributed_model.hpp),
+// the conditions keeping this process's points, and the partition's summary for the log and
+// run_info.json. The effects that do not run across processes yet are refused as bad input.
+void RunDriver::build_distributed(const PointCloud& cloud, const ModelOptions& settings) {
+  try {
+    distributed_.emplace(build_distributed_model(cloud, settings, group_));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene_.path + ": " + e.what() + " (mppm-solve under mpirun; docs/theory.md section 13)");
+  }
+  start_up_.mark("distributed model");
+  conditions_->keep_owned(distributed_->local);
+  info_.partition = summarize_partition(model(), group_);
+}
+
+std::uint64_t RunDriver::total_detached_points() const {
+  return static_cast<std::uint64_t>(group_.total(static_cast<std::int64_t>(model().detached_points)));
 }
 
 // The critical step of the model, the step the run takes (fit_step_to_end) and the breakage's
@@ -441,7 +527,9 @@ void RunDriver::fit_time_step() {
 // The run directory: a new one (the resolved scene written), or the one a restart continues.
 void RunDriver::open_run_directory() {
   model().set_breakage_time_step(plan_.dt);
-  if (resume_)
+  if (group_.rank() != 0)
+    writer_.emplace(options_.run_directory, RunWriter::Silent{});  // the first process writes
+  else if (resume_)
     writer_.emplace(options_.run_directory, RunWriter::ContinueExisting{});
   else
     writer_.emplace(options_.run_directory, options_.force);
@@ -462,13 +550,23 @@ void RunDriver::open_run_directory() {
 
 // A new run: the reference configuration (run_layout::reference).
 void RunDriver::write_reference() {
-  writer().write_reference(model().points);
+  const int D = model().dimension();
+  if (!distributed_) {
+    writer().write_reference(D, model().points.owned, reference_fields(model().points));
+  } else {
+    run_agreed(group_, [&] {
+      with_gathered_fields(model().points, reference_fields(model().points), distributed_->part, group_,
+                           [&](const std::vector<SnapshotFieldSource>& all, std::uint64_t points) {
+                             writer().write_reference(D, points, all);
+                           });
+    });
+  }
   start_up_.mark("reference snapshot");
 }
 
 void RunDriver::fill_run_info() {
-  info_.points = model().points.owned;
-  info_.bonds = model().bonds.bond_count();
+  info_.points = totals_.points;
+  info_.bonds = totals_.bonds;
   info_.threads = omp_get_max_threads();
   info_.effects = scene_.effects.names();
   info_.dimension = scene_.dimension;
@@ -476,7 +574,7 @@ void RunDriver::fill_run_info() {
   info_.critical_time_step = plan_.critical.step;
   info_.largest_time_step = plan_.damage_step;
   info_.limiting_mode = plan_.critical.limiting_mode;
-  info_.detached_points = model().detached_points;
+  info_.detached_points = totals_.detached_points;
   if (model().fluid) info_.flow = plan_.flow;
 }
 
@@ -538,8 +636,9 @@ void RunDriver::log_start_up_report() {
   const CriticalTimeStep& critical = plan_.critical;
   const double dt = plan_.dt;
   writer().log("points " + std::to_string(info_.points) + ", bonds " + std::to_string(info_.bonds) +
-               " (stored from both ends), pre-crack cuts " + std::to_string(m.precrack_cut_bonds) +
-               " bonds, detached points " + std::to_string(m.detached_points));
+               " (stored from both ends), pre-crack cuts " + std::to_string(totals_.precrack_cut_pairs) +
+               " bonds, detached points " + std::to_string(totals_.detached_points));
+  if (info_.partition) writer().log("distributed run, " + describe(*info_.partition));
   writer().log("critical time step " + log_number(critical.step) + " s (translational " +
                log_number(critical.translational) + " s" +
                (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
@@ -547,7 +646,8 @@ void RunDriver::log_start_up_report() {
                critical.limiting_mode + ", driven by " + critical.driver);
   writer().log("time step " + log_number(dt) + " s (" +
                (scene_in_.time.step ? "given" : "auto, safety " + log_number(scene_.time.safety)) + "), " +
-               std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads));
+               std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads) +
+               (info_.partition ? " per process" : ""));
   if (scene_.effects.damage)
     writer().log("damage: critical bond work w_cr " + log_number(m.constants.critical_bond_work) + " J/m^6 (G_cr " +
                  log_number(scene_.material.damage->critical_energy_release_rate) + " J/m^2, " +
@@ -670,7 +770,8 @@ bool RunDriver::advance(Progress& progress) {
                     [this](PointData& points, std::int64_t step) { options_.test_hooks.after_forces(points, step); });
     check_and_record(s, row);
     if (snap) snapshot();
-    const bool interrupted = interruption_requested() || options_.test_hooks.interrupts_after(s);
+    // A signal may reach the processes of a distributed run in different steps: agreed each step.
+    const bool interrupted = group_.any(interruption_requested() || options_.test_hooks.interrupts_after(s));
     // With checkpoints on, an interruption (SIGINT, SIGTERM) writes one too, before the snapshot of
     // the interruption (which the checkpoint does not count, so that a restart removes it).
     if (checkpointing_ && (checkpoint_due || interrupted)) checkpoint();
@@ -786,7 +887,7 @@ void RunDriver::update_info(const std::string& status, const std::string& messag
   // 0 until the time loop starts (a rewrite during the start-up).
   info_.loop_wall_seconds = loop_start_ ? std::chrono::duration<double>(now - *loop_start_).count() : 0.0;
   if (!loop_start_) info_.start_up = start_up_.phases();
-  info_.detached_points = model().detached_points;
+  info_.detached_points = total_detached_points();
 }
 
 // The tables, the log and run_info.json rewritten (RunWriter::flush), with the crack arrivals since
@@ -803,19 +904,32 @@ void RunDriver::flush_files() {
       writer().add_crack_path_row(i, x, arrivals.times()[k]);
     }
   }
-  writer().flush(info_);
+  // The first process writes (the others' writers are silent); a write error stops every process.
+  run_agreed(group_, [&] { writer().flush(info_); });
 }
 
 void RunDriver::write_snapshot() {
-  writer().write_snapshot(model().dimension(), dynamics().steps(), dynamics().time(), model().points.owned,
-                          snapshot_sources(model(), scene_.output.fields));
+  const int D = model().dimension();
+  const std::int64_t step = dynamics().steps();
+  const double t = dynamics().time();
+  if (!distributed_) {
+    writer().write_snapshot(D, step, t, model().points.owned, snapshot_sources(model(), scene_.output.fields));
+    return;
+  }
+  run_agreed(group_, [&] {
+    with_gathered_fields(model(), scene_.output.fields, distributed_->part, group_,
+                         [&](const std::vector<SnapshotFieldSource>& all, std::uint64_t points) {
+                           writer().write_snapshot(D, step, t, points, all);
+                         });
+  });
 }
 
 // A scheduled snapshot, then the files when kTableFlushInterval has passed since their last rewrite.
 void RunDriver::snapshot() {
   write_snapshot();
   const auto now = std::chrono::steady_clock::now();
-  if (last_flush_ && now - *last_flush_ < kTableFlushInterval) return;
+  // The first process's clock decides for all (it is the one that writes).
+  if (!group_.any(group_.rank() == 0 && !(last_flush_ && now - *last_flush_ < kTableFlushInterval))) return;
   update_info("running", "");
   flush_files();
   last_flush_ = now;
@@ -830,7 +944,11 @@ void RunDriver::fail(const std::string& reason) {
   writer().log(message);
   update_info("numerical_failure", message);
   flush_files();
-  throw NumericalFailure(options_.run_directory + ": " + message);
+  // Every process arrives here at the same step (the guards decide on values summed over all), and
+  // throws the same failure, agreed so that the top of mppm-solve knows that no process is left
+  // waiting.
+  run_agreed(group_, [&] { throw NumericalFailure(options_.run_directory + ": " + message); });
+  throw std::logic_error("RunDriver::fail: run_agreed returned after a failure on every process");
 }
 
 // The loop's state after the last step, as a checkpoint stores it.

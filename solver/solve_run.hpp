@@ -11,6 +11,7 @@
 #include "common/scene.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/phase_timer.hpp"
+#include "solver/process_group.hpp"
 #include "solver/test_hooks.hpp"
 
 namespace mppm::solver {
@@ -26,6 +27,9 @@ struct SolveOptions {
   std::optional<PhaseTimer> start_up;
   // Faults on purpose, for tests (solver/test_hooks.hpp; none by default).
   TestHooks test_hooks;
+  // A distributed run's processes (mppm-solve under mpirun; docs/theory.md section 13), every one
+  // calling solve() with the same arguments; null: one process.
+  const ProcessGroup* processes = nullptr;
 };
 
 struct SolveResult {

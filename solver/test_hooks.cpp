@@ -1,9 +1,11 @@
 // The test hooks of mppm-solve: their options parsed, checked against the run, and applied.
 #include "solver/test_hooks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -76,9 +78,9 @@ int nan_field_components(const PointData& p, NanInjection::Field f) {
   return nan_field(f).rotational ? p.rotation_components : p.dimension;
 }
 
-void write_nan(PointData& p, const NanInjection& k) {
+void write_nan(PointData& p, std::size_t i, const NanInjection& k) {
   const auto width = static_cast<std::size_t>(nan_field_components(p, k.field));
-  (p.*nan_field(k.field).array)[k.point * width + static_cast<std::size_t>(k.component)] =
+  (p.*nan_field(k.field).array)[i * width + static_cast<std::size_t>(k.component)] =
       std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -138,13 +140,12 @@ int parse_checkpoint_write_failure(const std::string& value) {
   }
 }
 
-void TestHooks::check_against_model(const Model& model, const std::string& points_file) const {
-  const std::size_t owned = model.points.owned;
+void TestHooks::check_against_model(const Model& model, std::uint64_t points, const std::string& points_file) const {
   if (const auto& k = inject_nan) {
     const int components = nan_field_components(model.points, k->field);
-    if (k->point >= owned)
+    if (k->point >= points)
       throw InputError("--inject-nan: POINT " + std::to_string(k->point) + " is not a point of " + points_file +
-                       " (expected 0 to " + std::to_string(owned - 1) + ")");
+                       " (expected 0 to " + std::to_string(points - 1) + ")");
     if (components == 0)
       throw InputError(std::string("--inject-nan: FIELD ") + NanInjection::name(k->field) +
                        " needs the micropolar effect (this run has no micro-rotation)");
@@ -153,9 +154,9 @@ void TestHooks::check_against_model(const Model& model, const std::string& point
                        NanInjection::name(k->field) + " (expected 0 to " + std::to_string(components - 1) + ")");
   }
   if (const auto& k = inject_kick) {
-    if (k->point >= owned)
+    if (k->point >= points)
       throw InputError("--inject-kick: POINT " + std::to_string(k->point) + " is not a point of " + points_file +
-                       " (expected 0 to " + std::to_string(owned - 1) + ")");
+                       " (expected 0 to " + std::to_string(points - 1) + ")");
     if (k->component >= model.dimension())
       throw InputError("--inject-kick: COMPONENT " + std::to_string(k->component) + " of the velocity (expected 0 to " +
                        std::to_string(model.dimension() - 1) + ")");
@@ -191,10 +192,12 @@ std::vector<std::string> TestHooks::armed() const {
 }
 
 void TestHooks::after_forces(PointData& points, std::int64_t step) const {
-  if (inject_nan && inject_nan->step == step) write_nan(points, *inject_nan);
+  if (inject_nan && inject_nan->step == step)
+    if (const auto i = owned_index(points, inject_nan->point)) write_nan(points, *i, *inject_nan);
   if (inject_kick && inject_kick->step == step)
-    points.velocity[inject_kick->point * static_cast<std::size_t>(points.dimension) +
-                    static_cast<std::size_t>(inject_kick->component)] += inject_kick->velocity;
+    if (const auto i = owned_index(points, inject_kick->point))
+      points.velocity[*i * static_cast<std::size_t>(points.dimension) +
+                      static_cast<std::size_t>(inject_kick->component)] += inject_kick->velocity;
 }
 
 }  // namespace mppm::solver

@@ -45,8 +45,9 @@ struct TestHooks {
   int fail_checkpoint_write = 0;
 
   // Exit 2 (InputError naming the option) when a hook cannot act on this run, before anything is
-  // written: a point or component the model does not have ...
-  void check_against_model(const Model& model, const std::string& points_file) const;
+  // written: a point or component the model does not have (`points`: the whole model's, of every
+  // process) ...
+  void check_against_model(const Model& model, std::uint64_t points, const std::string& points_file) const;
   // ... a step beyond the run ...
   void check_against_steps(std::int64_t steps) const;
   // ... or a fault hook with --restart.
@@ -55,7 +56,8 @@ struct TestHooks {
   std::vector<std::string> armed() const;
 
   // Between the force evaluation and the second half kick of step `step` (1-based): the NaN and
-  // the kick of that step.
+  // the kick of that step. POINT is the point's index in the points file: in a distributed run the
+  // process that owns it acts.
   void after_forces(PointData& points, std::int64_t step) const;
   // The run stops after step `step` as if interrupted.
   bool interrupts_after(std::int64_t step) const { return interrupt_after_step == step; }

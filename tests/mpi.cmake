@@ -24,14 +24,25 @@ mppm_add_mpi_test(reductions mpi/test_mpi_reductions.cpp)
 mppm_add_mpi_test(forces mpi/test_mpi_forces.cpp)
 mppm_add_mpi_test(run mpi/test_mpi_run.cpp)
 
-# mppm-solve does not run across processes yet: under mpirun it refuses (exit 2, one message from the
-# first process) before it reads or writes anything, instead of running N copies into one directory.
-add_test(NAME mpi.solve_refuses_several_processes
-  COMMAND sh -c "rm -rf mpi_refused_run; ${MPIEXEC_EXECUTABLE} --oversubscribe -np 2 $<TARGET_FILE:mppm-solve> \
-${PROJECT_SOURCE_DIR}/tests/data/scenes/solver_case1_block.yaml --points absent.vtp -o mpi_refused_run 2> refused.txt; \
-code=$?; cat refused.txt; test $code -ne 0 && test ! -e mpi_refused_run && \
-test $(grep -c 'a run across processes is not built yet' refused.txt) -eq 1 && \
-test $(grep -c 'Exit code:    2' refused.txt) -eq 1"
-  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-set_tests_properties(mpi.solve_refuses_several_processes PROPERTIES LABELS mpi TIMEOUT 60
-  ENVIRONMENT "${MPPM_MPI_ENVIRONMENT}")
+# mppm-solve under mpirun (tests/mpi/distributed_solve.sh, which says what each mode checks): the run
+# directory of 1 to 4 processes x 1 and 2 threads the one-process run's byte for byte (a 2-D plate
+# with a pre-crack and tractions, a 3-D notched bar); a NaN on the last of 3 processes; refusals and
+# an interruption reaching every process with one message.
+set(MPPM_DISTRIBUTED_SOLVE ${PROJECT_SOURCE_DIR}/tests/mpi/distributed_solve.sh)
+set(MPPM_TEST_SCENES ${PROJECT_SOURCE_DIR}/tests/data/scenes)
+function(mppm_add_distributed_solve_test name mode scene)
+  add_test(NAME mpi.solve.${name}
+    COMMAND sh ${MPPM_DISTRIBUTED_SOLVE} ${mode} ${MPIEXEC_EXECUTABLE} $<TARGET_FILE_DIR:mppm-solve>
+            ${MPPM_TEST_SCENES}/${scene} ${CMAKE_CURRENT_BINARY_DIR}/mpi_solve_${name} ${ARGN})
+  set_tests_properties(mpi.solve.${name} PROPERTIES LABELS mpi TIMEOUT 120 ENVIRONMENT "${MPPM_MPI_ENVIRONMENT}")
+endfunction()
+mppm_add_distributed_solve_test(plate_2d same mpi_plate.yaml 1 2 3 4)
+mppm_add_distributed_solve_test(notched_bar_3d same mpi_notched_3d.yaml 2 3)
+mppm_add_distributed_solve_test(nan_on_last_process nan mpi_plate.yaml)
+mppm_add_distributed_solve_test(damage_refused refused mpi_plate_damage.yaml "damage do not run across processes yet")
+mppm_add_distributed_solve_test(checkpoints_refused refused mpi_plate.yaml
+  "checkpoints of a run across processes are not built yet" --set output.checkpoint_interval=2us)
+mppm_add_distributed_solve_test(restart_refused refused mpi_plate.yaml "continuing a run across processes" --restart
+  somewhere)
+mppm_add_distributed_solve_test(run_directory_taken taken mpi_plate.yaml)
+mppm_add_distributed_solve_test(interrupted interrupt mpi_plate.yaml)

@@ -137,7 +137,7 @@ TEST(SolverCrackArea, PennyShapedPrecrackCountsItsArea) {
       PointCloud cloud = make_lattice(3, {kCells, kCells, kCells}, kDx);
       cloud.precrack_vertices = penny(c.centre, c.u, c.v, radius, kSides);
       const Model m = make_model(cloud, damage_scene(factor));
-      ASSERT_GT(m.precrack_cut_bonds, 0u);
+      ASSERT_GT(m.precrack_cut_entries, 0u);
       const double measured = total_crack_area(m);
       std::printf("horizon factor %.2f, penny %s: crack area / exact = %.4f\n", factor, c.name.c_str(),
                   measured / area);

@@ -83,7 +83,7 @@ TEST(SolverFamilies, PrecrackCutsBondsCrossingItFromBothEnds) {
     EXPECT_EQ(after.count({i, j}), crosses ? 0u : 1u) << i << "-" << j;
   }
   EXPECT_GT(crossing, 0u);
-  EXPECT_EQ(cut.precrack_cut_bonds * 2, crossing);
+  EXPECT_EQ(cut.precrack_cut_entries, crossing);
   for (const auto& [i, j] : after) EXPECT_TRUE(after.count({j, i}));
   EXPECT_EQ(cut.detached_points, 0u);
   // No interaction crosses the notch: moving a point just below it leaves every point above it
