@@ -1,6 +1,7 @@
 // Checkpoint files (layout in checkpoint_file.hpp): checksummed, written atomically.
 #include "common/checkpoint_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <sstream>
@@ -47,6 +48,19 @@ const char* element_name(CheckpointElement e) {
       return "text";
   }
   return "?";
+}
+
+// The rows of an array given by its `rows` function, a chunk of rows at a time.
+void write_rows(ChecksummedWriter& w, const CheckpointArrayView& a) {
+  constexpr std::uint64_t kChunkRows = 4096;
+  const auto width = static_cast<std::uint64_t>(a.components);
+  const std::uint64_t rows = a.count / width;
+  std::vector<double> chunk(std::min(rows, kChunkRows) * width);
+  for (std::uint64_t first = 0; first < rows; first += kChunkRows) {
+    const std::uint64_t n = std::min(kChunkRows, rows - first);
+    a.rows(first, n, chunk.data());
+    w.bytes(chunk.data(), n * width * sizeof(double));
+  }
 }
 
 }  // namespace
@@ -111,7 +125,10 @@ void write_checkpoint_file(const std::string& path, const CheckpointHeader& h,
       w.bytes(a.name.data(), a.name.size());
       w.value<std::uint32_t>(static_cast<std::uint32_t>(a.element));
       w.value<std::uint64_t>(a.count);
-      w.bytes(a.data, a.count * element_size(a.element));
+      if (a.rows)
+        write_rows(w, a);
+      else
+        w.bytes(a.data, a.count * element_size(a.element));
     }
     w.finish(kEnd);
   });

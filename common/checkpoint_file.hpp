@@ -15,6 +15,8 @@
 #pragma once
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -63,19 +65,34 @@ struct CheckpointHeader {
 
 std::uint32_t checkpoint_effect_bits(const EffectSet& effects);
 
-// An array to write: a view of data that must outlive write_checkpoint_file.
+// An array to write: a view of data that must outlive write_checkpoint_file ...
 struct CheckpointArrayView {
   std::string name;
   CheckpointElement element = CheckpointElement::f64;
   const void* data = nullptr;
   std::uint64_t count = 0;
+  // ... or, for an f64 array not held in one place (a distributed run's, gathered from its
+  // processes), its rows of `components` values: rows [first, first + n) into `out`, asked for a
+  // chunk of rows at a time (count = rows x components; data unused).
+  int components = 1;
+  std::function<void(std::uint64_t first, std::uint64_t n, double* out)> rows;
 };
 template <class T>
 CheckpointArrayView checkpoint_array(std::string name, const std::vector<T>& values) {
-  return {std::move(name), checkpoint_element_of<T>(), values.data(), values.size()};
+  CheckpointArrayView v;
+  v.name = std::move(name);
+  v.element = checkpoint_element_of<T>();
+  v.data = values.data();
+  v.count = values.size();
+  return v;
 }
 inline CheckpointArrayView checkpoint_text(std::string name, const std::string& text) {
-  return {std::move(name), CheckpointElement::text, text.data(), text.size()};
+  CheckpointArrayView v;
+  v.name = std::move(name);
+  v.element = CheckpointElement::text;
+  v.data = text.data();
+  v.count = text.size();
+  return v;
 }
 
 // A checkpoint as read: the header and its arrays (checksum verified).
@@ -102,6 +119,18 @@ class CheckpointFile {
     const Entry& e = find(name, checkpoint_element_of<T>());
     if (e.count != out.size()) refuse_size(name, e.count, out.size());
     if (e.count) std::memcpy(out.data(), data_.data() + e.offset, e.count * sizeof(T));
+  }
+  // Rows of an array of `file_rows` rows of `width` values: row rows[k] of the file into row k of
+  // `out` (a distributed run's process takes the rows of its own points; out has at least
+  // rows.size() rows).
+  template <class T>
+  void restore_rows(const std::string& name, std::uint64_t file_rows, std::size_t width,
+                    std::span<const std::int64_t> rows, std::vector<T>& out) const {
+    const Entry& e = find(name, checkpoint_element_of<T>());
+    if (e.count != file_rows * width) refuse_size(name, e.count, file_rows * width);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      std::memcpy(out.data() + k * width,
+                  data_.data() + e.offset + static_cast<std::size_t>(rows[k]) * width * sizeof(T), width * sizeof(T));
   }
 
  private:

@@ -1,11 +1,15 @@
 // Checkpoint contents (the list in checkpoint.hpp) and their restoration.
 #include "solver/checkpoint.hpp"
 
+#include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <sstream>
+#include <stdexcept>
 
 #include "common/checksummed_binary.hpp"
 #include "common/input_error.hpp"
+#include "solver/distributed_snapshot.hpp"
 
 namespace mppm::solver {
 
@@ -136,6 +140,90 @@ void restore_crack_arrivals(const CheckpointFile& file, Model& model) {
                                model.points.owned, file.path);
 }
 
+// The rows of the integrator's per-tracked-point arrays (body_force) across processes: the global
+// row of each of this process's rows, and the process of every global row. Rows follow the tracked
+// points' global ids, as in the one-process run.
+struct TrackedRows {
+  std::vector<std::int64_t> local_ids;
+  std::vector<std::int32_t> owner;
+  std::uint64_t count() const { return owner.size(); }
+};
+
+TrackedRows tracked_rows(const PointData& p, const ExplicitDynamics& dynamics, const CheckpointProcesses& processes) {
+  TrackedRows rows;
+  if (dynamics.tracks_all_points()) {
+    rows.local_ids.assign(p.global_id.begin(), p.global_id.begin() + static_cast<std::ptrdiff_t>(p.owned));
+    rows.owner.assign(processes.part_of.begin(), processes.part_of.end());
+    return rows;
+  }
+  std::vector<std::int64_t> mine;
+  for (const std::int32_t i : dynamics.tracked_points()) mine.push_back(p.global_id[static_cast<std::size_t>(i)]);
+  const std::vector<std::vector<std::int64_t>> all = processes.group.gather(std::span<const std::int64_t>(mine));
+  std::vector<std::pair<std::int64_t, std::int32_t>> merged;
+  for (std::size_t r = 0; r < all.size(); ++r)
+    for (const std::int64_t g : all[r]) merged.emplace_back(g, static_cast<std::int32_t>(r));
+  std::sort(merged.begin(), merged.end());
+  for (const auto& [g, r] : merged) rows.owner.push_back(r);
+  for (const std::int64_t g : mine)
+    rows.local_ids.push_back(std::lower_bound(merged.begin(), merged.end(), std::pair{g, std::int32_t{0}}) -
+                             merged.begin());
+  return rows;
+}
+
+// A local array's rows as a gathered field's source (f64 only: the arrays a distributed run carries).
+SnapshotFieldSource row_source(const CheckpointArrayView& a, std::size_t local_rows) {
+  if (a.element != CheckpointElement::f64 || local_rows == 0 || a.count % local_rows != 0)
+    throw std::logic_error("checkpoint array '" + a.name + "' cannot be written across processes");
+  const auto width = static_cast<int>(a.count / local_rows);
+  const auto* data = static_cast<const double*>(a.data);
+  return {a.name, width, [data, width](std::uint64_t first, std::uint64_t n, double* out) {
+            std::copy_n(data + first * static_cast<std::uint64_t>(width), n * static_cast<std::uint64_t>(width), out);
+          }};
+}
+
+// The first process writes `arrays` (through `write`) with the per-point arrays (the first
+// `per_point`) and body_force (the next) gathered from every process; the others answer.
+void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t per_point, const Model& model,
+                    const ExplicitDynamics& dynamics, const CheckpointProcesses& processes,
+                    const std::function<void()>& write) {
+  const PointData& p = model.points;
+  const TrackedRows tracked = tracked_rows(p, dynamics, processes);
+  std::vector<GatheredRowSet> sets(2);
+  sets[0].rows = {std::span<const std::int64_t>(p.global_id.data(), p.owned), processes.part_of};
+  for (std::size_t k = 0; k < per_point; ++k) sets[0].local.push_back(row_source(arrays[k], p.owned + p.ghost));
+  sets[1].rows = {tracked.local_ids, tracked.owner};
+  const CheckpointArrayView& body_force = arrays[per_point];
+  // A process without tracked points has no rows to give (and no width to derive).
+  sets[1].local.push_back(tracked.local_ids.empty() ? SnapshotFieldSource{body_force.name, p.dimension, {}}
+                                                    : row_source(body_force, tracked.local_ids.size()));
+  with_gathered_row_sets(sets, processes.group, [&](const std::vector<std::vector<SnapshotFieldSource>>& whole) {
+    for (std::size_t k = 0; k <= per_point; ++k) {
+      const SnapshotFieldSource& s = k < per_point ? whole[0][k] : whole[1][0];
+      const std::uint64_t rows = k < per_point ? processes.part_of.size() : tracked.count();
+      arrays[k].components = s.components;
+      arrays[k].count = rows * static_cast<std::uint64_t>(s.components);
+      arrays[k].rows = s.values;
+    }
+    write();
+  });
+}
+
+// A distributed run's restore: each per-point array's rows of this process's owned points (the
+// ghosts' are fetched by every evaluation), and body_force's rows of its tracked points.
+void restore_own_rows(const CheckpointFile& file, Model& model, const ExplicitDynamics& dynamics,
+                      const CheckpointProcesses& processes, std::vector<double>& body_force) {
+  PointData& p = model.points;
+  if (model.effects.damage) throw std::logic_error("restore_checkpoint: damage does not run across processes");
+  const std::span<const std::int64_t> owned(p.global_id.data(), p.owned);
+  const std::uint64_t points = processes.part_of.size();
+  visit_carried_arrays(model, [&](const char* name, auto& values) {
+    file.restore_rows(name, points, values.size() / (p.owned + p.ghost), owned, values);
+  });
+  const TrackedRows tracked = tracked_rows(p, dynamics, processes);
+  file.restore_rows("body_force", tracked.count(), static_cast<std::size_t>(p.dimension), tracked.local_ids,
+                    body_force);
+}
+
 template <class T>
 void add_vector(Fnv1a& h, const std::vector<T>& v) {
   const std::uint64_t n = v.size();
@@ -163,10 +251,15 @@ std::uint64_t point_cloud_fingerprint(const PointCloud& c) {
 }
 
 void write_checkpoint(const std::string& path, const RunIdentity& identity, const Model& model,
-                      const ExplicitDynamics& dynamics, const RunLoopState& loop, bool simulate_write_failure) {
+                      const ExplicitDynamics& dynamics, const RunLoopState& loop, bool simulate_write_failure,
+                      const CheckpointProcesses* processes) {
+  // The whole model's counts: over all processes in a distributed run.
+  auto total = [&](std::uint64_t local) {
+    return processes ? static_cast<std::uint64_t>(processes->group.total(static_cast<std::int64_t>(local))) : local;
+  };
   CheckpointHeader header;
   header.dimension = model.dimension();
-  header.point_count = model.points.owned;
+  header.point_count = total(model.points.owned);
   header.effects = checkpoint_effect_bits(model.effects);
   header.scene_fingerprint = identity.scene_fingerprint;
   header.points_fingerprint = identity.points_fingerprint;
@@ -177,6 +270,7 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   std::vector<CheckpointArrayView> arrays;
   visit_carried_arrays(model,
                        [&](const char* name, const auto& values) { arrays.push_back(checkpoint_array(name, values)); });
+  const std::size_t per_point = arrays.size();  // the arrays above are per point, body_force per tracked point
   arrays.push_back(checkpoint_array("body_force", dynamics.body_force()));
   // Small arrays: built here, alive until the file is written.
   const std::vector<double> energy = energy_values(carried.energy);
@@ -186,8 +280,9 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   if (!carried.fluid_boundary_flows.empty())
     arrays.push_back(checkpoint_array(kFluidBoundaries, carried.fluid_boundary_flows));
   const std::vector<double> integrator{carried.time, carried.initial_total, loop.time_step};
-  const std::vector<std::uint64_t> model_counters{model.broken_bonds, model.detached_points,
-                                                  model.unstable_detached_points, model.energy_detached_points};
+  const std::vector<std::uint64_t> model_counters{total(model.broken_bonds), total(model.detached_points),
+                                                  total(model.unstable_detached_points),
+                                                  total(model.energy_detached_points)};
   const std::vector<double> model_scalars{model.last_fracture_dissipation};
   if (model.effects.damage) {
     arrays.push_back(checkpoint_array(kArrivalPoints, model.crack_arrivals.points()));
@@ -217,32 +312,45 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   arrays.push_back(checkpoint_array("snapshot_steps", snapshot_steps));
   arrays.push_back(checkpoint_array("snapshot_times", snapshot_times));
   arrays.push_back(checkpoint_text("points_file", loop.points_file));
-  std::error_code ec;
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
-  if (ec) throw InputError(path + ": cannot create the checkpoint directory (" + ec.message() + ")");
-  write_checkpoint_file(path, header, arrays, simulate_write_failure);
+  const auto write = [&] {
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    if (ec) throw InputError(path + ": cannot create the checkpoint directory (" + ec.message() + ")");
+    write_checkpoint_file(path, header, arrays, simulate_write_failure);
+  };
+  if (processes)
+    write_gathered(arrays, per_point, model, dynamics, *processes, write);
+  else
+    write();
 }
 
 RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& identity, Model& model,
-                                ExplicitDynamics& dynamics) {
+                                ExplicitDynamics& dynamics, const CheckpointProcesses* processes) {
   const CheckpointHeader& h = file.header;
+  auto total = [&](std::uint64_t local) {
+    return processes ? static_cast<std::uint64_t>(processes->group.total(static_cast<std::int64_t>(local))) : local;
+  };
+  const std::uint64_t points = total(model.points.owned);
   if (h.scene_fingerprint != identity.scene_fingerprint)
     throw InputError(file.path + ": the checkpoint was written for another scene (scene.resolved.yaml changed since)");
   if (h.points_fingerprint != identity.points_fingerprint)
     throw InputError(file.path + ": the checkpoint was written for other points (the points file changed since)");
-  if (h.dimension != model.dimension() || h.point_count != model.points.owned ||
-      h.effects != checkpoint_effect_bits(model.effects))
+  if (h.dimension != model.dimension() || h.point_count != points || h.effects != checkpoint_effect_bits(model.effects))
     throw InputError(file.path + ": the checkpoint is of a " + std::to_string(h.dimension) + "-D run with " +
                      std::to_string(h.point_count) + " points and other effects than this one");
 
-  visit_carried_arrays(model, [&](const char* name, auto& values) {
-    if (std::string(name) == "bond_neighbor")
-      restore_broken_bonds(file, model.bonds);
-    else
-      file.restore(name, values);
-  });
   std::vector<double> body_force(dynamics.body_force().size());
-  file.restore("body_force", body_force);
+  if (processes) {
+    restore_own_rows(file, model, dynamics, *processes, body_force);
+  } else {
+    visit_carried_arrays(model, [&](const char* name, auto& values) {
+      if (std::string(name) == "bond_neighbor")
+        restore_broken_bonds(file, model.bonds);
+      else
+        file.restore(name, values);
+    });
+    file.restore("body_force", body_force);
+  }
   const auto energy = scalars<double>(file, "energy", 8);
   const auto integrator = scalars<double>(file, "integrator", 3);
   ExplicitDynamics::Carried carried;
@@ -257,10 +365,17 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
   dynamics.restore(carried, body_force);
 
   const auto counters = scalars<std::uint64_t>(file, "model_counters", 4);
-  model.broken_bonds = counters[0];
-  model.detached_points = counters[1];
-  model.unstable_detached_points = counters[2];
-  model.energy_detached_points = counters[3];
+  if (processes) {
+    // The counters are the whole model's; each process keeps its own, which only damage changes
+    // (not across processes yet): they must add up to the file's.
+    if (counters[0] != total(model.broken_bonds) || counters[1] != total(model.detached_points))
+      throw InputError(file.path + ": the checkpoint's broken bonds and detached points are not those of this model");
+  } else {
+    model.broken_bonds = counters[0];
+    model.detached_points = counters[1];
+    model.unstable_detached_points = counters[2];
+    model.energy_detached_points = counters[3];
+  }
   model.last_fracture_dissipation = scalars<double>(file, "model_scalars", 1)[0];
   if (model.effects.damage) restore_crack_arrivals(file, model);
 

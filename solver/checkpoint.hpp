@@ -24,6 +24,7 @@
 // rewrites before reading it (the per-point energies, the start-of-step copies of the integrator).
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@
 #include "solver/energy_guard.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/model.hpp"
+#include "solver/process_group.hpp"
 #include "solver/run_writer.hpp"
 
 namespace mppm::solver {
@@ -61,16 +63,28 @@ struct RunIdentity {
 // ids, normals, boundaries, pre-crack geometry, spacing, horizon, thickness).
 std::uint64_t point_cloud_fingerprint(const PointCloud& cloud);
 
+// A distributed run's processes (docs/theory.md section 13). Its checkpoint is the one-process file,
+// byte for byte: the first process writes it, asking each row's owner for the per-point and
+// per-tracked-point rows a chunk at a time (solver/distributed_snapshot.hpp); every process reads
+// the whole file on a restart and takes its own rows, so that a run checkpointed on N processes
+// continues on any number.
+struct CheckpointProcesses {
+  const ProcessGroup& group;
+  std::span<const std::int32_t> part_of;  // the process of every point of the points file
+};
+
 // Writes the state after the model's and the integrator's last step to `path`, atomically.
 // Throws InputError naming the file on a write error; the previous checkpoint stays as it was.
-// `simulate_write_failure` is the test hook of write_checkpoint_file.
+// `simulate_write_failure` is the test hook of write_checkpoint_file. Collective with `processes`
+// (the write error is thrown on the first process only).
 void write_checkpoint(const std::string& path, const RunIdentity& identity, const Model& model,
-                      const ExplicitDynamics& dynamics, const RunLoopState& loop, bool simulate_write_failure = false);
+                      const ExplicitDynamics& dynamics, const RunLoopState& loop, bool simulate_write_failure = false,
+                      const CheckpointProcesses* processes = nullptr);
 
 // Checks that `file` is a checkpoint of this run (scene and points fingerprints, dimension, point
 // count, effects) and puts its state back into the model and the integrator (after
 // dynamics.initialize()). Returns the loop state. Throws InputError naming the file and what differs.
 RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& identity, Model& model,
-                                ExplicitDynamics& dynamics);
+                                ExplicitDynamics& dynamics, const CheckpointProcesses* processes = nullptr);
 
 }  // namespace mppm::solver

@@ -24,9 +24,30 @@ using GatheredWrite = std::function<void(const std::vector<SnapshotFieldSource>&
 // it returns (or throws: the exception is rethrown there, after the others are released).
 void with_gathered_fields(const Model& model, const std::vector<std::string>& fields,
                           std::span<const std::int32_t> part_of, const ProcessGroup& group, const GatheredWrite& write);
-// The same for any fields of the local points (`local`: their values by local index, e.g. the
+// The same for any fields of the owned points (`local`: their values by local index, e.g. the
 // reference configuration's).
 void with_gathered_fields(const PointData& points, const std::vector<SnapshotFieldSource>& local,
                           std::span<const std::int32_t> part_of, const ProcessGroup& group, const GatheredWrite& write);
+
+// Rows of an array spread over the processes, each row on one process: a point's, or a row of the
+// points some array holds (the integrator's tracked points).
+struct DistributedRows {
+  std::span<const std::int64_t> local_ids;  // the global index of each of this process's rows, ascending
+  std::span<const std::int32_t> owner;      // the process of every global row (read on the first process)
+};
+
+// Fields over one set of rows: `local` gives this process's rows by local index.
+struct GatheredRowSet {
+  DistributedRows rows;
+  std::vector<SnapshotFieldSource> local;
+};
+
+// The sources of every set's fields over all its global rows, in order, for the first process.
+using GatheredSetsWrite = std::function<void(const std::vector<std::vector<SnapshotFieldSource>>& whole)>;
+
+// Collective, as with_gathered_fields, for several sets of rows at once (a checkpoint: per point
+// and per tracked point).
+void with_gathered_row_sets(const std::vector<GatheredRowSet>& sets, const ProcessGroup& group,
+                            const GatheredSetsWrite& write);
 
 }  // namespace mppm::solver

@@ -156,6 +156,10 @@ class ExplicitDynamics {
   // The external force density of the last evaluation (the first half kick of the next step uses
   // it), D per tracked point (see tracked_ below): every other point has none.
   const std::vector<double>& body_force() const { return body_force_; }
+  // The points of body_force's rows, in row order: all owned points when every point is tracked
+  // (gravity, damping), else the points with a prescribed component or a surface load.
+  bool tracks_all_points() const { return track_all_; }
+  const std::vector<std::int32_t>& tracked_points() const { return tracked_; }
   // After initialize(): continues from a checkpointed state (body_force must have the run's size).
   void restore(const Carried& carried, const std::vector<double>& body_force);
 

@@ -67,6 +67,20 @@ std::vector<std::int64_t> ProcessGroup::gather(std::int64_t local) const {
   return all;
 }
 
+std::vector<std::vector<std::int64_t>> ProcessGroup::gather(std::span<const std::int64_t> local) const {
+  if (!distributed_) return {std::vector<std::int64_t>(local.begin(), local.end())};
+  const std::vector<std::int64_t> sizes = gather(static_cast<std::int64_t>(local.size()));
+  std::vector<int> counts(sizes.begin(), sizes.end()), offsets(sizes.size(), 0);
+  for (std::size_t r = 1; r < sizes.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<std::int64_t> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  MPI_Allgatherv(local.data(), static_cast<int>(local.size()), MPI_INT64_T, all.data(), counts.data(), offsets.data(),
+                 MPI_INT64_T, MPI_COMM_WORLD);
+  std::vector<std::vector<std::int64_t>> out(sizes.size());
+  for (std::size_t r = 0; r < sizes.size(); ++r)
+    out[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+  return out;
+}
+
 std::string ProcessGroup::broadcast(const std::string& text, int root) const {
   if (!distributed_) return text;
   std::int64_t length = rank_ == root ? static_cast<std::int64_t>(text.size()) : 0;

@@ -34,6 +34,8 @@ class ProcessGroup {
   std::int64_t total(std::int64_t local) const;
   // Every process's value, in rank order, on every process.
   std::vector<std::int64_t> gather(std::int64_t local) const;
+  // Every process's list, in rank order, on every process.
+  std::vector<std::vector<std::int64_t>> gather(std::span<const std::int64_t> local) const;
   // `text` of process `root`, on every process.
   std::string broadcast(const std::string& text, int root) const;
   // The processes of the group that share this one's machine (and so its memory); 1 for one process.

@@ -37,7 +37,9 @@ mppm::CommandLineSpec solve_command_spec() {
       "\n"
       "Runs the explicit micro-polar periporomechanics solver on the points made by\n"
       "mppm-preprocess and writes the run directory (resolved scene, snapshots, load.csv,\n"
-      "energy.csv, log.txt, run_info.json).\n"
+      "energy.csv, log.txt, run_info.json). Under mpirun -np P it runs across P processes (a new run\n"
+      "or --restart), with the files of the one-process run (not with damage, viscoplasticity,\n"
+      "pore_fluid or --estimate).\n"
       "\n"
       "options:\n"
       "  --points FILE       points file from mppm-preprocess (required)\n"
@@ -80,24 +82,31 @@ int exit_code(const SolveResult& result, const SolveOptions& options) {
 }
 
 // mppm-solve --restart RUN_DIR: the run's own scene and directory; of the test hooks only
-// --fail-checkpoint-write.
-int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, const TestHooks& hooks) {
-  if (!cl.positional.empty() || cl.option("-o") || !cl.overrides.empty() || cl.has_flag("--force"))
-    throw mppm::InputError("--restart " + run_directory +
-                           " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
-                           "or --force with it (see --help)");
-  hooks.refuse_with_restart();  // before the checkpoint is read: the option is the user's mistake
-  PhaseTimer start_up;
-  const mppm::CheckpointFile checkpoint = mppm::read_checkpoint_file(checkpoint_path(run_directory));
-  start_up.mark("read checkpoint");
+// --fail-checkpoint-write. On one process or on every process of `group` (each reads the whole
+// checkpoint and the points; a checkpoint written by any number of processes continues on any).
+int continue_run(const mppm::CommandLine& cl, const std::string& run_directory, const TestHooks& hooks,
+                 const ProcessGroup& group) {
+  mppm::CheckpointFile checkpoint;
+  mppm::PointCloud cloud;
   SolveOptions options;
-  options.run_directory = run_directory;
-  options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
-  options.quiet = cl.quiet;
-  options.test_hooks = hooks;
-  mppm::PointCloud cloud = mppm::read_point_cloud(options.points_file);
-  start_up.mark("read points");
-  options.start_up = std::move(start_up);
+  run_agreed(group, [&] {
+    if (!cl.positional.empty() || cl.option("-o") || !cl.overrides.empty() || cl.has_flag("--force"))
+      throw mppm::InputError("--restart " + run_directory +
+                             " takes the scene and the output directory of that run: no SCENE.yaml, -o, --set "
+                             "or --force with it (see --help)");
+    hooks.refuse_with_restart();  // before the checkpoint is read: the option is the user's mistake
+    PhaseTimer start_up;
+    checkpoint = mppm::read_checkpoint_file(checkpoint_path(run_directory));
+    start_up.mark("read checkpoint");
+    options.run_directory = run_directory;
+    options.points_file = cl.option("--points").value_or(checkpoint.text("points_file"));
+    options.quiet = cl.quiet || group.rank() != 0;
+    options.test_hooks = hooks;
+    if (group.distributed()) options.processes = &group;
+    cloud = mppm::read_point_cloud(options.points_file);
+    start_up.mark("read points");
+    options.start_up = std::move(start_up);
+  });
   return exit_code(restart(std::move(cloud), checkpoint, options), options);
 }
 
@@ -173,23 +182,21 @@ TestHooks test_hooks_of(const mppm::CommandLine& cl) {
 // One process: the three forms of the command.
 int run_one_process(const mppm::CommandLine& cl) {
   const TestHooks hooks = test_hooks_of(cl);
-  if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks);
+  const ProcessGroup one = ProcessGroup::single();
+  if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks, one);
   if (cl.has_flag("--estimate")) return estimate_only(cl);
-  return start_run(cl, hooks, ProcessGroup::single());
+  return start_run(cl, hooks, one);
 }
 
-// Several processes (mpirun): a new run across them (docs/theory.md section 13).
+// Several processes (mpirun): a new run or a restart across them (docs/theory.md section 13).
 int run_distributed(const mppm::CommandLine& cl, const ProcessGroup& group) {
   TestHooks hooks;
   run_agreed(group, [&] {
-    if (cl.option("--restart"))
-      throw mppm::InputError(
-          "--restart: continuing a run across processes is not built yet (a distributed run "
-          "writes no checkpoint); start the run again, or run on one process with --threads N");
     if (cl.has_flag("--estimate"))
       throw mppm::InputError("--estimate runs nothing: run it on one process, without mpirun");
     hooks = test_hooks_of(cl);
   });
+  if (const auto run_directory = cl.option("--restart")) return continue_run(cl, *run_directory, hooks, group);
   return start_run(cl, hooks, group);
 }
 

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -241,10 +242,8 @@ SolveResult solve(const Scene& scene, PointCloud&& cloud, const SolveOptions& op
 
 namespace {
 
-SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options_in,
-                        PointCloud* release) {
-  SolveOptions options = options_in;
-  if (!options.start_up) options.start_up.emplace();
+// The run's scene, after the checks that the checkpoint is of this run's scene and points.
+Scene restart_scene(const PointCloud& cloud, const CheckpointFile& checkpoint, SolveOptions& options) {
   const std::string scene_file = options.run_directory + "/" + run_layout::resolved_scene;
   if (fnv1a(file_text(scene_file)) != checkpoint.header.scene_fingerprint)
     throw InputError(scene_file + ": changed since the checkpoint " + checkpoint.path +
@@ -256,9 +255,20 @@ SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoin
                      "; a restart needs the same points)");
   options.test_hooks.refuse_with_restart();
   options.start_up->mark("checkpoint identity");
-  const Scene scene = load_scene(scene_file);
+  Scene scene = load_scene(scene_file);
   options.start_up->mark("read scene");
-  return run(scene, cloud, options, &checkpoint, release);
+  return scene;
+}
+
+SolveResult restart_run(const PointCloud& cloud, const CheckpointFile& checkpoint, const SolveOptions& options_in,
+                        PointCloud* release) {
+  SolveOptions options = options_in;
+  if (!options.start_up) options.start_up.emplace();
+  const ProcessGroup one = ProcessGroup::single();
+  std::optional<Scene> scene;
+  // Every process reads the same files: a refusal is agreed (solver/agreed_failure.hpp).
+  run_agreed(options.processes ? *options.processes : one, [&] { scene = restart_scene(cloud, checkpoint, options); });
+  return run(*scene, cloud, options, &checkpoint, release);
 }
 
 }  // namespace
@@ -336,10 +346,8 @@ class RunDriver {
       fit_time_step();
       options_.test_hooks.check_against_steps(plan_.steps);
     });
-    run_agreed(group_, [&] {
-      open_run_directory();
-      log_start();
-    });
+    run_agreed(group_, [&] { open_run_directory(); });
+    log_start();  // its reads agreed inside
     start_up_.mark("run directory");
     if (!resume_) write_reference();
     run_agreed(group_, [&] { start_dynamics(); });
@@ -422,6 +430,11 @@ class RunDriver {
     std::uint64_t points = 0, bonds = 0, precrack_cut_pairs = 0, detached_points = 0;
   } totals_;
   std::uint64_t total_detached_points() const;
+  // A file of the run directory read by the first process (a failure agreed), on every process.
+  std::string read_on_first_process(const std::function<std::string()>& read) const;
+  // A distributed run's processes and partition for the checkpoint (null on one process).
+  const CheckpointProcesses* checkpoint_processes();
+  std::optional<CheckpointProcesses> checkpoint_processes_;
   TimeStepPlan plan_;
   std::optional<RunWriter> writer_;
   RunInfo info_;
@@ -443,10 +456,6 @@ class RunDriver {
 void RunDriver::check_inputs(const PointCloud& cloud) {
   check_points_match_scene(scene_, cloud, options_.points_file);
   if (!(scene_.time.end > 0.0)) throw InputError(scene_.path + ": time.end: must be positive");
-  if (group_.distributed() && checkpointing_)
-    throw InputError(scene_.path +
-                     ": output.checkpoint_interval: checkpoints of a run across processes are not built "
-                     "yet (set it to 0, or run on one process with --threads N)");
   refuse_runs_that_do_not_fit(scene_, cloud, group_);
   start_up_.mark("memory estimate");
 }
@@ -495,6 +504,20 @@ void RunDriver::build_distributed(const PointCloud& cloud, const ModelOptions& s
   start_up_.mark("distributed model");
   conditions_->keep_owned(distributed_->local);
   info_.partition = summarize_partition(model(), group_);
+}
+
+std::string RunDriver::read_on_first_process(const std::function<std::string()>& read) const {
+  std::string text;
+  run_agreed(group_, [&] {
+    if (group_.rank() == 0) text = read();
+  });
+  return group_.broadcast(text, 0);
+}
+
+const CheckpointProcesses* RunDriver::checkpoint_processes() {
+  if (!distributed_) return nullptr;
+  if (!checkpoint_processes_) checkpoint_processes_.emplace(CheckpointProcesses{group_, distributed_->part});
+  return &*checkpoint_processes_;
 }
 
 std::uint64_t RunDriver::total_detached_points() const {
@@ -606,15 +629,15 @@ std::string fluid_report(const FluidConstants& fluid, const FlowSchedule& flow, 
 // The first lines of log.txt: what runs, and the start-up report (a restart has it already in
 // its log and says where it continues from).
 void RunDriver::log_start() {
-  if (resume_)
-    writer().restore_log(file_text(writer().path(run_layout::log)));
-  else
-    writer().log("mppm-solve " MPPM_VERSION ": scene " + scene_.path + ", points " + options_.points_file);
+  if (resume_) writer().restore_log(read_on_first_process([&] { return file_text(writer().path(run_layout::log)); }));
+  if (!resume_) writer().log("mppm-solve " MPPM_VERSION ": scene " + scene_.path + ", points " + options_.points_file);
   if (resume_)
     writer().log("mppm-solve " MPPM_VERSION " --restart: continues from " + resume_->path + " (step " +
                  std::to_string(resume_->header.step) + ", t = " + log_number(resume_->header.time) + " s), points " +
                  options_.points_file + ", threads " + std::to_string(info_.threads) +
+                 (info_.partition ? " per process" : "") +
                  "; rows and snapshots after the checkpoint are dropped and written again");
+  if (resume_ && info_.partition) writer().log("distributed run, " + describe(*info_.partition));
   if (!resume_) {
     log_start_up_report();
     log_test_hooks();
@@ -714,22 +737,31 @@ void RunDriver::start_dynamics() {
 // A restart: the state, the schedules, the energy check and the tables of the checkpoint; the
 // output written after it removed.
 void RunDriver::restore_from_checkpoint() {
-  RunLoopState loop = restore_checkpoint(*resume_, identity_, model(), dynamics());
-  if (loop.time_step != plan_.dt)
-    throw InputError(resume_->path + ": the checkpoint's time step " + log_number(loop.time_step) +
-                     " s is not the one this run arrives at (" + log_number(plan_.dt) +
-                     " s); cannot continue it bit for bit");
+  RunLoopState loop;
+  // The same file on every process: a refusal is the same everywhere.
+  run_agreed(group_, [&] {
+    loop = restore_checkpoint(*resume_, identity_, model(), dynamics(), checkpoint_processes());
+    if (loop.time_step != plan_.dt)
+      throw InputError(resume_->path + ": the checkpoint's time step " + log_number(loop.time_step) +
+                       " s is not the one this run arrives at (" + log_number(plan_.dt) +
+                       " s); cannot continue it bit for bit");
+  });
   rows_.restore(loop.next_row);
   snapshots_.restore(loop.next_snapshot);
   checkpoints_.restore(loop.next_checkpoint);
   guard_.restore(loop.guard);
   worst_balance_ = loop.worst_balance;
   const std::int64_t step = resume_->header.step;
-  writer().restore_tables(
-      table_up_to_checkpoint(writer().path(run_layout::load), loop.load_table_bytes, loop.load_table_fingerprint, step),
-      table_up_to_checkpoint(writer().path(run_layout::energy), loop.energy_table_bytes, loop.energy_table_fingerprint,
-                             step));
-  remove_output_after_checkpoint(writer().directory(), loop.snapshots);
+  // The first process reads the run directory; the others keep the same tables.
+  writer().restore_tables(read_on_first_process([&] {
+                            return table_up_to_checkpoint(writer().path(run_layout::load), loop.load_table_bytes,
+                                                          loop.load_table_fingerprint, step);
+                          }),
+                          read_on_first_process([&] {
+                            return table_up_to_checkpoint(writer().path(run_layout::energy), loop.energy_table_bytes,
+                                                          loop.energy_table_fingerprint, step);
+                          }));
+  if (group_.rank() == 0) remove_output_after_checkpoint(writer().directory(), loop.snapshots);
   writer().restore_snapshots(std::move(loop.snapshots));
   first_step_ = dynamics().steps() + 1;
   last_checkpoint_step_ = step;
@@ -980,8 +1012,10 @@ void RunDriver::checkpoint() {
   const RunLoopState loop = loop_state();
   ++checkpoints_written_;
   try {
-    write_checkpoint(checkpoint_path(writer().directory()), identity_, model(), dynamics(), loop,
-                     options_.test_hooks.fails_checkpoint_write(checkpoints_written_));
+    run_agreed(group_, [&] {
+      write_checkpoint(checkpoint_path(writer().directory()), identity_, model(), dynamics(), loop,
+                       options_.test_hooks.fails_checkpoint_write(checkpoints_written_), checkpoint_processes());
+    });
   } catch (const InputError& e) {
     stop_on_checkpoint_write_error(e);
   }
@@ -1003,7 +1037,9 @@ void RunDriver::stop_on_checkpoint_write_error(const InputError& e) {
     // The disk that refused the checkpoint may refuse the tables too: the message above is
     // what matters, and the tables of the last flush are intact.
   }
-  throw InputError(message);
+  // Every process is here (the write error was agreed): the same failure everywhere.
+  run_agreed(group_, [&] { throw InputError(message); });
+  throw std::logic_error("RunDriver: run_agreed returned after a failure on every process");
 }
 
 SolveResult run(const Scene& scene_in, const PointCloud& cloud, const SolveOptions& options,

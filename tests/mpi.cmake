@@ -26,8 +26,9 @@ mppm_add_mpi_test(run mpi/test_mpi_run.cpp)
 
 # mppm-solve under mpirun (tests/mpi/distributed_solve.sh, which says what each mode checks): the run
 # directory of 1 to 4 processes x 1 and 2 threads the one-process run's byte for byte (a 2-D plate
-# with a pre-crack and tractions, a 3-D notched bar); a NaN on the last of 3 processes; refusals and
-# an interruption reaching every process with one message.
+# with a pre-crack and tractions, a 3-D notched bar); checkpoints written on N processes continued
+# on M; a NaN on the last of 3 processes; refusals and an interruption reaching every process with
+# one message.
 set(MPPM_DISTRIBUTED_SOLVE ${PROJECT_SOURCE_DIR}/tests/mpi/distributed_solve.sh)
 set(MPPM_TEST_SCENES ${PROJECT_SOURCE_DIR}/tests/data/scenes)
 function(mppm_add_distributed_solve_test name mode scene)
@@ -40,9 +41,12 @@ mppm_add_distributed_solve_test(plate_2d same mpi_plate.yaml 1 2 3 4)
 mppm_add_distributed_solve_test(notched_bar_3d same mpi_notched_3d.yaml 2 3)
 mppm_add_distributed_solve_test(nan_on_last_process nan mpi_plate.yaml)
 mppm_add_distributed_solve_test(damage_refused refused mpi_plate_damage.yaml "damage do not run across processes yet")
-mppm_add_distributed_solve_test(checkpoints_refused refused mpi_plate.yaml
-  "checkpoints of a run across processes are not built yet" --set output.checkpoint_interval=2us)
-mppm_add_distributed_solve_test(restart_refused refused mpi_plate.yaml "continuing a run across processes" --restart
-  somewhere)
+mppm_add_distributed_solve_test(estimate_refused refused mpi_plate.yaml "run it on one process" --estimate)
+# Checkpoints: written on 4 processes, continued on 3 and 1; written on 1, continued on 2 (the
+# loaded surfaces' rows of the integrator); with damping every point's (written on 3, continued on
+# 2).
+mppm_add_distributed_solve_test(checkpoint_4_to_3_and_1 checkpoint mpi_plate.yaml 4 3 1)
+mppm_add_distributed_solve_test(checkpoint_1_to_2 checkpoint mpi_plate.yaml 1 2)
+mppm_add_distributed_solve_test(checkpoint_damped_3_to_2 checkpoint mpi_plate.yaml 3 2 -- --set numerics.damping=1000)
 mppm_add_distributed_solve_test(run_directory_taken taken mpi_plate.yaml)
 mppm_add_distributed_solve_test(interrupted interrupt mpi_plate.yaml)

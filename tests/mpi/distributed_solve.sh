@@ -4,6 +4,8 @@
 # MODE same:      the run directory at each process count (1 and 2 threads each) holds the files of
 #                 the one-process run byte for byte (all but log.txt and run_info.json, which give
 #                 wall times; run_info.json must say how many processes ran)
+# MODE checkpoint: a checkpoint written by N processes is the one-process file, and continues on M
+#                 (see below)
 # MODE nan:       a NaN written into the last point of the file, which the partition gives to the
 #                 last of 3 processes: exit 3, one message naming that point and its process
 # MODE refused:   a run the distributed run refuses (SCENE, then EXPECTED and mppm-solve's options
@@ -44,6 +46,37 @@ same)
       fi
       echo "np $p threads $t: $(echo "$files" | wc -l) files identical"
     done
+  done
+  ;;
+checkpoint)
+  # distributed_solve.sh checkpoint ... WORK_DIR WRITERS CONTINUERS... [-- OPTIONS...]: a run with
+  # checkpoints every 2 us on WRITERS processes; its checkpoint (the last, before the end) and its
+  # files are the one-process run's; continued from it (--restart) on each number of CONTINUERS
+  # processes (1: without mpirun), the run directory is the uninterrupted one-process run's again.
+  writers=$1
+  shift
+  continuers=
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do continuers="$continuers $1"; shift; done
+  [ $# -gt 0 ] && shift
+  set -- --set output.checkpoint_interval=2us "$@"
+  "$bin/mppm-solve" "$scene" --points "$work/points.vtp" -o "$work/one" --quiet "$@" || fail "the one-process run"
+  files=$(cd "$work/one" && find . -type f ! -name log.txt ! -name run_info.json | sort)
+  echo "$files" | grep -q '^./checkpoint/state.ckpt$' || fail "the one-process run wrote no checkpoint"
+  run_mpi "$writers" 2 "$scene" --points "$work/points.vtp" -o "$work/written" "$@" ||
+    { cat "$work/err.txt"; fail "the run on $writers processes"; }
+  for f in $files; do cmp "$work/one/$f" "$work/written/$f" || fail "written on $writers processes: $f differs"; done
+  for p in $continuers; do
+    out="$work/continued_on_$p"
+    cp -r "$work/written" "$out"
+    if [ "$p" -eq 1 ]; then
+      "$bin/mppm-solve" --restart "$out" --quiet 2> "$work/err.txt"
+    else
+      run_mpi "$p" 1 --restart "$out"
+    fi || { cat "$work/err.txt"; fail "continued on $p"; }
+    grep -q "^mppm-solve .* --restart: continues from .*(step [1-9]" "$out/log.txt" ||
+      fail "continued on $p: the log does not say where it continued from"
+    for f in $files; do cmp "$work/one/$f" "$out/$f" || fail "written on $writers, continued on $p: $f differs"; done
+    echo "written on $writers processes, continued on $p: $(echo "$files" | wc -l) files identical"
   done
   ;;
 nan)
