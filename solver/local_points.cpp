@@ -9,11 +9,18 @@
 
 namespace mppm::solver {
 
-std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts) {
+std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts,
+                                          std::span<const std::int64_t> extra_weight) {
   std::vector<std::int64_t> id(points.count);
   std::iota(id.begin(), id.end(), std::int64_t{0});
   const std::span<const double> x(points.position, points.count * static_cast<std::size_t>(points.dimension));
-  return coordinate_bisection({points.dimension, x, bond_counts(points, reach), id}, parts);
+  std::vector<std::int64_t> weight = bond_counts(points, reach);
+  if (!extra_weight.empty()) {
+    if (extra_weight.size() != points.count)
+      throw std::invalid_argument("partition_cloud: one extra weight per point expected");
+    for (std::size_t i = 0; i < points.count; ++i) weight[i] += extra_weight[i];
+  }
+  return coordinate_bisection({points.dimension, x, weight, id}, parts);
 }
 
 LocalPoints local_points(const PointPositions& points, std::span<const std::int32_t> part_of, std::int32_t part,

@@ -15,9 +15,10 @@
 namespace mppm::solver {
 
 // The part (process) of every point among `parts`: coordinate bisection weighted by each
-// point's bonds within `reach` (bond_reach), ties by the index in the points file
-// (coordinate_bisection.hpp).
-std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts);
+// point's bonds within `reach` (bond_reach), plus its `extra_weight` when given (one per point: the
+// return map's cost), ties by the index in the points file (coordinate_bisection.hpp).
+std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts,
+                                          std::span<const std::int64_t> extra_weight = {});
 
 struct LocalPoints {
   std::vector<std::int64_t> global_id;  // of each local point: owned, then ghosts

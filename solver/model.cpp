@@ -207,9 +207,7 @@ Model build_model(PointCloud&& cloud, const ModelOptions& o, PhaseTimer* phases)
 Model build_local_model(const PointCloud& cloud, const LocalPoints& local, const GhostExchange& ghosts,
                         const ProcessGroup& processes, const ModelOptions& o, PhaseTimer* phases) {
   std::string missing;
-  for (const auto& [on, name] :
-       {std::pair{o.effects.damage, "damage"}, std::pair{o.effects.viscoplasticity, "viscoplasticity"},
-        std::pair{o.effects.pore_fluid, "pore_fluid"}})
+  for (const auto& [on, name] : {std::pair{o.effects.damage, "damage"}, std::pair{o.effects.pore_fluid, "pore_fluid"}})
     if (on) missing += (missing.empty() ? "" : ", ") + std::string(name);
   if (!missing.empty())
     throw std::invalid_argument("effects " + missing + " do not run across processes yet (run them on one process)");

@@ -26,7 +26,7 @@ mppm_add_mpi_test(run mpi/test_mpi_run.cpp)
 
 # mppm-solve under mpirun (tests/mpi/distributed_solve.sh, which says what each mode checks): the run
 # directory of 1 to 4 processes x 1 and 2 threads the one-process run's byte for byte (a 2-D plate
-# with a pre-crack and tractions, a 3-D notched bar); checkpoints written on N processes continued
+# with a pre-crack and tractions, a 3-D notched bar, the viscoplastic shear-band specimen); checkpoints written on N processes continued
 # on M; a NaN on the last of 3 processes; refusals and an interruption reaching every process with
 # one message.
 set(MPPM_DISTRIBUTED_SOLVE ${PROJECT_SOURCE_DIR}/tests/mpi/distributed_solve.sh)
@@ -39,14 +39,17 @@ function(mppm_add_distributed_solve_test name mode scene)
 endfunction()
 mppm_add_distributed_solve_test(plate_2d same mpi_plate.yaml 1 2 3 4)
 mppm_add_distributed_solve_test(notched_bar_3d same mpi_notched_3d.yaml 2 3)
+mppm_add_distributed_solve_test(shear_band_viscoplastic same mpi_shear_band.yaml 2 3 4)
 mppm_add_distributed_solve_test(nan_on_last_process nan mpi_plate.yaml)
 mppm_add_distributed_solve_test(damage_refused refused mpi_plate_damage.yaml "damage do not run across processes yet")
 mppm_add_distributed_solve_test(estimate_refused refused mpi_plate.yaml "run it on one process" --estimate)
 # Checkpoints: written on 4 processes, continued on 3 and 1; written on 1, continued on 2 (the
 # loaded surfaces' rows of the integrator); with damping every point's (written on 3, continued on
-# 2).
+# 2); with the plastic state (written on 2, continued on 3).
 mppm_add_distributed_solve_test(checkpoint_4_to_3_and_1 checkpoint mpi_plate.yaml 4 3 1)
 mppm_add_distributed_solve_test(checkpoint_1_to_2 checkpoint mpi_plate.yaml 1 2)
 mppm_add_distributed_solve_test(checkpoint_damped_3_to_2 checkpoint mpi_plate.yaml 3 2 -- --set numerics.damping=1000)
+mppm_add_distributed_solve_test(checkpoint_viscoplastic_2_to_3 checkpoint mpi_shear_band.yaml 2 3 --
+  --set output.checkpoint_interval=0.3ms)
 mppm_add_distributed_solve_test(run_directory_taken taken mpi_plate.yaml)
 mppm_add_distributed_solve_test(interrupted interrupt mpi_plate.yaml)

@@ -32,6 +32,10 @@ case $mode in
 same)
   "$bin/mppm-solve" "$scene" --points "$work/points.vtp" -o "$work/one" --quiet || fail "the one-process run"
   files=$(cd "$work/one" && find . -type f ! -name log.txt ! -name run_info.json | sort)
+  if grep -q '^effects:.*viscoplasticity' "$scene"; then
+    # The comparison must cover plastic flow: the last row's plastic dissipation (column 6) is > 0.
+    tail -1 "$work/one/energy.csv" | awk -F, '{ exit !($6 > 0) }' || fail "no plastic dissipation in the run"
+  fi
   for p in "$@"; do
     for t in 1 2; do
       out="$work/np$p.threads$t"

@@ -9,12 +9,14 @@
 #include <numeric>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <vector>
 
 #include "solver/bond_families.hpp"
 #include "solver/coordinate_bisection.hpp"
 #include "solver/halo_points.hpp"
 #include "solver/horizon_search.hpp"
+#include "solver/local_points.hpp"
 
 namespace {
 
@@ -117,6 +119,38 @@ TEST(CoordinateBisection, CutsAcrossTheLongestSide) {
   std::fill(l.weight.begin(), l.weight.end(), 1);
   const auto part = coordinate_bisection(l.partition_points(), 2);
   for (std::size_t i = 0; i < l.size(); ++i) EXPECT_EQ(part[i], l.position[i * 2] < 20.0 ? 0 : 1) << "point " << i;
+}
+
+// The run's partition weighs each point by its bonds plus the extra weight given (a viscoplastic
+// run's return map): on a 40 x 10 strip with 30 extra on every point of the left quarter, the cut
+// between 2 parts moves left from the middle to where the weights balance, within one column.
+TEST(PartitionCloud, ExtraWeightsMoveTheCut) {
+  const Lattice l = make_lattice(2, 40, 10);
+  const double reach = bond_reach(kHorizon, 1.0);
+  const auto even = partition_cloud(l.positions(), reach, 2);
+  std::vector<std::int64_t> extra(l.size(), 0);
+  for (std::size_t i = 0; i < l.size(); ++i)
+    if (l.position[i * 2] < 10.0) extra[i] = 30;
+  const auto weighted = partition_cloud(l.positions(), reach, 2, extra);
+  auto first_column_of_part_1 = [&](const std::vector<std::int32_t>& part) {
+    double x = 40.0;
+    for (std::size_t i = 0; i < l.size(); ++i)
+      if (part[i] == 1) x = std::min(x, l.position[i * 2]);
+    return x;
+  };
+  EXPECT_EQ(first_column_of_part_1(even), 20.0);
+  // Where the columns' weights balance: total and prefix sums over columns of bonds + extra.
+  std::vector<double> column(40, 0.0);
+  for (std::size_t i = 0; i < l.size(); ++i)
+    column[static_cast<std::size_t>(l.position[i * 2])] += static_cast<double>(l.weight[i] + extra[i]);
+  const double half = 0.5 * std::accumulate(column.begin(), column.end(), 0.0);
+  double prefix = 0.0;
+  int balance = 0;
+  while (prefix + column[static_cast<std::size_t>(balance)] <= half)
+    prefix += column[static_cast<std::size_t>(balance++)];
+  EXPECT_NEAR(first_column_of_part_1(weighted), balance, 1.0);
+  EXPECT_LT(first_column_of_part_1(weighted), 20.0);
+  EXPECT_THROW(partition_cloud(l.positions(), reach, 2, std::vector<std::int64_t>(3, 1)), std::invalid_argument);
 }
 
 // Points on the cut's coordinate are ordered by global id: ids decide, not memory order.
