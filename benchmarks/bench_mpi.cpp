@@ -4,7 +4,10 @@
 // CSV row (process 0): the case, processes, threads, points, bonds, steps, the loop's wall time (the
 // slowest process), bond updates per second, the halo exchanges' wall time (the slowest process) and
 // share, the values and messages sent per step (all processes), the ghosts and the partition's
-// imbalance (the heaviest process's bonds over the mean). Not a test: workflows/benchmarks/run_mpi.py
+// imbalance (the heaviest process's bonds over the mean), and per step the timers of the slowest
+// process in milliseconds: packing, waiting and unpacking in the halo exchanges, the collective
+// calls (sums and agreements) and their number, and the rest of the step (the kernel and the
+// integrator). Not a test: workflows/benchmarks/run_mpi.py
 // runs it and writes results_mpi.md.
 //
 //   mpirun -np 2 mppm-bench-mpi plate|plate-wide|block [STEPS]
@@ -86,14 +89,26 @@ int main(int argc, char** argv) {
   dynamics.initialize();
 
   const HaloExchange::Traffic before = distributed.halo->traffic();
+  const ProcessGroup::Reductions reductions_before = group.reductions();
   MPI_Barrier(MPI_COMM_WORLD);
   const double start = MPI_Wtime();
   for (int s = 0; s < steps; ++s) dynamics.step(false);
   const double loop = max_over_processes(MPI_Wtime() - start);
   const HaloExchange::Traffic& after = distributed.halo->traffic();
   const double halo_seconds = max_over_processes(after.seconds - before.seconds);
+  const double reduction_seconds = group.reductions().seconds - reductions_before.seconds;
+  const double reductions_per_step =
+      static_cast<double>(group.reductions().calls - reductions_before.calls) / static_cast<double>(steps);
+  // Per step, in ms, of the slowest process for each timer.
+  auto per_step_ms = [&](double seconds) { return 1e3 * max_over_processes(seconds) / static_cast<double>(steps); };
+  const double pack_ms = per_step_ms(after.pack_seconds - before.pack_seconds);
+  const double wait_ms = per_step_ms(after.wait_seconds - before.wait_seconds);
+  const double unpack_ms = per_step_ms(after.unpack_seconds - before.unpack_seconds);
+  const double reduction_ms = per_step_ms(reduction_seconds);
   const std::int64_t values = total_over_processes(after.values_sent - before.values_sent);
   const std::int64_t messages = total_over_processes(after.messages_sent - before.messages_sent);
+  const double rest_ms = 1e3 * loop / static_cast<double>(steps) - per_step_ms(after.seconds - before.seconds) -
+                         reduction_ms;  // kernel and integrator
   const PartitionSummary partition = summarize_partition(model, group);
   const std::int64_t bonds = std::accumulate(partition.bonds.begin(), partition.bonds.end(), std::int64_t{0});
   const std::int64_t ghosts = std::accumulate(partition.ghosts.begin(), partition.ghosts.end(), std::int64_t{0});
@@ -101,12 +116,14 @@ int main(int argc, char** argv) {
   if (group.rank() == 0) {
     std::printf(
         "case,processes,threads,points,bonds,steps,loop_seconds,bond_updates_per_second,halo_seconds,halo_share,"
-        "values_sent_per_step,messages_per_step,ghosts,imbalance\n");
-    std::printf("%s,%d,%d,%zu,%lld,%d,%.4f,%.4e,%.4f,%.4f,%.1f,%.1f,%lld,%.4f\n", k.name.c_str(), group.size(),
-                omp_get_max_threads(), cloud.size(), static_cast<long long>(bonds), steps, loop,
-                static_cast<double>(bonds) * steps / loop, halo_seconds, halo_seconds / loop,
+        "values_sent_per_step,messages_per_step,ghosts,imbalance,pack_ms,wait_ms,unpack_ms,reduction_ms,"
+        "reductions_per_step,kernel_and_integrator_ms\n");
+    std::printf("%s,%d,%d,%zu,%lld,%d,%.4f,%.4e,%.4f,%.4f,%.1f,%.1f,%lld,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.4f\n",
+                k.name.c_str(), group.size(), omp_get_max_threads(), cloud.size(), static_cast<long long>(bonds), steps,
+                loop, static_cast<double>(bonds) * steps / loop, halo_seconds, halo_seconds / loop,
                 static_cast<double>(values) / steps, static_cast<double>(messages) / steps,
-                static_cast<long long>(ghosts), imbalance);
+                static_cast<long long>(ghosts), imbalance, pack_ms, wait_ms, unpack_ms, reduction_ms,
+                reductions_per_step, rest_ms);
   }
   return 0;
 }

@@ -116,20 +116,29 @@ void HaloExchange::update_ghosts(std::vector<double>& values, int components) co
     requests.emplace_back();
     MPI_Irecv(in.data(), as_count(in.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
   }
+  double packing = 0.0;
   for (std::size_t l = 0; l < links_.size(); ++l) {
     std::vector<double>& out = send_buffer_[l];
     out.resize(links_[l].send.size() * c);
     if (out.empty()) continue;
+    const double pack_start = MPI_Wtime();
     copy_rows(links_[l].send, values, out, c, true);
+    packing += MPI_Wtime() - pack_start;
     traffic_.values_sent += static_cast<std::int64_t>(out.size());
     ++traffic_.messages_sent;
     requests.emplace_back();
     MPI_Isend(out.data(), as_count(out.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
   }
+  const double wait_start = MPI_Wtime();
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  const double unpack_start = MPI_Wtime();
   for (std::size_t l = 0; l < links_.size(); ++l) copy_rows(links_[l].receive, values, receive_buffer_[l], c, false);
+  const double end = MPI_Wtime();
   ++traffic_.exchanges;
-  traffic_.seconds += MPI_Wtime() - start;
+  traffic_.seconds += end - start;
+  traffic_.pack_seconds += packing;
+  traffic_.wait_seconds += unpack_start - wait_start;
+  traffic_.unpack_seconds += end - unpack_start;
 }
 
 std::size_t HaloExchange::points_sent() const {

@@ -27,10 +27,11 @@ class HaloExchange final : public GhostExchange {
   std::size_t points_received() const;
 
   // What the exchanges since construction cost this process: their number, the values (doubles)
-  // and messages it sent, and the wall time inside update_ghosts (packing, waiting, unpacking).
+  // and messages it sent, and the wall time inside update_ghosts (seconds), of it packing the send
+  // buffers, waiting for the messages and unpacking the received ones.
   struct Traffic {
     std::int64_t exchanges = 0, values_sent = 0, messages_sent = 0;
-    double seconds = 0.0;
+    double seconds = 0.0, pack_seconds = 0.0, wait_seconds = 0.0, unpack_seconds = 0.0;
   };
   const Traffic& traffic() const { return traffic_; }
 

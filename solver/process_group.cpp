@@ -3,10 +3,29 @@
 
 #include <mpi.h>
 
+#include <chrono>
 #include <cstdint>
 #include <stdexcept>
 
 namespace mppm::solver {
+
+// Adds the wall time of its scope to a distributed group's reduction timer.
+class ProcessGroup::Timed {
+ public:
+  explicit Timed(const ProcessGroup& g)
+      : g_(g), start_(g.distributed_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{}) {}
+  ~Timed() {
+    if (!g_.distributed_) return;
+    ++g_.reductions_.calls;
+    g_.reductions_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  const ProcessGroup& g_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 ProcessGroup ProcessGroup::world() {
   int initialized = 0;
@@ -20,6 +39,7 @@ ProcessGroup ProcessGroup::world() {
 }
 
 std::vector<double> ProcessGroup::sum(std::span<const ExactSum> local) const {
+  const Timed timed(*this);
   std::vector<double> out(local.size());
   if (!distributed_) {
     for (std::size_t k = 0; k < local.size(); ++k) out[k] = local[k].value();
@@ -41,6 +61,7 @@ std::vector<double> ProcessGroup::sum(std::span<const ExactSum> local) const {
 }
 
 bool ProcessGroup::any(bool local) const {
+  const Timed timed(*this);
   if (!distributed_) return local;
   int mine = local ? 1 : 0, all = 0;
   MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
@@ -48,6 +69,7 @@ bool ProcessGroup::any(bool local) const {
 }
 
 std::int64_t ProcessGroup::lowest(std::int64_t local) const {
+  const Timed timed(*this);
   if (!distributed_) return local;
   std::int64_t all = 0;
   MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_MIN, MPI_COMM_WORLD);
@@ -55,6 +77,7 @@ std::int64_t ProcessGroup::lowest(std::int64_t local) const {
 }
 
 std::int64_t ProcessGroup::total(std::int64_t local) const {
+  const Timed timed(*this);
   if (!distributed_) return local;
   std::int64_t all = 0;
   MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
@@ -62,14 +85,18 @@ std::int64_t ProcessGroup::total(std::int64_t local) const {
 }
 
 std::vector<std::int64_t> ProcessGroup::gather(std::int64_t local) const {
+  const Timed timed(*this);
   std::vector<std::int64_t> all(static_cast<std::size_t>(size_), local);
   if (distributed_) MPI_Allgather(&local, 1, MPI_INT64_T, all.data(), 1, MPI_INT64_T, MPI_COMM_WORLD);
   return all;
 }
 
 std::vector<std::vector<std::int64_t>> ProcessGroup::gather(std::span<const std::int64_t> local) const {
+  const Timed timed(*this);
   if (!distributed_) return {std::vector<std::int64_t>(local.begin(), local.end())};
-  const std::vector<std::int64_t> sizes = gather(static_cast<std::int64_t>(local.size()));
+  std::vector<std::int64_t> sizes(static_cast<std::size_t>(size_));
+  const auto length = static_cast<std::int64_t>(local.size());
+  MPI_Allgather(&length, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, MPI_COMM_WORLD);
   std::vector<int> counts(sizes.begin(), sizes.end()), offsets(sizes.size(), 0);
   for (std::size_t r = 1; r < sizes.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
   std::vector<std::int64_t> all(static_cast<std::size_t>(offsets.back() + counts.back()));
@@ -82,6 +109,7 @@ std::vector<std::vector<std::int64_t>> ProcessGroup::gather(std::span<const std:
 }
 
 std::string ProcessGroup::broadcast(const std::string& text, int root) const {
+  const Timed timed(*this);
   if (!distributed_) return text;
   std::int64_t length = rank_ == root ? static_cast<std::int64_t>(text.size()) : 0;
   MPI_Bcast(&length, 1, MPI_INT64_T, root, MPI_COMM_WORLD);

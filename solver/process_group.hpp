@@ -21,6 +21,14 @@ class ProcessGroup {
   static ProcessGroup world();
 
   int rank() const { return rank_; }
+  // The collective calls (sums, agreements, gathers, broadcasts) made through this group so far
+  // and the wall time spent in them (waiting for the slowest process included): the benchmark's
+  // reduction timer.
+  struct Reductions {
+    std::int64_t calls = 0;
+    double seconds = 0.0;
+  };
+  const Reductions& reductions() const { return reductions_; }
   int size() const { return size_; }
   bool distributed() const { return distributed_; }
 
@@ -46,6 +54,8 @@ class ProcessGroup {
   int rank_ = 0;
   int size_ = 1;
   bool distributed_ = false;
+  mutable Reductions reductions_;
+  class Timed;  // counts a collective call into reductions_
 };
 
 // MPI for the life of the object (MPI_Init_thread with funneled threads: only the thread that

@@ -64,6 +64,18 @@ def report(fastest, path, machine):
                      f"{float(r['halo_seconds']):.3f} | {100 * float(r['halo_share']):.1f} % | "
                      f"{float(r['values_sent_per_step']):.0f} | {float(r['messages_per_step']):.0f} | {r['ghosts']} | "
                      f"{float(r['imbalance']):.4f} |")
+    lines += ["", "Per step, in milliseconds, the slowest process for each timer: the halo exchanges' packing, waiting "
+              "and unpacking (two exchanges of the kinematics and two of the pass-1 tensors), the collective calls "
+              "(exact sums and agreements) and their number, and the rest of the step (the kernel and the "
+              "integrator: the loop time less the others).", "",
+              "| case | processes x threads | step [ms] | pack | wait | unpack | collectives | collectives / step "
+              "| kernel and integrator |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for (case, processes, threads), r in fastest.items():
+        step_ms = 1e3 * float(r["loop_seconds"]) / float(r["steps"])
+        lines.append(f"| {case} | {processes} x {threads} | {step_ms:.3f} | {float(r['pack_ms']):.3f} | "
+                     f"{float(r['wait_ms']):.3f} | {float(r['unpack_ms']):.3f} | {float(r['reduction_ms']):.3f} | "
+                     f"{float(r['reductions_per_step']):.1f} | {float(r['kernel_and_integrator_ms']):.3f} |")
     lines += ["", "| check | measured | target |", "|---|---|---|"]
     for case in ("plate", "block"):
         ratio = loop(case, 2, 1) / loop(case, 1, 2)
