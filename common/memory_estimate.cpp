@@ -137,7 +137,8 @@ std::optional<std::uint64_t> available_memory_bytes(const std::string& meminfo_p
   return std::nullopt;
 }
 
-void require_memory_fits(const MemoryEstimate& e, std::uint64_t available_bytes, const std::string& subject) {
+void require_memory_fits(const MemoryEstimate& e, std::uint64_t available_bytes, const std::string& subject,
+                         const std::string& more_advice) {
   if (e.total_bytes <= available_bytes) return;
   std::ostringstream s;
   s << subject << ": the run needs about " << format_memory(e.total_bytes) << " of memory but only "
@@ -146,7 +147,8 @@ void require_memory_fits(const MemoryEstimate& e, std::uint64_t available_bytes,
     << " bond entries " << format_memory(e.bonds * e.bytes_per_bond) << ", one snapshot "
     << format_memory(e.snapshot_bytes)
     << "); use a coarser geometry.spacing (memory falls with its square in "
-       "2-D, its cube in 3-D), a smaller horizon_factor, or fewer output.fields";
+       "2-D, its cube in 3-D), a smaller horizon_factor, or fewer output.fields"
+    << more_advice;
   throw InputError(s.str());
 }
 

@@ -52,7 +52,9 @@ std::string format_memory(std::uint64_t bytes);
 std::optional<std::uint64_t> available_memory_bytes(const std::string& meminfo_path = "/proc/meminfo");
 
 // Throws InputError when the estimate exceeds `available_bytes`. `subject` starts the message
-// (e.g. the scene file). The message gives the estimate, its parts and the advice.
-void require_memory_fits(const MemoryEstimate& estimate, std::uint64_t available_bytes, const std::string& subject);
+// (e.g. the scene file). The message gives the estimate, its parts and the advice, and then
+// `more_advice` when given (e.g. ", or ...").
+void require_memory_fits(const MemoryEstimate& estimate, std::uint64_t available_bytes, const std::string& subject,
+                         const std::string& more_advice = "");
 
 }  // namespace mppm

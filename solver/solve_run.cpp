@@ -178,7 +178,9 @@ static void refuse_runs_that_do_not_fit(const Scene& scene, const PointCloud& cl
   estimate.total_bytes += point_cloud_bytes(cloud);
   require_memory_fits(estimate, *available / static_cast<std::uint64_t>(sharing),
                       scene.path + " (process " + std::to_string(group.rank()) + " of " + std::to_string(group.size()) +
-                          ", one of " + std::to_string(sharing) + " sharing this machine's memory)");
+                          ", one of " + std::to_string(sharing) + " sharing this machine's memory)",
+                      "; or spread the processes over more machines (each process holds its share of the points "
+                      "and the whole points file, so more processes on the same machine do not help)");
 }
 
 namespace {
