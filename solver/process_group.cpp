@@ -68,20 +68,25 @@ bool ProcessGroup::any(bool local) const {
   return all != 0;
 }
 
+namespace {
+
+// An integer combined over every process by `op` (exact, whatever the order).
+std::int64_t all_reduced(std::int64_t local, MPI_Op op) {
+  std::int64_t all = 0;
+  MPI_Allreduce(&local, &all, 1, MPI_INT64_T, op, MPI_COMM_WORLD);
+  return all;
+}
+
+}  // namespace
+
 std::int64_t ProcessGroup::lowest(std::int64_t local) const {
   const Timed timed(*this);
-  if (!distributed_) return local;
-  std::int64_t all = 0;
-  MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_MIN, MPI_COMM_WORLD);
-  return all;
+  return distributed_ ? all_reduced(local, MPI_MIN) : local;
 }
 
 std::int64_t ProcessGroup::total(std::int64_t local) const {
   const Timed timed(*this);
-  if (!distributed_) return local;
-  std::int64_t all = 0;
-  MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
-  return all;
+  return distributed_ ? all_reduced(local, MPI_SUM) : local;
 }
 
 std::vector<std::int64_t> ProcessGroup::gather(std::int64_t local) const {
