@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -64,7 +66,7 @@ double critical_bond_work(const DamageParameters& damage, int dimension, double 
   return dimension == 3 ? g_cr / (s * dx3 * spacing) : g_cr / (s * dx3 * thickness);
 }
 
-void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_t>& ignored) {
+void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_t>& ignored, const PointCloud* whole) {
   std::fill(p.no_fail.begin(), p.no_fail.end(), 0);
   if (!(depth > 0.0)) return;
   // Nearest boundary point by a k-d tree (CGAL), in 3-D coordinates (z = 0 in 2-D).
@@ -74,17 +76,25 @@ void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_
   auto point = [&](std::size_t i) {
     return Kernel::Point_3(p.position[i * D], p.position[i * D + 1], D == 3 ? p.position[i * D + 2] : 0.0);
   };
+  auto on_boundary = [&](std::int32_t id) {
+    return id > 0 && std::find(ignored.begin(), ignored.end(), id) == ignored.end();
+  };
   std::vector<Kernel::Point_3> boundary;
-  for (std::size_t i = 0; i < p.owned; ++i)
-    if (p.boundary_id[i] > 0 && std::find(ignored.begin(), ignored.end(), p.boundary_id[i]) == ignored.end())
-      boundary.push_back(point(i));
+  if (whole) {
+    for (std::size_t k = 0; k < whole->boundary_id.size(); ++k)
+      if (on_boundary(whole->boundary_id[k]))
+        boundary.emplace_back(whole->x[k], whole->y[k], D == 3 ? whole->z[k] : 0.0);
+  } else {
+    for (std::size_t i = 0; i < p.owned; ++i)
+      if (on_boundary(p.boundary_id[i])) boundary.push_back(point(i));
+  }
   if (boundary.empty()) return;
   Search::Tree tree(boundary.begin(), boundary.end());
   tree.build();
   const double depth2 = depth * depth;
   // A built tree answers queries from several threads at once (CGAL's k-d tree is read-only then).
-  const auto n = static_cast<std::int64_t>(p.owned);
-#pragma omp parallel for schedule(static) if (thread_point_loop(p.owned))
+  const auto n = static_cast<std::int64_t>(p.total());
+#pragma omp parallel for schedule(static) if (thread_point_loop(p.total()))
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
     const Search nearest(tree, point(i), 1);
@@ -169,22 +179,48 @@ double family_breaking_energy(const PointData& p, const BondFamilies& f, const C
 namespace {
 
 // One update_after_breakage: the phases of the update over the state they share (the workspace's
-// arrays, so that no phase allocates once they are warm).
+// arrays, so that no phase allocates once they are warm). In a distributed run (docs/theory.md
+// section 13) every process runs every phase in step with the others once any process has a
+// breaking bond: a bond whose other end is a ghost is broken there by its owner (a note through
+// the ghost exchange), the ghosts' shape terms and flags are fetched after each phase that changes
+// them, and the decisions that the one-process update takes in index order are taken in global-id
+// order (the stability detachments, one agreed point at a time). On one process none of this
+// communicates.
 class BreakageUpdater {
  public:
   BreakageUpdater(PointData& points, BondFamilies& bonds, const CosseratConstants& constants,
                   const InternalForceFunctions& functions, double limit, BreakageWorkspace& workspace)
-      : p(points), f(bonds), c(constants), kernel(functions), block_eigenvalue_limit(limit), w(workspace) {}
+      : p(points),
+        f(bonds),
+        c(constants),
+        kernel(functions),
+        block_eigenvalue_limit(limit),
+        w(workspace),
+        order(points),
+        ghosts(points.ghost > 0 ? points.ghost_source : nullptr),
+        group(points.processes) {}
 
   BreakageUpdate run();
 
  private:
   bool collect_breaking_bonds();
+  void take_breaks_from_other_processes();
   void record(std::size_t i);
   void detach_on_energy_rise();
+  void share_changed_points();
+  void collect_stability_candidates();
   void detach_unstable_blocks();
   void break_bonds_of_detached();
   void refresh_and_measure_release();
+
+  // Breaks entry b of point i (to j); a pair is counted once, at its end earlier in the order.
+  void break_entry(std::size_t i, std::int64_t b, std::size_t j);
+  // Adds to `out` the owned points with an acting bond to a ghost flagged in w.ghost_flag.
+  void add_owned_neighbours_of_flagged_ghosts(std::vector<std::size_t>& out);
+  // The ghosts' copies of the flags of `points` (owned, 1) in w.ghost_flag.
+  void share_flags(const std::vector<std::size_t>& points);
+  std::size_t ghost_index(std::int64_t global_id) const;
+  bool any(bool here) const { return group ? group->any(here) : here; }
 
   PointData& p;
   BondFamilies& f;
@@ -192,19 +228,24 @@ class BreakageUpdater {
   const InternalForceFunctions& kernel;
   const double block_eigenvalue_limit;
   BreakageWorkspace& w;
+  const PointOrder order;
+  const GhostExchange* ghosts;  // null on one process
+  const ProcessGroup* group;    // null on one process
   BreakageUpdate u;
-  std::size_t broken_ends = 0;
 };
 
 BreakageUpdate BreakageUpdater::run() {
   p.refreshed_points.clear();
-  if (!collect_breaking_bonds()) return u;
+  if (!any(collect_breaking_bonds())) return u;
+  u.broke = true;
+  if (w.affected_index.size() != p.owned) w.affected_index.assign(p.owned, -1);
+  take_breaks_from_other_processes();
   // The points whose families change in this update, in the order first met, with the energy they
   // stored just before (the breaking bonds still act, shape tensor as it was).
   w.affected.clear();
   w.energy_before.clear();
   for (const std::size_t i : w.changed) record(i);
-  for (const std::int64_t b : w.breaking) f.break_bond(b);
+  for (const auto& [i, b] : w.breaking) break_entry(i, b, f.neighbor_of(b));
 
   // Points to detach, found after the shape tensors of the changed points are recomputed
   // (docs/theory.md section 7, where the margins and what they were measured against are given;
@@ -225,14 +266,27 @@ BreakageUpdate BreakageUpdater::run() {
   // last two rules. Decided serially and in index order: the same for any thread count. Points
   // detached from the start (isolated by the geometry) are left as they are. Rounds of this run
   // until no family changes.
-  while (!w.changed.empty()) {
+  while (any(!w.changed.empty())) {
     detach_on_energy_rise();
+    share_changed_points();
     if (block_eigenvalue_limit > 0.0) detach_unstable_blocks();
     break_bonds_of_detached();
   }
   refresh_and_measure_release();
-  u.broken_pairs = broken_ends / 2;
   return u;
+}
+
+void BreakageUpdater::break_entry(std::size_t i, std::int64_t b, std::size_t j) {
+  f.break_bond(b);
+  if (order(i) < order(j)) ++u.broken_pairs;
+}
+
+std::size_t BreakageUpdater::ghost_index(std::int64_t global_id) const {
+  const auto first = p.global_id.begin() + static_cast<std::ptrdiff_t>(p.owned);
+  const auto it = std::lower_bound(first, p.global_id.end(), global_id);
+  if (it == p.global_id.end() || *it != global_id)
+    throw std::logic_error("update_after_breakage: point " + std::to_string(global_id) + " is not a ghost here");
+  return static_cast<std::size_t>(it - p.global_id.begin());
 }
 
 template <int D, int R, bool Polar>
@@ -260,17 +314,18 @@ bool bond_stretched(const PointData& p, const BondFamilies& f, std::size_t i, st
 // work reaches the critical work (the kernel books no work on a bond with a no-fail end, so those
 // stay at zero). They break, except compressed ones with material.damage.compressed_bonds: hold
 // (decided here only, once per candidate); their two ends are the points whose families change
-// (w.changed, sorted). They still act until they are broken. False when no bond breaks.
+// (w.changed, owned, sorted); an end that is a ghost is noted for its owner. They still act until
+// they are broken. False when no bond of this process breaks.
 bool BreakageUpdater::collect_breaking_bonds() {
   std::vector<std::size_t>& changed = w.changed;
   changed.clear();
-  std::vector<std::int64_t>& breaking = w.breaking;  // both entries of every breaking bond
-  breaking.clear();
-  std::size_t counted = 0, held = 0;
+  w.breaking.clear();  // the entries of this process's points, with their points
+  w.notes.clear();
+  std::size_t counted = 0, held = 0, pairs = 0;
   for (std::size_t i = 0; i < p.owned; ++i) {
     if (p.bonds_broken[i] == 0) continue;
     counted += static_cast<std::size_t>(p.bonds_broken[i]);
-    const std::size_t breaking_before = breaking.size();
+    const std::size_t pairs_before = pairs;
     const std::int64_t split = f.first_pair_bond(i);
     for (std::int64_t b = split; b < f.offset[i + 1]; ++b) {
       if (!f.acting(b)) continue;
@@ -281,20 +336,34 @@ bool BreakageUpdater::collect_breaking_bonds() {
         ++held;
         continue;
       }
-      breaking.push_back(b);
-      breaking.push_back(mirror_bond(f, i, j));
-      changed.push_back(j);
+      ++pairs;
+      w.breaking.push_back({i, b});
+      if (j < p.owned) {
+        w.breaking.push_back({j, mirror_bond(f, i, j, order)});
+        changed.push_back(j);
+      } else {
+        w.notes.push_back({j, order(i)});
+      }
     }
-    if (breaking.size() > breaking_before) changed.push_back(i);
+    if (pairs > pairs_before) changed.push_back(i);
   }
-  if (breaking.size() + 2 * held != 2 * counted)
+  if (pairs + held != counted)
     throw std::logic_error("update_after_breakage: the bonds at their critical work are not those the kernel counted");
-  if (changed.empty()) return false;
-  std::sort(changed.begin(), changed.end());
-  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-  broken_ends = breaking.size();
-  if (w.affected_index.size() != p.owned) w.affected_index.assign(p.owned, -1);
-  return true;
+  return !changed.empty();
+}
+
+// A distributed run: the bonds other processes broke at their (lower) end whose other end is a
+// point of this one break here too; their points change.
+void BreakageUpdater::take_breaks_from_other_processes() {
+  if (ghosts) {
+    for (const PointNote& note : ghosts->notify_owners(w.notes)) {
+      const std::size_t i = ghost_index(note.value);
+      w.breaking.push_back({note.point, mirror_bond(f, i, note.point, order)});
+      w.changed.push_back(note.point);
+    }
+  }
+  std::sort(w.changed.begin(), w.changed.end());
+  w.changed.erase(std::unique(w.changed.begin(), w.changed.end()), w.changed.end());
 }
 
 // Point i among the affected points (once), with the energy it stores now.
@@ -336,23 +405,60 @@ void BreakageUpdater::detach_on_energy_rise() {
   }
 }
 
-// The stability blocks: the changed points and their neighbours whose stiffness block exceeds
-// block_eigenvalue_limit detached (w.detach).
-void BreakageUpdater::detach_unstable_blocks() {
+// A distributed run: the ghosts' shape terms and detached flags after the changed points' new
+// ones, and which ghosts changed (their neighbours here are stability candidates).
+void BreakageUpdater::share_changed_points() {
+  if (!ghosts) return;
+  share_shape_terms(p, true);
+  share_flags(w.changed);
+}
+
+void BreakageUpdater::share_flags(const std::vector<std::size_t>& points) {
+  w.flag_values.assign(p.total(), 0.0);
+  for (const std::size_t i : points) w.flag_values[i] = 1.0;
+  ghosts->update_ghosts(w.flag_values, 1);
+  w.ghost_flag.assign(p.total(), 0);
+  for (std::size_t g = p.owned; g < p.total(); ++g) w.ghost_flag[g] = w.flag_values[g] != 0.0 ? 1 : 0;
+}
+
+void BreakageUpdater::add_owned_neighbours_of_flagged_ghosts(std::vector<std::size_t>& out) {
+  if (!ghosts) return;
+  if (w.ghost_neighbour_offset.size() != p.ghost + 1) w.index_ghost_neighbours(p, f);
+  for (std::size_t g = p.owned; g < p.total(); ++g) {
+    if (!w.ghost_flag[g]) continue;
+    const std::size_t k = g - p.owned;
+    for (std::size_t e = w.ghost_neighbour_offset[k]; e < w.ghost_neighbour_offset[k + 1]; ++e)
+      if (f.acting(w.ghost_neighbour_bond[e])) out.push_back(w.ghost_neighbour[e]);
+  }
+}
+
+// The changed points and their owned neighbours (a ghost is its owner's candidate), sorted.
+void BreakageUpdater::collect_stability_candidates() {
   std::vector<std::size_t>& candidates = w.candidates;
   candidates.clear();
   for (const std::size_t i : w.changed) {
     candidates.push_back(i);
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-      if (f.acting(b)) candidates.push_back(static_cast<std::size_t>(f.neighbor[b]));
+      if (f.acting(b) && f.neighbor_of(b) < p.owned) candidates.push_back(f.neighbor_of(b));
   }
+  add_owned_neighbours_of_flagged_ghosts(candidates);
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+}
+
+// The stability blocks: the changed points and their neighbours whose stiffness block exceeds
+// block_eigenvalue_limit detached (w.detach).
+void BreakageUpdater::detach_unstable_blocks() {
+  collect_stability_candidates();
+  const std::vector<std::size_t>& candidates = w.candidates;
   // The blocks (an eigenvalue problem each, for every changed point's neighbours: the bulk of
   // this update's work) are evaluated in parallel first; the decisions below stay serial and
-  // in index order. A detachment changes its neighbours' blocks, so once one happened in this
-  // round the later candidates are evaluated again, as a serial loop would see them.
-  auto checked = [&](std::size_t i) { return i < p.owned && !p.detached[i] && p.region[i] == 0 && !p.no_fail[i]; };
+  // in global order. A detachment changes its neighbours' blocks, so once one happened in this
+  // round the later candidates are evaluated again, as a serial loop would see them. Across
+  // processes each detachment is agreed: the first candidate in global order above the limit on
+  // any process (the lowest global id) is detached by its owner, the ghosts learn it, and the
+  // search goes on after it everywhere.
+  auto checked = [&](std::size_t i) { return !p.detached[i] && p.region[i] == 0 && !p.no_fail[i]; };
   std::vector<double>& eigenvalue = w.candidate_eigenvalue;
   eigenvalue.assign(candidates.size(), 0.0);
   const auto count = static_cast<std::int64_t>(candidates.size());
@@ -361,41 +467,73 @@ void BreakageUpdater::detach_unstable_blocks() {
     const std::size_t i = candidates[static_cast<std::size_t>(k)];
     if (checked(i)) eigenvalue[static_cast<std::size_t>(k)] = point_block_eigenvalue(p, f, c, i);
   }
+  constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::max();
   bool detached_this_round = false;
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    const std::size_t i = candidates[k];
-    if (!checked(i)) continue;
-    const double block = detached_this_round ? point_block_eigenvalue(p, f, c, i) : eigenvalue[k];
-    if (block > block_eigenvalue_limit) {
-      detached_this_round = true;
+  std::size_t next = 0;
+  for (;;) {
+    std::size_t found = candidates.size();
+    for (std::size_t k = next; k < candidates.size() && found == candidates.size(); ++k) {
+      const std::size_t i = candidates[k];
+      if (!checked(i)) continue;
+      const double block = detached_this_round ? point_block_eigenvalue(p, f, c, i) : eigenvalue[k];
+      if (block > block_eigenvalue_limit) found = k;
+    }
+    const std::int64_t mine = found < candidates.size() ? order(candidates[found]) : kNone;
+    const std::int64_t first = group ? group->lowest(mine) : mine;
+    if (first == kNone) return;
+    if (mine == first) {
+      const std::size_t i = candidates[found];
       record(i);
       detach_point(p, i);
       w.detach.push_back(i);
       ++u.unstable_detached;
     }
+    detached_this_round = true;
+    if (ghosts) share_shape_terms(p, true);
+    next = static_cast<std::size_t>(std::upper_bound(candidates.begin(), candidates.end(), first,
+                                                     [&](std::int64_t v, std::size_t i) { return v < order(i); }) -
+                                    candidates.begin());
   }
 }
 
-// The detachment round: the remaining bonds of the points detached in this round break; their
-// other ends are the next round's changed points.
+// The detachment round: the remaining bonds of the points detached in this round break (at both
+// ends: an end on another process through a note to its owner); their other ends are the next
+// round's changed points.
 void BreakageUpdater::break_bonds_of_detached() {
   std::vector<std::size_t>& next = w.next;
   std::sort(w.detach.begin(), w.detach.end());
   next.clear();
+  w.notes.clear();
   for (const std::size_t i : w.detach) {
     ++u.newly_detached;
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       if (!f.acting(b)) continue;
-      const auto j = static_cast<std::size_t>(f.neighbor[b]);
+      const std::size_t j = f.neighbor_of(b);
       // A bond with a no-fail end never breaks (docs/theory.md section 7), not even here: the detached
       // point stays tied to the protected boundary by it (its own stress is zero; the pair
       // force is then the no-fail point's alone).
-      if (j < p.owned && p.no_fail[j]) continue;
+      if (p.no_fail[j]) continue;
+      if (j >= p.owned) {
+        break_entry(i, b, j);
+        w.notes.push_back({j, order(i)});
+        continue;
+      }
       record(j);
-      const std::int64_t rb = mirror_bond(f, i, j);
-      f.break_bond(b);
-      if (rb >= 0) f.break_bond(rb);
-      broken_ends += 2;
+      const std::int64_t rb = mirror_bond(f, i, j, order);
+      break_entry(i, b, j);
+      if (rb >= 0) break_entry(j, rb, i);
+      next.push_back(j);
+    }
+  }
+  if (ghosts) {
+    // The other ends on this process of the bonds other processes broke (an end already broken
+    // here, both ends detached in this round, is left as it is).
+    for (const PointNote& note : ghosts->notify_owners(w.notes)) {
+      const std::size_t i = ghost_index(note.value), j = note.point;
+      const std::int64_t rb = mirror_bond(f, i, j, order);
+      if (rb < 0 || !f.acting(rb)) continue;
+      record(j);
+      break_entry(j, rb, i);
       next.push_back(j);
     }
   }
@@ -404,16 +542,28 @@ void BreakageUpdater::break_bonds_of_detached() {
   w.changed.swap(next);
 }
 
-// The refresh: the step's forces again without the broken bonds (kernel::refresh_after_breakage),
-// which also refreshes the per-point energies of the affected points. The stored energy the breaks
-// release is what these points stored before minus what they store now, at the same displacements
-// and rotations (only their energies changed: a point's energy depends on its own family only).
-// Summed exactly (exact_sum.hpp): the same bits for any thread count or partition. (The
-// integrator adds the kick's share, from the forces before the refresh.)
+// The refresh: the step's forces again without the broken bonds (kernel::refresh_after_breakage)
+// at the affected points and their neighbours, which also refreshes the per-point energies of the
+// affected points. The stored energy the breaks release is what these points stored before minus
+// what they store now, at the same displacements and rotations (only their energies changed: a
+// point's energy depends on its own family only). Summed exactly (exact_sum.hpp): the same bits
+// for any thread count or partition. (The integrator adds the kick's share, from the forces
+// before the refresh.)
 void BreakageUpdater::refresh_and_measure_release() {
   w.sorted.assign(w.affected.begin(), w.affected.end());
   std::sort(w.sorted.begin(), w.sorted.end());
-  kernel.refresh_after_breakage(p, f, c, w.sorted);
+  std::vector<std::size_t>& around = p.refreshed_points;
+  around = w.sorted;
+  for (const std::size_t i : w.sorted)
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+      if (f.acting(b) && f.neighbor_of(b) < p.owned) around.push_back(f.neighbor_of(b));
+  if (ghosts) {
+    share_flags(w.sorted);
+    add_owned_neighbours_of_flagged_ghosts(around);
+  }
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  kernel.refresh_after_breakage(p, f, c);
   ExactSum released;
   for (std::size_t k = 0; k < w.affected.size(); ++k) {
     const std::size_t i = w.affected[k];
@@ -424,10 +574,28 @@ void BreakageUpdater::refresh_and_measure_release() {
     released += w.energy_before[k] - after;
     w.affected_index[i] = -1;
   }
-  u.released_energy = released.value();
+  u.released_energy = group ? group->sum(released) : released.value();
 }
 
 }  // namespace
+
+void BreakageWorkspace::index_ghost_neighbours(const PointData& p, const BondFamilies& f) {
+  ghost_neighbour_offset.assign(p.ghost + 1, 0);
+  for (std::size_t i = 0; i < p.owned; ++i)
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+      if (f.neighbor_of(b) >= p.owned) ++ghost_neighbour_offset[f.neighbor_of(b) - p.owned + 1];
+  std::partial_sum(ghost_neighbour_offset.begin(), ghost_neighbour_offset.end(), ghost_neighbour_offset.begin());
+  ghost_neighbour.resize(ghost_neighbour_offset.back());
+  ghost_neighbour_bond.resize(ghost_neighbour_offset.back());
+  std::vector<std::size_t> fill(ghost_neighbour_offset.begin(), ghost_neighbour_offset.end() - 1);
+  for (std::size_t i = 0; i < p.owned; ++i)
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+      if (f.neighbor_of(b) >= p.owned) {
+        const std::size_t e = fill[f.neighbor_of(b) - p.owned]++;
+        ghost_neighbour[e] = i;
+        ghost_neighbour_bond[e] = b;
+      }
+}
 
 BreakageUpdate update_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
                                      const InternalForceFunctions& kernel, double block_eigenvalue_limit,

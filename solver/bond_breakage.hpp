@@ -7,6 +7,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "solver/bond_families.hpp"
@@ -38,7 +39,10 @@ double lattice_crossing_sum(int dimension, double horizon_factor);
 // condition (a kinematic layer point or a loaded body point: boundary_id > 0), the boundary points
 // themselves included when depth > 0. A bond with a no-fail end never breaks. The boundary ids in
 // `ignored` (the pore fluid's own boundaries: FluidBoundaryLayout::fluid_only_ids) make no zone.
-void mark_no_fail_zone(PointData& points, double depth, const std::vector<std::int32_t>& ignored = {});
+// Every local point is marked, ghosts included. A distributed run passes the whole cloud
+// (`whole`): the zone's depth can exceed the ghosts' reach, so the boundary points come from it.
+void mark_no_fail_zone(PointData& points, double depth, const std::vector<std::int32_t>& ignored = {},
+                       const PointCloud* whole = nullptr);
 
 // sum_j V_j over each point's whole list (broken bonds included), in list order.
 std::vector<double> family_volumes(const PointData& points, const BondFamilies& bonds);
@@ -64,8 +68,12 @@ std::vector<double> damage_field(const PointData& points, const BondFamilies& bo
 // stiffness block exceeds `block_eigenvalue_limit` (point_stability.hpp; 0: no such check) is
 // detached as well: its lopsided family would make the run's time step unstable. Returns the pairs
 // broken in that evaluation (cascade included), the points newly detached (of them for stability)
-// and the released energy [J].
+// and the released energy [J]. In a distributed run it is a collective call (docs/theory.md
+// section 13) with the same result as one process: the counts are this process's shares (a pair
+// counted at its end earlier in the global order, a point by its owner), summed over the
+// processes by the caller; the released energy is the whole model's.
 struct BreakageUpdate {
+  bool broke = false;  // bonds broke anywhere in the model (then the workspace's lists are this update's)
   std::size_t broken_pairs = 0;
   std::size_t newly_detached = 0;
   std::size_t unstable_detached = 0;  // of them, for the time step's sake
@@ -82,7 +90,17 @@ double family_breaking_energy(const PointData& points, const BondFamilies& bonds
 // Scratch arrays kept from one step to the next (no allocation in the time loop once warm).
 struct BreakageWorkspace {
   std::vector<std::int64_t> affected_index;  // per point: index into affected, -1 if not met
-  std::vector<std::int64_t> breaking;        // bond entries breaking in this update
+  // Bond entries breaking in this update, with their points.
+  std::vector<std::pair<std::size_t, std::int64_t>> breaking;
+  // A distributed run: bonds broken here whose other end is a ghost, for its owner; ghost flags
+  // (a per-point field for the exchange, and its ghost rows); the owned points with a bond to
+  // each ghost (CSR by ghost, with the bond entry), indexed once.
+  std::vector<PointNote> notes;
+  std::vector<double> flag_values;
+  std::vector<std::uint8_t> ghost_flag;
+  std::vector<std::size_t> ghost_neighbour_offset, ghost_neighbour;
+  std::vector<std::int64_t> ghost_neighbour_bond;
+  void index_ghost_neighbours(const PointData& points, const BondFamilies& bonds);
   std::vector<std::size_t> affected, changed, next, detach, candidates;
   // After an update that broke bonds: the points whose lists lost bonds in it, sorted (the only
   // points whose damage changed). Stale after an update that broke none.

@@ -70,7 +70,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   return f;
 }
 
-void index_bond_pairs(BondFamilies& f) {
+void index_bond_pairs(BondFamilies& f, PointOrder order) {
   const auto n = static_cast<std::int64_t>(f.offset.size()) - 1;
   f.pair_offset.assign(static_cast<std::size_t>(n) + 1, 0);
   bool asymmetric = false;
@@ -78,9 +78,12 @@ void index_bond_pairs(BondFamilies& f) {
   for (std::int64_t i = 0; i < n; ++i) {
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       const auto j = static_cast<std::int64_t>(f.neighbor_of(b));
-      if (j >= n || mirror_bond(f, static_cast<std::size_t>(i), static_cast<std::size_t>(j)) < 0) asymmetric = true;
+      const bool ghost = j >= n;
+      if (!ghost && mirror_bond(f, static_cast<std::size_t>(i), static_cast<std::size_t>(j), order) < 0)
+        asymmetric = true;
+      if (ghost && order.global_id.empty()) asymmetric = true;  // one process has no ghosts
     }
-    f.pair_offset[i + 1] = f.offset[i + 1] - first_bond_above(f, static_cast<std::size_t>(i));
+    f.pair_offset[i + 1] = f.offset[i + 1] - first_bond_above(f, static_cast<std::size_t>(i), order);
   }
   if (asymmetric) throw std::logic_error("index_bond_pairs: a bond is not stored at both of its (owned) ends");
   std::partial_sum(f.pair_offset.begin(), f.pair_offset.end(), f.pair_offset.begin());

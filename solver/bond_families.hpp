@@ -11,6 +11,8 @@
 #include <climits>
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "solver/point_data.hpp"
@@ -26,8 +28,9 @@ struct BondFamilies {
   std::vector<std::int32_t> neighbor;
   std::vector<double> xi;  // D per bond, periodic lattices only (else empty)
   // Damage effect only (empty otherwise):
-  // W_ij [J/m^6] of every bond pair, stored once, at its lower-index end: the pairs of point i are
-  // its bonds to higher indices (the tail of its sorted list), the k-th of them at
+  // W_ij [J/m^6] of every bond pair, stored once, at its lower-index end (lower global id in a
+  // distributed run: PointOrder): the pairs of point i are its bonds to higher ones (the tail of
+  // its sorted list), the k-th of them at
   // work[pair_offset[i] + k]. The force pass computes a bond's work at that end only (the other end
   // would give the same bits), so a copy at the other end would cost 8 B per bond entry for nothing.
   std::vector<double> work;
@@ -51,20 +54,35 @@ struct BondFamilies {
   static std::size_t index_of(std::int32_t entry) { return static_cast<std::size_t>(entry & INT32_MAX); }
 };
 
-// The first bond of point i to a neighbour of higher index (neighbours are sorted by index).
-inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i) {
+// The order of the neighbour lists: by global id in a distributed run (PointData::global_id), by
+// local index (which is the global id) on one process.
+struct PointOrder {
+  std::span<const std::int64_t> global_id;  // empty: the local index
+  PointOrder() = default;
+  explicit PointOrder(const PointData& p) : global_id(p.global_id) {}
+  std::int64_t operator()(std::size_t i) const {
+    return global_id.empty() ? static_cast<std::int64_t>(i) : global_id[i];
+  }
+};
+
+// The first bond of point i to a neighbour later in the order (neighbours are sorted by it).
+inline std::int64_t first_bond_above(const BondFamilies& f, std::size_t i, PointOrder order = {}) {
   const std::int32_t* first = f.neighbor.data() + f.offset[i];
   const std::int32_t* last = f.neighbor.data() + f.offset[i + 1];
-  return std::upper_bound(first, last, i, [](std::size_t v, std::int32_t e) { return v < BondFamilies::index_of(e); }) -
+  const std::int64_t key = order(i);
+  return std::upper_bound(first, last, key,
+                          [&](std::int64_t v, std::int32_t e) { return v < order(BondFamilies::index_of(e)); }) -
          f.neighbor.data();
 }
 
-// The entry of bond (j, i) in j's list (by bisection: neighbours are sorted), -1 if j has none.
-inline std::int64_t mirror_bond(const BondFamilies& f, std::size_t i, std::size_t j) {
+// The entry of bond (j, i) in owned point j's list (by bisection: neighbours are sorted), -1 if j
+// has none.
+inline std::int64_t mirror_bond(const BondFamilies& f, std::size_t i, std::size_t j, PointOrder order = {}) {
   const std::int32_t* first = f.neighbor.data() + f.offset[j];
   const std::int32_t* last = f.neighbor.data() + f.offset[j + 1];
-  const std::int32_t* it =
-      std::lower_bound(first, last, i, [](std::int32_t e, std::size_t v) { return BondFamilies::index_of(e) < v; });
+  const std::int64_t key = order(i);
+  const std::int32_t* it = std::lower_bound(
+      first, last, key, [&](std::int32_t e, std::int64_t v) { return order(BondFamilies::index_of(e)) < v; });
   return it != last && BondFamilies::index_of(*it) == i ? static_cast<std::int64_t>(it - f.neighbor.data()) : -1;
 }
 
@@ -97,15 +115,14 @@ struct FamilyOptions {
 };
 
 // Cell-list search (brute force with minimum images when periodic). Neighbours of each point
-// are sorted by index (by global id in a distributed run: PointData::global_id), so the storage
-// does not depend on the search order, the thread count or the partition. The bisections below
-// (first_bond_above, mirror_bond) and the bond pairs of damage assume the order by index: a
-// distributed run does not yet support damage.
+// are sorted by index (by global id in a distributed run: PointData::global_id, PointOrder), so the
+// storage does not depend on the search order, the thread count or the partition.
 BondFamilies build_families(const PointData& points, const FamilyOptions& options);
 
-// Fills pair_offset and sizes work (zero) for the bond pairs (damage). Families must be symmetric
-// (every bond stored from both ends) with owned neighbours; throws std::logic_error if not.
-void index_bond_pairs(BondFamilies& families);
+// Fills pair_offset and sizes work (zero) for the bond pairs (damage), each at its end earlier in
+// `order`. Families must be symmetric (every bond between owned points stored from both ends; a
+// ghost's list is its owner's); throws std::logic_error if not.
+void index_bond_pairs(BondFamilies& families, PointOrder order = {});
 
 // Removes the bonds for which cut(bond) is true from both ends; `cut` must be symmetric.
 template <class Predicate>
@@ -127,7 +144,7 @@ void remove_bonds(BondFamilies& families, Predicate&& cut) {
   }
   families.neighbor.resize(kept);
   if (!families.xi.empty()) families.xi.resize(kept * D);
-  if (!families.pair_offset.empty()) index_bond_pairs(families);
+  if (!families.pair_offset.empty()) throw std::logic_error("remove_bonds: call it before index_bond_pairs");
 }
 
 }  // namespace mppm::solver

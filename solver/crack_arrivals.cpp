@@ -1,15 +1,21 @@
 // The crack-arrival table (crack_arrivals.hpp).
 #include "solver/crack_arrivals.hpp"
 
+#include <algorithm>
+#include <bit>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
 #include "common/crack_path.hpp"
 #include "common/input_error.hpp"
 #include "solver/bond_breakage.hpp"
 
 namespace mppm::solver {
 
-void CrackArrivals::arrive(std::size_t i, double time) {
+void CrackArrivals::arrive(const PointData& p, std::size_t i, double time) {
   arrived_[i] = 1;
-  points_.push_back(i);
+  points_.push_back(p.global_id.empty() ? i : static_cast<std::uint64_t>(p.global_id[i]));
   times_.push_back(time);
 }
 
@@ -17,14 +23,43 @@ void CrackArrivals::start(const PointData& p, const BondFamilies& f, double time
   arrived_.assign(p.owned, 0);
   points_.clear();
   times_.clear();
+  reported_ = 0;
   for (std::size_t i = 0; i < p.owned; ++i)
-    if (point_damage(p, f, i) >= kCrackDamageThreshold) arrive(i, time);
+    if (point_damage(p, f, i) >= kCrackDamageThreshold) arrive(p, i, time);
 }
 
 void CrackArrivals::update(const PointData& p, const BondFamilies& f, const std::vector<std::size_t>& changed,
                            double time) {
   for (const std::size_t i : changed)
-    if (i < arrived_.size() && !arrived_[i] && point_damage(p, f, i) >= kCrackDamageThreshold) arrive(i, time);
+    if (i < arrived_.size() && !arrived_[i] && point_damage(p, f, i) >= kCrackDamageThreshold) arrive(p, i, time);
+}
+
+std::vector<CrackArrivals::Row> CrackArrivals::take_new_rows(const PointData& p, const ProcessGroup& group) {
+  // Each row travels as 5 integers (the point, and the time and position's bits).
+  const auto D = static_cast<std::size_t>(p.dimension);
+  std::vector<std::int64_t> mine;
+  for (std::size_t k = reported_; k < points_.size(); ++k) {
+    const std::optional<std::size_t> i = owned_index(p, points_[k]);
+    if (!i) throw std::logic_error("CrackArrivals: point " + std::to_string(points_[k]) + " is not owned here");
+    std::array<double, 3> x{0.0, 0.0, 0.0};
+    for (std::size_t c = 0; c < D; ++c) x[c] = p.position[*i * D + c];
+    mine.push_back(static_cast<std::int64_t>(points_[k]));
+    mine.push_back(std::bit_cast<std::int64_t>(times_[k]));
+    for (const double v : x) mine.push_back(std::bit_cast<std::int64_t>(v));
+  }
+  reported_ = points_.size();
+  std::vector<Row> rows;
+  for (const std::vector<std::int64_t>& from : group.gather(mine))
+    for (std::size_t m = 0; m + 4 < from.size(); m += 5)
+      rows.push_back({static_cast<std::uint64_t>(from[m]),
+                      std::bit_cast<double>(from[m + 1]),
+                      {std::bit_cast<double>(from[m + 2]), std::bit_cast<double>(from[m + 3]),
+                       std::bit_cast<double>(from[m + 4])}});
+  // Each process's rows are in arrival order already; merged, arrival order is time, then point.
+  if (group.distributed())
+    std::sort(rows.begin(), rows.end(),
+              [](const Row& a, const Row& b) { return a.time != b.time ? a.time < b.time : a.point < b.point; });
+  return rows;
 }
 
 void CrackArrivals::restore(std::vector<std::uint64_t> points, std::vector<double> times, std::size_t point_count,
@@ -45,6 +80,7 @@ void CrackArrivals::restore(std::vector<std::uint64_t> points, std::vector<doubl
   arrived_ = std::move(arrived);
   points_ = std::move(points);
   times_ = std::move(times);
+  reported_ = 0;
 }
 
 }  // namespace mppm::solver

@@ -7,6 +7,7 @@
 // breakage update changed (bond_breakage.hpp), serially and in index order: the same for any
 // thread count. A run without damage has none of this (empty arrays).
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "solver/bond_families.hpp"
 #include "solver/point_data.hpp"
+#include "solver/process_group.hpp"
 
 namespace mppm::solver {
 
@@ -25,10 +27,21 @@ class CrackArrivals {
   // damage reached the threshold arrive then.
   void update(const PointData& points, const BondFamilies& bonds, const std::vector<std::size_t>& changed, double time);
 
-  // The arrivals so far, in arrival order (time, then point index).
+  // The arrivals so far, in arrival order (time, then point index), by index in the points file
+  // (global id: a distributed run's process holds its own points' arrivals).
   const std::vector<std::uint64_t>& points() const { return points_; }
   const std::vector<double>& times() const { return times_; }
   std::size_t size() const { return points_.size(); }
+
+  // The arrivals since the last call (the first: all of them), of every process, in arrival order
+  // with their reference positions (z = 0 in 2-D): the rows crack_path.csv adds. Collective in a
+  // distributed run; every process gets them all.
+  struct Row {
+    std::uint64_t point = 0;
+    double time = 0.0;
+    std::array<double, 3> position{0.0, 0.0, 0.0};
+  };
+  std::vector<Row> take_new_rows(const PointData& points, const ProcessGroup& group);
 
   // A restart (solver/checkpoint.hpp): the arrivals of the checkpoint for a model of `point_count`
   // points. Throws InputError naming `file` when they are not a valid table (a point out of range
@@ -37,10 +50,11 @@ class CrackArrivals {
                const std::string& file);
 
  private:
-  void arrive(std::size_t i, double time);
-  std::vector<std::uint8_t> arrived_;  // per point: 1 once on the crack path
+  void arrive(const PointData& points, std::size_t i, double time);
+  std::vector<std::uint8_t> arrived_;  // per owned point (local index): 1 once on the crack path
   std::vector<std::uint64_t> points_;
   std::vector<double> times_;
+  std::size_t reported_ = 0;  // arrivals already handed out by take_new_rows
 };
 
 }  // namespace mppm::solver

@@ -427,6 +427,12 @@ ExplicitDynamics::BreakageEnergy ExplicitDynamics::breakage_energy(const StepCon
         breakage_kick += half * p.spin[k] * change * p.volume[i];
     }
   }
+  // Distributed: the whole model's, when bonds broke anywhere (a collective call then only).
+  if (p.processes && model_.last_breakage_anywhere) {
+    const std::array<ExactSum, 2> local{breakage_kick, breakage_work};
+    const std::vector<double> whole = p.processes->sum(local);
+    return {whole[0], whole[1]};
+  }
   return {breakage_kick.value(), breakage_work.value()};
 }
 

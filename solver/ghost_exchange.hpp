@@ -4,9 +4,18 @@
 // displacement and rotation before the force pass, the pass-1 tensors before pass 2. A single
 // process has no ghosts and no exchange.
 #pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 namespace mppm::solver {
+
+// A value about one local point: sent about a ghost, received about an owned point.
+struct PointNote {
+  std::size_t point = 0;  // local index
+  std::int64_t value = 0;
+};
 
 class GhostExchange {
  public:
@@ -14,6 +23,10 @@ class GhostExchange {
   // Copies the owners' values of a per-point field (`components` doubles per point) into the
   // ghosts' slots of `values`, on every process (a collective call).
   virtual void update_ghosts(std::vector<double>& values, int components) const = 0;
+  // The reverse direction: sends each note about a ghost to that ghost's owner, and returns the
+  // notes the other processes sent about this one's owned points (by sending process, then in
+  // its order). A collective call (damage: a bond broken at one end, to be broken at the other).
+  virtual std::vector<PointNote> notify_owners(std::span<const PointNote> about_ghosts) const = 0;
 };
 
 }  // namespace mppm::solver

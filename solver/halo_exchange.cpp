@@ -99,6 +99,10 @@ HaloExchange::HaloExchange(const LocalPoints& local, std::span<const std::int32_
     }
   }
   for (auto& [r, link] : links) links_.push_back(std::move(link));
+  owned_ = local.owned;
+  ghost_slot_.resize(local.global_id.size() - local.owned);
+  for (std::size_t l = 0; l < links_.size(); ++l)
+    for (std::size_t k = 0; k < links_[l].receive.size(); ++k) ghost_slot_[links_[l].receive[k] - owned_] = {l, k};
   send_buffer_.resize(links_.size());
   receive_buffer_.resize(links_.size());
 }
@@ -139,6 +143,35 @@ void HaloExchange::update_ghosts(std::vector<double>& values, int components) co
   traffic_.pack_seconds += packing;
   traffic_.wait_seconds += unpack_start - wait_start;
   traffic_.unpack_seconds += end - unpack_start;
+}
+
+std::vector<PointNote> HaloExchange::notify_owners(std::span<const PointNote> about_ghosts) const {
+  // Each note travels as (the ghost's place in the owner's send list, value); every link carries a
+  // message, empty or not, so that each process knows how many to wait for.
+  constexpr int kTag = 24;
+  std::vector<std::vector<std::int64_t>> out(links_.size());
+  for (const PointNote& note : about_ghosts) {
+    const auto [l, k] = ghost_slot_.at(note.point - owned_);
+    out[l].push_back(static_cast<std::int64_t>(k));
+    out[l].push_back(note.value);
+  }
+  std::vector<MPI_Request> requests(links_.size());
+  for (std::size_t l = 0; l < links_.size(); ++l)
+    MPI_Isend(out[l].data(), as_count(out[l].size()), MPI_INT64_T, links_[l].rank, kTag, MPI_COMM_WORLD, &requests[l]);
+  std::vector<PointNote> received;
+  std::vector<std::int64_t> in;
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    MPI_Status status;
+    MPI_Probe(links_[l].rank, kTag, MPI_COMM_WORLD, &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_INT64_T, &count);
+    in.resize(static_cast<std::size_t>(count));
+    MPI_Recv(in.data(), count, MPI_INT64_T, links_[l].rank, kTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    for (std::size_t m = 0; m + 1 < in.size(); m += 2)
+      received.push_back({links_[l].send.at(static_cast<std::size_t>(in[m])), in[m + 1]});
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  return received;
 }
 
 std::size_t HaloExchange::points_sent() const {

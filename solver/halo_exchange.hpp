@@ -20,6 +20,7 @@ class HaloExchange final : public GhostExchange {
   HaloExchange(const LocalPoints& local, std::span<const std::int32_t> part_of);
 
   void update_ghosts(std::vector<double>& values, int components) const override;
+  std::vector<PointNote> notify_owners(std::span<const PointNote> about_ghosts) const override;
 
   // The processes this one exchanges with, and the points it sends and receives per exchange.
   std::size_t neighbours() const { return links_.size(); }
@@ -42,6 +43,9 @@ class HaloExchange final : public GhostExchange {
     std::vector<std::size_t> receive;  // local indices of ghosts (ascending global id)
   };
   std::vector<Link> links_;
+  std::size_t owned_ = 0;
+  // Per ghost (local index - owned_): its link and its place in the link's receive list.
+  std::vector<std::pair<std::size_t, std::size_t>> ghost_slot_;
   mutable std::vector<std::vector<double>> send_buffer_, receive_buffer_;
   mutable Traffic traffic_;
 };

@@ -543,12 +543,15 @@ void pass2_points(PointData& p, BondFamilies& f, const CosseratConstants& c, boo
 #pragma omp for schedule(static)
   for (std::int64_t s = 0; s < n; ++s)
     pass2_point<D, Effects, WithEnergy, StoredXi>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
-  // Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2).
-  BondWorkPolicy<D, Effects>::remember_state(p, n);
+  // Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2),
+  // the ghosts' too (their owners' values of this evaluation): the lower end of a pair reads it.
+  BondWorkPolicy<D, Effects>::remember_state(p, static_cast<std::int64_t>(p.total()));
 }
 
 // A distributed run's ghosts get their owners' displacement and rotation before pass 1 and their
-// pass-1 tensors between the passes (one thread calls MPI, outside the parallel regions).
+// pass-1 tensors between the passes, with damage in an advancing evaluation also the sums A + A_prev
+// and Q + Q_prev the bond work reads at either end (one thread calls MPI, outside the parallel
+// regions).
 template <int D, class Effects>
 void update_ghost_kinematics(PointData& p) {
   constexpr int R = rotation_components<D>;
@@ -556,10 +559,16 @@ void update_ghost_kinematics(PointData& p) {
   if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.rotation, R);
 }
 template <int D, class Effects>
-void update_ghost_tensors(PointData& p) {
+void update_ghost_tensors(PointData& p, [[maybe_unused]] bool advancing) {
   constexpr int R = rotation_components<D>;
   p.ghost_source->update_ghosts(p.force_tensor, D * D);
   if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.moment_tensor, R * D);
+  if constexpr (Effects::damage) {
+    if (advancing) {
+      p.ghost_source->update_ghosts(p.force_tensor_sum, D * D);
+      if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.moment_tensor_sum, R * D);
+    }
+  }
 }
 
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
@@ -570,7 +579,7 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, 
     update_ghost_kinematics<D, Effects>(p);
 #pragma omp parallel if (threaded)
     pass1_points<D, Effects, StoredXi>(p, f, c, advance);
-    update_ghost_tensors<D, Effects>(p);
+    update_ghost_tensors<D, Effects>(p, accumulate_work);
 #pragma omp parallel if (threaded)
     pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work);
     return;
@@ -597,28 +606,21 @@ void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c,
 
 // After bonds broke (damage): the forces of this step again, now without the broken bonds, so
 // that the step's kick does not use a bond past its breaking (which would do work that nothing
-// accounts for). Only the points whose families changed (`changed`, sorted) have new tensors, and
-// only they and their neighbours have new forces: pass 1 runs on both (the plastic state is not
-// advanced again; the neighbours get the same tensors again, and their own share of the force,
-// which pass 2 completes), then pass 2 (the bond work is not accumulated again), with energies.
-// The next step's bond-work increment starts from these tensors. The points whose force was
-// recomputed and their force and moment before are left in points.refreshed_points and
-// force/moment_before_refresh, for the integrator's energy bookkeeping.
+// accounts for). Only the points whose families changed have new tensors, and only they and their
+// neighbours have new forces: points.refreshed_points (sorted, owned; update_after_breakage lists
+// them). Pass 1 runs on them (the plastic state is not advanced again; the neighbours get the same
+// tensors again, and their own share of the force, which pass 2 completes), the ghosts' tensors
+// are fetched (a distributed run: a collective call), then pass 2 (the bond work is not
+// accumulated again), with energies. The next step's bond-work increment starts from these
+// tensors. Their force and moment before are left in force/moment_before_refresh, for the
+// integrator's energy bookkeeping.
 template <int D, class Effects>
-void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c,
-                            const std::vector<std::size_t>& changed) {
+void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstants& c) {
   if constexpr (Effects::damage) {
     constexpr int R = rotation_components<D>;
     constexpr bool polar = Effects::micropolar;
     const bool stored_xi = !f.xi.empty();
-    std::vector<std::size_t>& around = p.refreshed_points;
-    around = changed;
-    for (const std::size_t i : changed)
-      for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
-        if (f.acting(b)) around.push_back(static_cast<std::size_t>(f.neighbor[b]));
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    while (!around.empty() && around.back() >= p.owned) around.pop_back();
+    const std::vector<std::size_t>& around = p.refreshed_points;
     p.force_before_refresh.resize(around.size() * D);
     p.moment_before_refresh.resize(around.size() * R);
     for (std::size_t k = 0; k < around.size(); ++k) {
@@ -633,6 +635,7 @@ void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstan
       else
         pass1_point<D, Effects, false>(p, f, c, i, nullptr);
     }
+    if (p.ghost > 0 && p.ghost_source) update_ghost_tensors<D, Effects>(p, false);
     for (const std::size_t i : around) {
       if (stored_xi)
         pass2_point<D, Effects, true, true>(p, f, c, i, false);
@@ -640,7 +643,7 @@ void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstan
         pass2_point<D, Effects, true, false>(p, f, c, i, false);
     }
   } else {
-    (void)p, (void)f, (void)c, (void)changed;
+    (void)p, (void)f, (void)c;
   }
 }
 

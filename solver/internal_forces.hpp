@@ -29,10 +29,9 @@ using ElasticEnergyFunction = StoredEnergy (*)(const PointData&, const CosseratC
 // evaluation with energies: the stored energy of an energy row (kernel::stored_energy_sums).
 using StoredEnergySumFunction = StoredEnergy (*)(const PointData&, const CosseratConstants&);
 
-// Damage: the forces (and energies) again after bonds broke, for the listed points whose families
-// changed (sorted) and their neighbours (kernel::refresh_after_breakage).
-using BreakageRefreshFunction = void (*)(PointData&, BondFamilies&, const CosseratConstants&,
-                                         const std::vector<std::size_t>& changed_points);
+// Damage: the forces (and energies) again after bonds broke, for the points whose families changed
+// and their neighbours, listed in points.refreshed_points (kernel::refresh_after_breakage).
+using BreakageRefreshFunction = void (*)(PointData&, BondFamilies&, const CosseratConstants&);
 
 struct InternalForceFunctions {
   InternalForceFunction forces = nullptr;                // force and moment only

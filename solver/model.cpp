@@ -151,10 +151,12 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   cut_precrack_drain_bonds(cloud, m.points, inert_drains, o.horizon);
   mark("pre-crack cuts");
   if (o.effects.damage) {
-    index_bond_pairs(m.bonds);
-    mark_no_fail_zone(m.points, o.no_fail_depth, o.fluid_boundaries.fluid_only_ids);
+    index_bond_pairs(m.bonds, PointOrder(m.points));
+    // The ghosts' flags too: the bond work and the breakage read both ends'.
+    const bool distributed = !m.points.global_id.empty();
+    mark_no_fail_zone(m.points, o.no_fail_depth, o.fluid_boundaries.fluid_only_ids, distributed ? &cloud : nullptr);
     if (o.damage_region)
-      for (std::size_t i = 0; i < m.points.owned; ++i)
+      for (std::size_t i = 0; i < m.points.total(); ++i)
         if (!inside(m.points, i, *o.damage_region)) m.points.no_fail[i] = 1;
   }
   if (o.effects.viscoplasticity && o.plastic_region)
@@ -163,10 +165,9 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   mark("damage set-up");
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
   if (m.points.ghost > 0 && m.points.ghost_source) {
-    // Pass 2 reads the neighbours' shape-tensor terms: the ghosts' come from their owners.
-    const int D = m.points.dimension;
-    m.points.ghost_source->update_ghosts(m.points.stabilization_ck, D * (D + 1) / 2);
-    if (m.points.rotation_components > 0) m.points.ghost_source->update_ghosts(m.points.stabilization_rot, 1);
+    // Pass 2 reads the neighbours' shape-tensor terms: the ghosts' come from their owners; with
+    // damage the stability blocks read the neighbours' K^-1 and detachment too.
+    share_shape_terms(m.points, o.effects.damage);
   }
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)
@@ -206,11 +207,8 @@ Model build_model(PointCloud&& cloud, const ModelOptions& o, PhaseTimer* phases)
 
 Model build_local_model(const PointCloud& cloud, const LocalPoints& local, const GhostExchange& ghosts,
                         const ProcessGroup& processes, const ModelOptions& o, PhaseTimer* phases) {
-  std::string missing;
-  for (const auto& [on, name] : {std::pair{o.effects.damage, "damage"}, std::pair{o.effects.pore_fluid, "pore_fluid"}})
-    if (on) missing += (missing.empty() ? "" : ", ") + std::string(name);
-  if (!missing.empty())
-    throw std::invalid_argument("effects " + missing + " do not run across processes yet (run them on one process)");
+  if (o.effects.pore_fluid)
+    throw std::invalid_argument("effect pore_fluid does not run across processes yet (run it on one process)");
   if (o.period[0] > 0.0 || o.period[1] > 0.0 || o.period[2] > 0.0)
     throw std::invalid_argument("periodic lattices do not run across processes");
   PointData points = make_local_point_data(cloud, local, o.effects);
@@ -231,13 +229,15 @@ void Model::advance_internal_forces(double dt, double end_time, bool with_energy
     unstable_detached_points += u.unstable_detached;
     energy_detached_points += u.energy_detached;
     last_fracture_dissipation = u.released_energy;
-    if (u.broken_pairs > 0) crack_arrivals.update(points, bonds, breakage_workspace.sorted, end_time);
+    last_breakage_anywhere = u.broke;
+    if (u.broke) crack_arrivals.update(points, bonds, breakage_workspace.sorted, end_time);
   }
 }
 
 double Model::damage_critical_step(double critical_step) const {
   if (!effects.damage) return critical_step;
-  const double start = max_point_block_eigenvalue(points, bonds, constants);
+  double start = max_point_block_eigenvalue(points, bonds, constants);
+  if (points.processes) start = points.processes->highest(start);
   return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(constants.damaged_frequency_ratio * start))
                      : critical_step;
 }

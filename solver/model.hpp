@@ -64,6 +64,7 @@ struct Model {
   std::size_t detached_points = 0;
   std::size_t broken_bonds = 0;              // pairs broken by damage so far (pre-crack cuts not included)
   double last_fracture_dissipation = 0.0;    // [J] released by the breaks of the last advance
+  bool last_breakage_anywhere = false;       // bonds broke in the last advance (on any process)
   std::size_t unstable_detached_points = 0;  // of detached_points: detached for the time step's sake
   std::size_t energy_detached_points = 0;    // of detached_points: losing bonds raised their energy
   BreakageWorkspace breakage_workspace;

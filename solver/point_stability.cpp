@@ -116,7 +116,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if (!f.acting(b)) continue;
     const auto k = static_cast<std::size_t>(f.neighbor[b]);
-    if (k >= p.owned || p.detached[k]) continue;
+    if (p.detached[k]) continue;  // (a ghost's terms are its owner's: share_shape_terms)
     const double vk = p.volume[k];
     double xi_ik[D];
     bond_vector<D>(f, p.position.data(), i, b, xi_ik);

@@ -84,6 +84,13 @@ std::int64_t ProcessGroup::lowest(std::int64_t local) const {
   return distributed_ ? all_reduced(local, MPI_MIN) : local;
 }
 
+double ProcessGroup::highest(double local) const {
+  const Timed timed(*this);
+  double out = local;
+  if (distributed_) MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return out;
+}
+
 std::int64_t ProcessGroup::total(std::int64_t local) const {
   const Timed timed(*this);
   return distributed_ ? all_reduced(local, MPI_SUM) : local;

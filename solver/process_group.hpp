@@ -40,6 +40,8 @@ class ProcessGroup {
   // The smallest of the processes' values, and their total (integers: exact).
   std::int64_t lowest(std::int64_t local) const;
   std::int64_t total(std::int64_t local) const;
+  // The largest of the processes' values (a maximum is exact: the same bits in any order).
+  double highest(double local) const;
   // Every process's value, in rank order, on every process.
   std::vector<std::int64_t> gather(std::int64_t local) const;
   // Every process's list, in rank order, on every process.

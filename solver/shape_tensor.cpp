@@ -106,4 +106,16 @@ void update_shape_tensors(PointData& p, const BondFamilies& f, const CosseratCon
   p.dimension == 2 ? update_some<2>(p, f, c, points) : update_some<3>(p, f, c, points);
 }
 
+void share_shape_terms(PointData& p, bool all) {
+  if (p.ghost == 0 || !p.ghost_source) return;
+  const int S = p.dimension * (p.dimension + 1) / 2;
+  p.ghost_source->update_ghosts(p.stabilization_ck, S);
+  if (!p.stabilization_rot.empty()) p.ghost_source->update_ghosts(p.stabilization_rot, 1);
+  if (!all) return;
+  p.ghost_source->update_ghosts(p.shape_inverse, S);
+  std::vector<double> detached(p.detached.begin(), p.detached.end());
+  p.ghost_source->update_ghosts(detached, 1);
+  for (std::size_t g = p.owned; g < p.total(); ++g) p.detached[g] = detached[g] != 0.0 ? 1 : 0;
+}
+
 }  // namespace mppm::solver

@@ -31,4 +31,9 @@ void detach_point(PointData& points, std::size_t i);
 void update_shape_tensors(PointData& points, const BondFamilies& bonds, const CosseratConstants& c,
                           const std::vector<std::size_t>& changed_points);
 
+// A distributed run (a collective call; nothing without ghosts): the ghosts' G_s (C : K^-1) and
+// G_s B_w tr(K^-1) / d from their owners, which pass 2 reads at the neighbours; `all` adds K^-1
+// and the detached flag, which the damage effect's stability blocks read there.
+void share_shape_terms(PointData& points, bool all);
+
 }  // namespace mppm::solver

@@ -848,11 +848,12 @@ void RunDriver::stop_on_interruption(std::int64_t s, bool snapshot_written) {
 
 // ", broken bonds ... detached points ... (... of them for the time step's sake)"
 std::string RunDriver::damage_summary() const {
-  const Model& m = *model_;
-  return "broken bonds " + std::to_string(m.broken_bonds) + " (pairs), fracture dissipation " +
-         log_number(dynamics_->energy().fracture_dissipation) + " J, detached points " +
-         std::to_string(m.detached_points) + " (" + std::to_string(m.unstable_detached_points) +
-         " of them for the time step's sake)";
+  // Each process counts its share (bond_breakage.hpp): the sums are the model's.
+  const Model& m = model();
+  auto total = [&](std::size_t share) { return std::to_string(group_.total(static_cast<std::int64_t>(share))); };
+  return "broken bonds " + total(m.broken_bonds) + " (pairs), fracture dissipation " +
+         log_number(dynamics_->energy().fracture_dissipation) + " J, detached points " + total(m.detached_points) +
+         " (" + total(m.unstable_detached_points) + " of them for the time step's sake)";
 }
 
 // The end of a run that reached time.end: the balance warning, the summary, the files.
@@ -927,17 +928,9 @@ void RunDriver::update_info(const std::string& status, const std::string& messag
 // The tables, the log and run_info.json rewritten (RunWriter::flush), with the crack arrivals since
 // the last rewrite added to crack_path.csv first.
 void RunDriver::flush_files() {
-  if (scene_.effects.damage) {
-    const CrackArrivals& arrivals = model().crack_arrivals;
-    const PointData& p = model().points;
-    const auto D = static_cast<std::size_t>(p.dimension);
-    for (std::size_t k = writer().crack_path_rows(); k < arrivals.size(); ++k) {
-      const std::uint64_t i = arrivals.points()[k];
-      std::array<double, 3> x{0.0, 0.0, 0.0};
-      for (std::size_t c = 0; c < D; ++c) x[c] = p.position[i * D + c];
-      writer().add_crack_path_row(i, x, arrivals.times()[k]);
-    }
-  }
+  if (scene_.effects.damage)
+    for (const CrackArrivals::Row& row : model().crack_arrivals.take_new_rows(model().points, group_))
+      writer().add_crack_path_row(row.point, row.position, row.time);
   // The first process writes (the others' writers are silent); a write error stops every process.
   run_agreed(group_, [&] { writer().flush(info_); });
 }

@@ -36,6 +36,11 @@ same)
     # The comparison must cover plastic flow: the last row's plastic dissipation (column 6) is > 0.
     tail -1 "$work/one/energy.csv" | awk -F, '{ exit !($6 > 0) }' || fail "no plastic dissipation in the run"
   fi
+  if grep -q '^effects:.*damage' "$scene"; then
+    # And breakage: bonds broke and points detached (the summary line of log.txt).
+    grep -q '^completed .* broken bonds [1-9][0-9]* (pairs).* detached points [1-9]' "$work/one/log.txt" ||
+      fail "no bond broke or no point detached in the run"
+  fi
   for p in "$@"; do
     for t in 1 2; do
       out="$work/np$p.threads$t"
