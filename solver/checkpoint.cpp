@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <list>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/checksummed_binary.hpp"
 #include "common/input_error.hpp"
+#include "solver/distributed_bond_state.hpp"
 #include "solver/distributed_snapshot.hpp"
+#include "solver/shape_tensor.hpp"
 
 namespace mppm::solver {
 
@@ -130,14 +133,14 @@ constexpr const char* kArrivalPoints = "crack_arrival_points";
 constexpr const char* kFluidBoundaries = "fluid_boundary_flows";
 constexpr const char* kArrivalTimes = "crack_arrival_times";
 
-void restore_crack_arrivals(const CheckpointFile& file, Model& model) {
+void restore_crack_arrivals(const CheckpointFile& file, Model& model, std::uint64_t point_count) {
   if (!file.has(kArrivalPoints) || !file.has(kArrivalTimes))
     throw InputError(file.path +
                      ": the checkpoint of this damage run has no crack-arrival table (it was written by an "
                      "mppm-solve without crack_path.csv); it cannot be continued bit for bit: run it again from "
                      "the start");
   model.crack_arrivals.restore(file.array<std::uint64_t>(kArrivalPoints), file.array<double>(kArrivalTimes),
-                               model.points.owned, file.path);
+                               model.points, point_count, file.path);
 }
 
 // The rows of the integrator's per-tracked-point arrays (body_force) across processes: the global
@@ -181,28 +184,64 @@ SnapshotFieldSource row_source(const CheckpointArrayView& a, std::size_t local_r
           }};
 }
 
+// The damage state that is not rows of doubles per point (distributed_bond_state.hpp), gathered
+// whole: the views of `arrays` (the carried arrays, in their order) that hold it point at `kept`.
+// Returns which of the carried arrays they are.
+std::vector<bool> gather_damage_state(std::vector<CheckpointArrayView>& arrays, std::size_t per_point,
+                                      const Model& model, const ProcessGroup& group,
+                                      std::list<std::vector<std::int32_t>>& kept_i32,
+                                      std::list<std::vector<std::uint8_t>>& kept_u8,
+                                      std::list<std::vector<double>>& kept_f64) {
+  std::vector<bool> whole(per_point, false);
+  if (!model.effects.damage) return whole;
+  const PointData& p = model.points;
+  for (std::size_t k = 0; k < per_point; ++k) {
+    CheckpointArrayView& a = arrays[k];
+    if (a.name == "bond_neighbor") {
+      a = checkpoint_array(a.name, kept_i32.emplace_back(gathered_bond_neighbors(p, model.bonds, group)));
+    } else if (a.name == "bond_work") {
+      a = checkpoint_array(a.name, kept_f64.emplace_back(gathered_bond_work(p, model.bonds, group)));
+    } else if (a.element == CheckpointElement::u8) {
+      const std::vector<std::uint8_t>& local = a.name == "detached" ? p.detached : p.no_fail;
+      a = checkpoint_array(a.name, kept_u8.emplace_back(gathered_point_values(p, local, group)));
+    } else if (a.element == CheckpointElement::i32) {
+      a = checkpoint_array(a.name, kept_i32.emplace_back(gathered_point_values(p, p.bonds_broken, group)));
+    } else {
+      continue;
+    }
+    whole[k] = true;
+  }
+  return whole;
+}
+
 // The first process writes `arrays` (through `write`) with the per-point arrays (the first
-// `per_point`) and body_force (the next) gathered from every process; the others answer.
-void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t per_point, const Model& model,
-                    const ExplicitDynamics& dynamics, const CheckpointProcesses& processes,
+// `per_point`, but those gathered `whole` already) and body_force (the next) gathered from every
+// process; the others answer.
+void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t per_point, const std::vector<bool>& whole,
+                    const Model& model, const ExplicitDynamics& dynamics, const CheckpointProcesses& processes,
                     const std::function<void()>& write) {
   const PointData& p = model.points;
   const TrackedRows tracked = tracked_rows(p, dynamics, processes);
   std::vector<GatheredRowSet> sets(2);
   sets[0].rows = {std::span<const std::int64_t>(p.global_id.data(), p.owned), processes.part_of};
-  for (std::size_t k = 0; k < per_point; ++k) sets[0].local.push_back(row_source(arrays[k], p.owned + p.ghost));
+  std::vector<std::size_t> rowed;  // the arrays gathered by rows
+  for (std::size_t k = 0; k < per_point; ++k)
+    if (!whole[k]) rowed.push_back(k);
+  for (const std::size_t k : rowed) sets[0].local.push_back(row_source(arrays[k], p.owned + p.ghost));
   sets[1].rows = {tracked.local_ids, tracked.owner};
   const CheckpointArrayView& body_force = arrays[per_point];
   // A process without tracked points has no rows to give (and no width to derive).
   sets[1].local.push_back(tracked.local_ids.empty() ? SnapshotFieldSource{body_force.name, p.dimension, {}}
                                                     : row_source(body_force, tracked.local_ids.size()));
-  with_gathered_row_sets(sets, processes.group, [&](const std::vector<std::vector<SnapshotFieldSource>>& whole) {
-    for (std::size_t k = 0; k <= per_point; ++k) {
-      const SnapshotFieldSource& s = k < per_point ? whole[0][k] : whole[1][0];
-      const std::uint64_t rows = k < per_point ? processes.part_of.size() : tracked.count();
-      arrays[k].components = s.components;
-      arrays[k].count = rows * static_cast<std::uint64_t>(s.components);
-      arrays[k].rows = s.values;
+  with_gathered_row_sets(sets, processes.group, [&](const std::vector<std::vector<SnapshotFieldSource>>& gathered) {
+    for (std::size_t r = 0; r <= rowed.size(); ++r) {
+      const bool point_rows = r < rowed.size();
+      const SnapshotFieldSource& s = point_rows ? gathered[0][r] : gathered[1][0];
+      const std::uint64_t rows = point_rows ? processes.part_of.size() : tracked.count();
+      CheckpointArrayView& a = arrays[point_rows ? rowed[r] : per_point];
+      a.components = s.components;
+      a.count = rows * static_cast<std::uint64_t>(s.components);
+      a.rows = s.values;
     }
     write();
   });
@@ -213,12 +252,24 @@ void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t per_po
 void restore_own_rows(const CheckpointFile& file, Model& model, const ExplicitDynamics& dynamics,
                       const CheckpointProcesses& processes, std::vector<double>& body_force) {
   PointData& p = model.points;
-  if (model.effects.damage) throw std::logic_error("restore_checkpoint: damage does not run across processes");
   const std::span<const std::int64_t> owned(p.global_id.data(), p.owned);
   const std::uint64_t points = processes.part_of.size();
   visit_carried_arrays(model, [&](const char* name, auto& values) {
-    file.restore_rows(name, points, values.size() / (p.owned + p.ghost), owned, values);
+    const std::string array = name;
+    if (array == "bond_work") return;  // with the lists, below
+    if (array == "bond_neighbor")
+      restore_own_bonds(file.array<std::int32_t>(array), file.array<double>("bond_work"), p, model.bonds,
+                        processes.group, file.path);
+    else
+      file.restore_rows(name, points, values.size() / (p.owned + p.ghost), owned, values);
   });
+  if (model.effects.damage) {
+    // The ghosts' shape terms and flags, and the last evaluation's displacement and rotation the
+    // next bond-work increment reads at a pair's other end.
+    share_shape_terms(p, true);
+    p.ghost_source->update_ghosts(p.previous_displacement, p.dimension);
+    if (!p.previous_rotation.empty()) p.ghost_source->update_ghosts(p.previous_rotation, p.rotation_components);
+  }
   const TrackedRows tracked = tracked_rows(p, dynamics, processes);
   file.restore_rows("body_force", tracked.count(), static_cast<std::size_t>(p.dimension), tracked.local_ids,
                     body_force);
@@ -284,9 +335,12 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
                                                   total(model.unstable_detached_points),
                                                   total(model.energy_detached_points)};
   const std::vector<double> model_scalars{model.last_fracture_dissipation};
+  // The crack-arrival table: every process's arrivals, merged in arrival order.
+  const CrackArrivals::Table arrivals =
+      model.effects.damage && processes ? model.crack_arrivals.whole_table(processes->group) : CrackArrivals::Table{};
   if (model.effects.damage) {
-    arrays.push_back(checkpoint_array(kArrivalPoints, model.crack_arrivals.points()));
-    arrays.push_back(checkpoint_array(kArrivalTimes, model.crack_arrivals.times()));
+    arrays.push_back(checkpoint_array(kArrivalPoints, processes ? arrivals.points : model.crack_arrivals.points()));
+    arrays.push_back(checkpoint_array(kArrivalTimes, processes ? arrivals.times : model.crack_arrivals.times()));
   }
   const std::vector<double> schedule{loop.next_row, loop.next_snapshot, loop.next_checkpoint, loop.worst_balance};
   const std::vector<double> guard{loop.guard.scale, loop.guard.last_plastic, loop.guard.last_fracture,
@@ -318,10 +372,16 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
     if (ec) throw InputError(path + ": cannot create the checkpoint directory (" + ec.message() + ")");
     write_checkpoint_file(path, header, arrays, simulate_write_failure);
   };
-  if (processes)
-    write_gathered(arrays, per_point, model, dynamics, *processes, write);
-  else
+  if (processes) {
+    std::list<std::vector<std::int32_t>> kept_i32;
+    std::list<std::vector<std::uint8_t>> kept_u8;
+    std::list<std::vector<double>> kept_f64;
+    const std::vector<bool> whole =
+        gather_damage_state(arrays, per_point, model, processes->group, kept_i32, kept_u8, kept_f64);
+    write_gathered(arrays, per_point, whole, model, dynamics, *processes, write);
+  } else {
     write();
+  }
 }
 
 RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& identity, Model& model,
@@ -366,10 +426,29 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
 
   const auto counters = scalars<std::uint64_t>(file, "model_counters", 4);
   if (processes) {
-    // The counters are the whole model's; each process keeps its own, which only damage changes
-    // (not across processes yet): they must add up to the file's.
-    if (counters[0] != total(model.broken_bonds) || counters[1] != total(model.detached_points))
+    // The counters are the whole model's, and each process keeps a share (bond_breakage.hpp) that
+    // only the sums are read of: the first process takes them. The broken pairs and the detached
+    // points must be those of the restored bonds and flags.
+    std::uint64_t broken = 0, detached = 0;
+    if (model.effects.damage) {
+      const PointOrder order(model.points);
+      const BondFamilies& f = model.bonds;
+      for (std::size_t i = 0; i < model.points.owned; ++i) {
+        detached += model.points.detached[i];
+        for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+          broken += !f.acting(b) && order(i) < order(f.neighbor_of(b));
+      }
+    } else {
+      broken = model.broken_bonds;
+      detached = model.detached_points;
+    }
+    if (counters[0] != total(broken) || counters[1] != total(detached))
       throw InputError(file.path + ": the checkpoint's broken bonds and detached points are not those of this model");
+    const bool first = processes->group.rank() == 0;
+    model.broken_bonds = first ? counters[0] : 0;
+    model.detached_points = first ? counters[1] : 0;
+    model.unstable_detached_points = first ? counters[2] : 0;
+    model.energy_detached_points = first ? counters[3] : 0;
   } else {
     model.broken_bonds = counters[0];
     model.detached_points = counters[1];
@@ -377,7 +456,7 @@ RunLoopState restore_checkpoint(const CheckpointFile& file, const RunIdentity& i
     model.energy_detached_points = counters[3];
   }
   model.last_fracture_dissipation = scalars<double>(file, "model_scalars", 1)[0];
-  if (model.effects.damage) restore_crack_arrivals(file, model);
+  if (model.effects.damage) restore_crack_arrivals(file, model, points);
 
   RunLoopState loop;
   loop.time_step = integrator[2];

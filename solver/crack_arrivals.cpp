@@ -62,8 +62,27 @@ std::vector<CrackArrivals::Row> CrackArrivals::take_new_rows(const PointData& p,
   return rows;
 }
 
-void CrackArrivals::restore(std::vector<std::uint64_t> points, std::vector<double> times, std::size_t point_count,
-                            const std::string& file) {
+CrackArrivals::Table CrackArrivals::whole_table(const ProcessGroup& group) const {
+  std::vector<std::int64_t> mine;
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    mine.push_back(static_cast<std::int64_t>(points_[k]));
+    mine.push_back(std::bit_cast<std::int64_t>(times_[k]));
+  }
+  std::vector<std::pair<double, std::uint64_t>> merged;
+  for (const std::vector<std::int64_t>& from : group.gather(mine))
+    for (std::size_t m = 0; m + 1 < from.size(); m += 2)
+      merged.emplace_back(std::bit_cast<double>(from[m + 1]), static_cast<std::uint64_t>(from[m]));
+  if (group.distributed()) std::sort(merged.begin(), merged.end());
+  Table table;
+  for (const auto& [time, point] : merged) {
+    table.points.push_back(point);
+    table.times.push_back(time);
+  }
+  return table;
+}
+
+void CrackArrivals::restore(std::vector<std::uint64_t> points, std::vector<double> times, const PointData& p,
+                            std::size_t point_count, const std::string& file) {
   auto refuse = [&](const std::string& what) {
     throw InputError(file + ": corrupted checkpoint (the crack-arrival table " + what + ")");
   };
@@ -77,10 +96,24 @@ void CrackArrivals::restore(std::vector<std::uint64_t> points, std::vector<doubl
     if (k > 0 && !(times[k] >= times[k - 1])) refuse("is not in time order");
     arrived[points[k]] = 1;
   }
-  arrived_ = std::move(arrived);
-  points_ = std::move(points);
-  times_ = std::move(times);
   reported_ = 0;
+  if (p.global_id.empty()) {
+    arrived_ = std::move(arrived);
+    points_ = std::move(points);
+    times_ = std::move(times);
+    return;
+  }
+  // A distributed run's process keeps its own points' arrivals (in the table's order).
+  arrived_.assign(p.owned, 0);
+  points_.clear();
+  times_.clear();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const std::optional<std::size_t> i = owned_index(p, points[k]);
+    if (!i) continue;
+    arrived_[*i] = 1;
+    points_.push_back(points[k]);
+    times_.push_back(times[k]);
+  }
 }
 
 }  // namespace mppm::solver

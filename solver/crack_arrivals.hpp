@@ -43,11 +43,18 @@ class CrackArrivals {
   };
   std::vector<Row> take_new_rows(const PointData& points, const ProcessGroup& group);
 
+  // Every process's arrivals, merged in arrival order (collective; one process: its own).
+  struct Table {
+    std::vector<std::uint64_t> points;
+    std::vector<double> times;
+  };
+  Table whole_table(const ProcessGroup& group) const;
+
   // A restart (solver/checkpoint.hpp): the arrivals of the checkpoint for a model of `point_count`
-  // points. Throws InputError naming `file` when they are not a valid table (a point out of range
-  // or listed twice, lengths that differ, times out of order).
-  void restore(std::vector<std::uint64_t> points, std::vector<double> times, std::size_t point_count,
-               const std::string& file);
+  // points (of this process's points in a distributed run: `points_data`). Throws InputError naming `file` when they
+  // are not a valid table (a point out of range or listed twice, lengths that differ, times out of order).
+  void restore(std::vector<std::uint64_t> points, std::vector<double> times, const PointData& points_data,
+               std::size_t point_count, const std::string& file);
 
  private:
   void arrive(const PointData& points, std::size_t i, double time);

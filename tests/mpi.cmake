@@ -51,10 +51,11 @@ mppm_add_distributed_solve_test(estimate_refused refused mpi_plate.yaml "run it 
 mppm_add_distributed_solve_test(memory_refused refused mpi_plate.yaml
   "process 0 of 2, one of 2 sharing this machine's memory.*spread the processes over more machines")
 set_property(TEST mpi.solve.memory_refused APPEND PROPERTY ENVIRONMENT MPPM_MEMORY_AVAILABLE=10000000)
-# Checkpoints: written on 4 processes, continued on 3 and 1; written on 1, continued on 2 (the
-# loaded surfaces' rows of the integrator); with damping every point's (written on 3, continued on
-# 2); with the plastic state (written on 2, continued on 3).
-mppm_add_distributed_solve_test(checkpoint_4_to_3_and_1 checkpoint mpi_plate.yaml 4 3 1)
+# Checkpoints: the cracking plate (bonds broken and their work, detached points, the crack-arrival
+# table, the plastic state) written on 4 processes, continued on 3 and 1; written on 1, continued
+# on 2 (the loaded surfaces' rows of the integrator); with damping every point's (written on 3,
+# continued on 2); the shear-band specimen's plastic state (written on 2, continued on 3).
+mppm_add_distributed_solve_test(checkpoint_damage_4_to_3_and_1 checkpoint mpi_plate_damage.yaml 4 3 1)
 mppm_add_distributed_solve_test(checkpoint_1_to_2 checkpoint mpi_plate.yaml 1 2)
 mppm_add_distributed_solve_test(checkpoint_damped_3_to_2 checkpoint mpi_plate.yaml 3 2 -- --set numerics.damping=1000)
 mppm_add_distributed_solve_test(checkpoint_viscoplastic_2_to_3 checkpoint mpi_shear_band.yaml 2 3 --
