@@ -44,7 +44,7 @@ mppm_add_distributed_solve_test(plate_2d same mpi_plate.yaml 1 2 3 4)
 mppm_add_distributed_solve_test(notched_bar_3d same mpi_notched_3d.yaml 2 3)
 mppm_add_distributed_solve_test(shear_band_viscoplastic same mpi_shear_band.yaml 2 3 4)
 mppm_add_distributed_solve_test(nan_on_last_process nan mpi_plate.yaml)
-mppm_add_distributed_solve_test(plate_damage_viscoplastic same mpi_plate_damage.yaml 2 3 4)
+mppm_add_distributed_solve_test(plate_damage_viscoplastic same mpi_plate_damage.yaml 1 2 3 4)
 mppm_add_distributed_solve_test(estimate_refused refused mpi_plate.yaml "run it on one process" --estimate)
 # Each process checks its share against its machine's memory over the processes on it: with a
 # budget of 10 MB for the machine (5 MB each) the plate's share does not fit.
