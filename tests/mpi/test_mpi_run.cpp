@@ -104,6 +104,31 @@ History integrate(Model& model, const Scene& scene, const PointCloud& cloud, con
   return h;
 }
 
+// The entries of `got`'s rows whose bits differ from `expected`'s.
+std::size_t differing_entries(const std::vector<std::vector<double>>& got,
+                              const std::vector<std::vector<double>>& expected) {
+  std::size_t differing = 0;
+  for (std::size_t r = 0; r < got.size(); ++r)
+    for (std::size_t e = 0; e < got[r].size(); ++e) differing += bits(got[r][e]) != bits(expected[r][e]);
+  return differing;
+}
+
+// The displacement, velocity and rotation components of this process's points whose bits differ from
+// the one-process model's.
+std::size_t differing_motion(const PointData& p, const PointData& whole) {
+  const int D = p.dimension, R = p.rotation_components;
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const auto g = static_cast<std::size_t>(p.global_id[i]);
+    for (int c = 0; c < D; ++c) {
+      differing += bits(p.displacement[i * D + c]) != bits(whole.displacement[g * D + c]);
+      differing += bits(p.velocity[i * D + c]) != bits(whole.velocity[g * D + c]);
+    }
+    for (int c = 0; c < R; ++c) differing += bits(p.rotation[i * R + c]) != bits(whole.rotation[g * R + c]);
+  }
+  return differing;
+}
+
 struct Case {
   int dimension;
   std::array<int, 3> n;
@@ -138,27 +163,12 @@ void expect_distributed_run_equals_whole(const Case& k) {
 
   EXPECT_EQ(bits(got.step), bits(expected.step)) << name << ": critical step";
   ASSERT_EQ(got.rows.size(), expected.rows.size());
-  std::size_t differing_rows = 0;
-  for (std::size_t r = 0; r < got.rows.size(); ++r)
-    for (std::size_t e = 0; e < got.rows[r].size(); ++e)
-      differing_rows += bits(got.rows[r][e]) != bits(expected.rows[r][e]);
-  EXPECT_EQ(differing_rows, 0u) << name << ": energy and load entries differing";
+  EXPECT_EQ(differing_entries(got.rows, expected.rows), 0u) << name << ": energy and load entries differing";
   EXPECT_GT(expected.rows.back()[0], 0.0);
   if (k.pulled) {
     EXPECT_NE(expected.rows.back()[4], 0.0) << name << ": the layers did work";
   }
-  const PointData& p = model.points;
-  const int D = p.dimension, R = p.rotation_components;
-  std::size_t differing = 0;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    const auto g = static_cast<std::size_t>(p.global_id[i]);
-    for (int c = 0; c < D; ++c) {
-      differing += bits(p.displacement[i * D + c]) != bits(whole.points.displacement[g * D + c]);
-      differing += bits(p.velocity[i * D + c]) != bits(whole.points.velocity[g * D + c]);
-    }
-    for (int c = 0; c < R; ++c) differing += bits(p.rotation[i * R + c]) != bits(whole.points.rotation[g * R + c]);
-  }
-  EXPECT_EQ(differing, 0u) << name << ", process " << group.rank() << " of " << group.size();
+  EXPECT_EQ(differing_motion(model.points, whole.points), 0u) << name << ", process " << group.rank() << " of " << group.size();
 }
 
 TEST(MpiRun, MicropolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({2, {24, 16, 1}, true}); }
@@ -368,25 +378,16 @@ void expect_shatter_equals_whole(int dimension, std::array<int, 3> n, double spe
   EXPECT_EQ(got.counts, expected.counts) << name << ": broken pairs, detached, unstable, energy";
   EXPECT_EQ(bits(got.step), bits(expected.step)) << name << ": step";
   ASSERT_EQ(got.rows.size(), expected.rows.size());
-  std::size_t differing_rows = 0;
-  for (std::size_t r = 0; r < got.rows.size(); ++r)
-    for (std::size_t e = 0; e < got.rows[r].size(); ++e)
-      differing_rows += bits(got.rows[r][e]) != bits(expected.rows[r][e]);
-  EXPECT_EQ(differing_rows, 0u) << name << ": energy entries differing";
+  EXPECT_EQ(differing_entries(got.rows, expected.rows), 0u) << name << ": energy entries differing";
   const PointData& p = model.points;
-  const int D = p.dimension, R = p.rotation_components;
-  std::size_t differing = 0, differing_bonds = 0;
+  EXPECT_EQ(differing_motion(p, whole.points), 0u) << name << ": motion";
+  std::size_t differing_detached = 0, differing_bonds = 0;
   for (std::size_t i = 0; i < p.owned; ++i) {
     const auto g = static_cast<std::size_t>(p.global_id[i]);
-    for (int c = 0; c < D; ++c) {
-      differing += bits(p.displacement[i * D + c]) != bits(whole.points.displacement[g * D + c]);
-      differing += bits(p.velocity[i * D + c]) != bits(whole.points.velocity[g * D + c]);
-    }
-    for (int c = 0; c < R; ++c) differing += bits(p.rotation[i * R + c]) != bits(whole.points.rotation[g * R + c]);
-    differing += p.detached[i] != whole.points.detached[g];
+    differing_detached += p.detached[i] != whole.points.detached[g];
     differing_bonds += acting_bonds(model.bonds, i) != acting_bonds(whole.bonds, g);
   }
-  EXPECT_EQ(differing, 0u) << name << ": motion and detachment";
+  EXPECT_EQ(differing_detached, 0u) << name << ": detached points";
   EXPECT_EQ(differing_bonds, 0u) << name << ": points whose bonds differ";
 }
 
