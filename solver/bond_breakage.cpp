@@ -263,7 +263,8 @@ BreakageUpdate BreakageUpdater::run() {
   //    shape tensor too, so that check covers them.
   // A detached point moves ballistically: its remaining bonds break (which changes its
   // neighbours in turn), except those to no-fail points; no-fail points are never detached by the
-  // last two rules. Decided serially and in index order: the same for any thread count. Points
+  // last two rules. Decided serially and in index order (global-id order across processes): the
+  // same for any thread count and partition. Points
   // detached from the start (isolated by the geometry) are left as they are. Rounds of this run
   // until no family changes.
   while (any(!w.changed.empty())) {

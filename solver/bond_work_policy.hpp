@@ -11,7 +11,8 @@
 // previous displacement and rotation, and the sums A + A_prev, Q + Q_prev that pass 1 forms: a few
 // numbers per point instead of D + R per bond). Seen from j, every term of the increment is the
 // exact negative of the one seen from i (xi, U, Om, t, m all change sign, and IEEE addition
-// commutes), so the increment is computed once, by the lower-index end, which holds the bond
+// commutes), so the increment is computed once, by the lower-index end (the lower global id in a
+// distributed run, whose ghosts keep the previous state and get the tensor sums too), which holds the bond
 // pair's W_ij (BondFamilies::work). Both ends break in the same step, for any thread count.
 #pragma once
 #include <cstddef>

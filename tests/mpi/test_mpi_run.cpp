@@ -168,7 +168,8 @@ void expect_distributed_run_equals_whole(const Case& k) {
   if (k.pulled) {
     EXPECT_NE(expected.rows.back()[4], 0.0) << name << ": the layers did work";
   }
-  EXPECT_EQ(differing_motion(model.points, whole.points), 0u) << name << ", process " << group.rank() << " of " << group.size();
+  EXPECT_EQ(differing_motion(model.points, whole.points), 0u)
+      << name << ", process " << group.rank() << " of " << group.size();
 }
 
 TEST(MpiRun, MicropolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({2, {24, 16, 1}, true}); }
