@@ -359,7 +359,9 @@ void BreakageUpdater::take_breaks_from_other_processes() {
   if (ghosts) {
     for (const PointNote& note : ghosts->notify_owners(w.notes)) {
       const std::size_t i = ghost_index(note.value);
-      w.breaking.push_back({note.point, mirror_bond(f, i, note.point, order)});
+      const std::int64_t mirror = mirror_bond(f, i, note.point, order);
+      if (mirror < 0) throw std::logic_error("update_after_breakage: a bond broken elsewhere has no end here");
+      w.breaking.push_back({note.point, mirror});
       w.changed.push_back(note.point);
     }
   }
