@@ -492,7 +492,7 @@ void BreakageUpdater::detach_unstable_blocks() {
       ++u.unstable_detached;
     }
     detached_this_round = true;
-    if (ghosts) share_shape_terms(p, true);
+    share_shape_terms(p, true);
     next = static_cast<std::size_t>(std::upper_bound(candidates.begin(), candidates.end(), first,
                                                      [&](std::int64_t v, std::size_t i) { return v < order(i); }) -
                                     candidates.begin());

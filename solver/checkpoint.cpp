@@ -202,10 +202,11 @@ std::vector<bool> gather_damage_state(std::vector<CheckpointArrayView>& arrays, 
     } else if (a.name == "bond_work") {
       a = checkpoint_array(a.name, kept_f64.emplace_back(gathered_bond_work(p, model.bonds, group)));
     } else if (a.element == CheckpointElement::u8) {
-      const std::vector<std::uint8_t>& local = a.name == "detached" ? p.detached : p.no_fail;
+      const std::span<const std::uint8_t> local(static_cast<const std::uint8_t*>(a.data), a.count);
       a = checkpoint_array(a.name, kept_u8.emplace_back(gathered_point_values(p, local, group)));
     } else if (a.element == CheckpointElement::i32) {
-      a = checkpoint_array(a.name, kept_i32.emplace_back(gathered_point_values(p, p.bonds_broken, group)));
+      const std::span<const std::int32_t> local(static_cast<const std::int32_t*>(a.data), a.count);
+      a = checkpoint_array(a.name, kept_i32.emplace_back(gathered_point_values(p, local, group)));
     } else {
       continue;
     }
@@ -336,8 +337,9 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
                                                   total(model.energy_detached_points)};
   const std::vector<double> model_scalars{model.last_fracture_dissipation};
   // The crack-arrival table: every process's arrivals, merged in arrival order.
-  const CrackArrivals::Table arrivals =
-      model.effects.damage && processes ? model.crack_arrivals.whole_table(processes->group) : CrackArrivals::Table{};
+  const CrackArrivals::Table arrivals = model.effects.damage && processes
+                                            ? model.crack_arrivals.whole_table(model.points, processes->group)
+                                            : CrackArrivals::Table{};
   if (model.effects.damage) {
     arrays.push_back(checkpoint_array(kArrivalPoints, processes ? arrivals.points : model.crack_arrivals.points()));
     arrays.push_back(checkpoint_array(kArrivalTimes, processes ? arrivals.times : model.crack_arrivals.times()));

@@ -34,11 +34,12 @@ void CrackArrivals::update(const PointData& p, const BondFamilies& f, const std:
     if (i < arrived_.size() && !arrived_[i] && point_damage(p, f, i) >= kCrackDamageThreshold) arrive(p, i, time);
 }
 
-std::vector<CrackArrivals::Row> CrackArrivals::take_new_rows(const PointData& p, const ProcessGroup& group) {
+std::vector<CrackArrivals::Row> CrackArrivals::merged_rows(const PointData& p, const ProcessGroup& group,
+                                                           std::size_t first) const {
   // Each row travels as 5 integers (the point, and the time and position's bits).
   const auto D = static_cast<std::size_t>(p.dimension);
   std::vector<std::int64_t> mine;
-  for (std::size_t k = reported_; k < points_.size(); ++k) {
+  for (std::size_t k = first; k < points_.size(); ++k) {
     const std::optional<std::size_t> i = owned_index(p, points_[k]);
     if (!i) throw std::logic_error("CrackArrivals: point " + std::to_string(points_[k]) + " is not owned here");
     std::array<double, 3> x{0.0, 0.0, 0.0};
@@ -47,7 +48,6 @@ std::vector<CrackArrivals::Row> CrackArrivals::take_new_rows(const PointData& p,
     mine.push_back(std::bit_cast<std::int64_t>(times_[k]));
     for (const double v : x) mine.push_back(std::bit_cast<std::int64_t>(v));
   }
-  reported_ = points_.size();
   std::vector<Row> rows;
   for (const std::vector<std::int64_t>& from : group.gather(mine))
     for (std::size_t m = 0; m + 4 < from.size(); m += 5)
@@ -62,21 +62,17 @@ std::vector<CrackArrivals::Row> CrackArrivals::take_new_rows(const PointData& p,
   return rows;
 }
 
-CrackArrivals::Table CrackArrivals::whole_table(const ProcessGroup& group) const {
-  std::vector<std::int64_t> mine;
-  for (std::size_t k = 0; k < points_.size(); ++k) {
-    mine.push_back(static_cast<std::int64_t>(points_[k]));
-    mine.push_back(std::bit_cast<std::int64_t>(times_[k]));
-  }
-  std::vector<std::pair<double, std::uint64_t>> merged;
-  for (const std::vector<std::int64_t>& from : group.gather(mine))
-    for (std::size_t m = 0; m + 1 < from.size(); m += 2)
-      merged.emplace_back(std::bit_cast<double>(from[m + 1]), static_cast<std::uint64_t>(from[m]));
-  if (group.distributed()) std::sort(merged.begin(), merged.end());
+std::vector<CrackArrivals::Row> CrackArrivals::take_new_rows(const PointData& p, const ProcessGroup& group) {
+  std::vector<Row> rows = merged_rows(p, group, reported_);
+  reported_ = points_.size();
+  return rows;
+}
+
+CrackArrivals::Table CrackArrivals::whole_table(const PointData& p, const ProcessGroup& group) const {
   Table table;
-  for (const auto& [time, point] : merged) {
-    table.points.push_back(point);
-    table.times.push_back(time);
+  for (const Row& row : merged_rows(p, group, 0)) {
+    table.points.push_back(row.point);
+    table.times.push_back(row.time);
   }
   return table;
 }

@@ -48,7 +48,7 @@ class CrackArrivals {
     std::vector<std::uint64_t> points;
     std::vector<double> times;
   };
-  Table whole_table(const ProcessGroup& group) const;
+  Table whole_table(const PointData& points, const ProcessGroup& group) const;
 
   // A restart (solver/checkpoint.hpp): the arrivals of the checkpoint for a model of `point_count`
   // points (of this process's points in a distributed run: `points_data`). Throws InputError naming `file` when they
@@ -58,6 +58,8 @@ class CrackArrivals {
 
  private:
   void arrive(const PointData& points, std::size_t i, double time);
+  // The arrivals from the `first` on, of every process, merged in arrival order (collective).
+  std::vector<Row> merged_rows(const PointData& points, const ProcessGroup& group, std::size_t first) const;
   std::vector<std::uint8_t> arrived_;  // per owned point (local index): 1 once on the crack path
   std::vector<std::uint64_t> points_;
   std::vector<double> times_;

@@ -99,15 +99,15 @@ std::vector<double> gathered_bond_work(const PointData& p, const BondFamilies& f
 }
 
 template <class T>
-std::vector<T> gathered_point_values(const PointData& p, const std::vector<T>& values, const ProcessGroup& group) {
+std::vector<T> gathered_point_values(const PointData& p, std::span<const T> values, const ProcessGroup& group) {
   const std::size_t width = values.size() / p.total();
   return gather_by_global_id<T>(p, group, [&](std::size_t i, std::vector<std::int64_t>& out) {
     for (std::size_t c = 0; c < width; ++c) out.push_back(as_integer(values[i * width + c]));
   });
 }
-template std::vector<std::uint8_t> gathered_point_values(const PointData&, const std::vector<std::uint8_t>&,
+template std::vector<std::uint8_t> gathered_point_values(const PointData&, std::span<const std::uint8_t>,
                                                          const ProcessGroup&);
-template std::vector<std::int32_t> gathered_point_values(const PointData&, const std::vector<std::int32_t>&,
+template std::vector<std::int32_t> gathered_point_values(const PointData&, std::span<const std::int32_t>,
                                                          const ProcessGroup&);
 
 void restore_own_bonds(const std::vector<std::int32_t>& neighbors, const std::vector<double>& work, PointData& p,

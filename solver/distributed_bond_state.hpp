@@ -5,6 +5,7 @@
 // reading it: the memory limit docs/theory.md states).
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,7 @@ std::vector<std::int32_t> gathered_bond_neighbors(const PointData& points, const
 std::vector<double> gathered_bond_work(const PointData& points, const BondFamilies& bonds, const ProcessGroup& group);
 // Collective. A per-point array (the same number of values per local point) of the owned points.
 template <class T>
-std::vector<T> gathered_point_values(const PointData& points, const std::vector<T>& values, const ProcessGroup& group);
+std::vector<T> gathered_point_values(const PointData& points, std::span<const T> values, const ProcessGroup& group);
 
 // Collective. The restore: this process's bonds broken where `neighbors` (the one-process lists)
 // marks them, and its pairs' work from `work`. Throws InputError naming `file` when the lists are

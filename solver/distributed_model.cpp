@@ -22,10 +22,8 @@ std::vector<std::int64_t> return_map_weights(const PointPositions& x, const Mode
   std::vector<std::int64_t> weight(x.count, kReturnMapWeight);
   if (!o.plastic_region) return weight;
   const auto D = static_cast<std::size_t>(x.dimension);
-  const auto& box = *o.plastic_region;
   for (std::size_t i = 0; i < x.count; ++i)
-    for (std::size_t a = 0; a < D; ++a)
-      if (x.position[i * D + a] < box[0][a] || x.position[i * D + a] > box[1][a]) weight[i] = kOutsideRegionWeight;
+    if (!inside_box(x.position + i * D, x.dimension, *o.plastic_region)) weight[i] = kOutsideRegionWeight;
   return weight;
 }
 

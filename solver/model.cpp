@@ -85,11 +85,7 @@ void cut_precrack_drain_bonds(const PointCloud& cloud, const PointData& p, std::
 
 // Point i inside a box (a 2-D box's z range is unbounded).
 bool inside(const PointData& p, std::size_t i, const std::array<std::array<double, 3>, 2>& box) {
-  for (int a = 0; a < p.dimension; ++a) {
-    const double x = p.position[i * static_cast<std::size_t>(p.dimension) + static_cast<std::size_t>(a)];
-    if (x < box[0][a] || x > box[1][a]) return false;
-  }
-  return true;
+  return inside_box(&p.position[i * static_cast<std::size_t>(p.dimension)], p.dimension, box);
 }
 
 }  // namespace
@@ -164,11 +160,9 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
       m.points.plastic_active[i] = inside(m.points, i, *o.plastic_region) ? 1 : 0;
   mark("damage set-up");
   m.detached_points = update_shape_tensors(m.points, m.bonds, m.constants);
-  if (m.points.ghost > 0 && m.points.ghost_source) {
-    // Pass 2 reads the neighbours' shape-tensor terms: the ghosts' come from their owners; with
-    // damage the stability blocks read the neighbours' K^-1 and detachment too.
-    share_shape_terms(m.points, o.effects.damage);
-  }
+  // Pass 2 reads the neighbours' shape-tensor terms: the ghosts' come from their owners; with
+  // damage the stability blocks read the neighbours' K^-1 and detachment too.
+  share_shape_terms(m.points, o.effects.damage);
   if (o.effects.viscoplasticity) {
     if (!o.viscoplastic_model)
       throw std::logic_error("build_model: the viscoplasticity effect needs ModelOptions::viscoplastic_model");

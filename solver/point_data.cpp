@@ -118,6 +118,12 @@ void allocate_state(PointData& p, const EffectSet& effects) {
 
 }  // namespace
 
+bool inside_box(const double* x, int dimension, const std::array<std::array<double, 3>, 2>& box) {
+  for (int a = 0; a < dimension; ++a)
+    if (x[a] < box[0][a] || x[a] > box[1][a]) return false;
+  return true;
+}
+
 std::optional<std::size_t> owned_index(const PointData& p, std::size_t point) {
   if (p.global_id.empty()) return point;
   const auto owned_end = p.global_id.begin() + static_cast<std::ptrdiff_t>(p.owned);

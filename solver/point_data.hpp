@@ -8,6 +8,7 @@
 // Small tensors of one point are contiguous (row-major) inside their field's array: the force
 // pass gathers them per neighbour, and one cache line then holds a neighbour's whole tensor.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -120,6 +121,10 @@ std::vector<double> cloud_positions(const PointCloud& cloud);
 // `point` itself on one process; found among the owned points' global ids (ascending) in a
 // distributed run; none when another process owns it.
 std::optional<std::size_t> owned_index(const PointData& p, std::size_t point);
+
+// Whether the point at `x` (`dimension` coordinates) lies in `box` (corners [lo, hi], bounds included):
+// the scene's material.damage.region and material.viscoplasticity.region.
+bool inside_box(const double* x, int dimension, const std::array<std::array<double, 3>, 2>& box);
 
 // Copies positions, volumes, regions of the cloud; allocates the state for the dimension and
 // the effects (an effect that is off allocates nothing). Every point is owned (single process).
