@@ -1,8 +1,8 @@
-# Test script (tests/solver_build.cmake): the force kernel's file, internal_forces.cpp, is compiled
-# with fused multiply-adds and the energies' file, internal_energies.cpp, without
-# (solver/CMakeLists.txt). An inline function that both files emit out of line is one symbol to
-# the linker, which keeps one of the two copies for both: the energies would then round as the
-# kernel does (or the reverse), depending on the link order. This fails when the two object files
+# Test script (tests/solver.cmake): the force kernel's file, internal_forces.cpp, is compiled
+# with other options than the energies' file, internal_energies.cpp (-fno-rounding-math:
+# solver/CMakeLists.txt). An inline function that both files emit out of line is one symbol to
+# the linker, which keeps one of the two copies for both: the energies would then be computed by
+# the kernel's code (or the reverse), depending on the link order. This fails when the two object files
 # define a common inline (weak) function other than ones that only copy numbers.
 #   cmake -DNM=<nm> -DOBJECTS=<object files joined by |> -P check_kernel_objects.cmake
 string(REPLACE "|" ";" objects "${OBJECTS}")

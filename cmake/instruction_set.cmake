@@ -61,8 +61,9 @@ function(mppm_instruction_set_flags out)
     endif()
   endif()
   message(STATUS "mppm instruction set: -march=${candidate} (MPPM_ARCH=${MPPM_ARCH})")
-  # No fused multiply-adds outside the force kernel (solver/CMakeLists.txt): with them, ties in
-  # the geometry (a pre-crack midway between lattice rows) could be decided otherwise than in a
-  # build without them.
+  # No fused multiply-adds chosen by the compiler: with them, ties in the geometry (a pre-crack
+  # midway between lattice rows) could be decided otherwise than in a build without them, and the
+  # force kernel's bits would follow the compiler's inlining. The kernel writes its own
+  # (solver/multiply_add.hpp).
   set(${out} "-march=${candidate};-ffp-contract=off" PARENT_SCOPE)
 endfunction()

@@ -67,7 +67,19 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
       ++b;
     }
   }
+  if (p.ghost > 0) split_interior_and_border(f, p.owned);
   return f;
+}
+
+void split_interior_and_border(BondFamilies& f, std::size_t owned) {
+  f.interior_points.clear();
+  f.border_points.clear();
+  for (std::size_t i = 0; i < owned; ++i) {
+    const auto* first = f.neighbor.data() + f.offset[i];
+    const auto* last = f.neighbor.data() + f.offset[i + 1];
+    const bool border = std::any_of(first, last, [&](std::int32_t e) { return BondFamilies::index_of(e) >= owned; });
+    (border ? f.border_points : f.interior_points).push_back(i);
+  }
 }
 
 void index_bond_pairs(BondFamilies& f, PointOrder order) {

@@ -35,6 +35,10 @@ struct BondFamilies {
   // would give the same bits), so a copy at the other end would cost 8 B per bond entry for nothing.
   std::vector<double> work;
   std::vector<std::int64_t> pair_offset;  // owned + 1 entries
+  // A distributed run (the points have ghosts): the owned points whose families hold no ghost
+  // (interior) and the others (border), each ascending. The force pass computes the interior while
+  // the ghosts' values travel (docs/theory.md section 13). Both empty on one process.
+  std::vector<std::size_t> interior_points, border_points;
 
   std::size_t bond_count() const { return neighbor.size(); }
   std::size_t pair_count() const { return work.size(); }
@@ -117,7 +121,12 @@ struct FamilyOptions {
 // Cell-list search (brute force with minimum images when periodic). Neighbours of each point
 // are sorted by index (by global id in a distributed run: PointData::global_id, PointOrder), so the
 // storage does not depend on the search order, the thread count or the partition.
+// With ghosts it also splits the owned points into interior and border (split_interior_and_border).
 BondFamilies build_families(const PointData& points, const FamilyOptions& options);
+
+// Sets interior_points and border_points from the neighbour lists (a neighbour at or above `owned`
+// is a ghost).
+void split_interior_and_border(BondFamilies& families, std::size_t owned);
 
 // Fills pair_offset and sizes work (zero) for the bond pairs (damage), each at its end earlier in
 // `order`. Families must be symmetric (every bond between owned points stored from both ends; a

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "solver/multiply_add.hpp"
+
 namespace mppm::solver::kernel {
 
 // U = (u_j - u_i) - 1/2 (w_i + w_j) x xi: the composite state, with the MINUS sign of the fix in
@@ -17,13 +19,13 @@ template <int D, int R, bool Polar>
   if constexpr (Polar) {
     if constexpr (D == 2) {
       const double wm = 0.5 * (wi[0] + wj[0]);
-      U[0] += wm * xi[1];  // -(w x xi)_x = +w xi_y
-      U[1] -= wm * xi[0];
+      U[0] = multiply_add(wm, xi[1], U[0]);  // -(w x xi)_x = +w xi_y
+      U[1] = multiply_add(-wm, xi[0], U[1]);
     } else {
       const double wm[3] = {0.5 * (wi[0] + wj[0]), 0.5 * (wi[1] + wj[1]), 0.5 * (wi[2] + wj[2])};
-      U[0] -= wm[1] * xi[2] - wm[2] * xi[1];
-      U[1] -= wm[2] * xi[0] - wm[0] * xi[2];
-      U[2] -= wm[0] * xi[1] - wm[1] * xi[0];
+      U[0] -= multiply_add(wm[1], xi[2], -wm[2] * xi[1]);
+      U[1] -= multiply_add(wm[2], xi[0], -wm[0] * xi[2]);
+      U[2] -= multiply_add(wm[0], xi[1], -wm[1] * xi[0]);
     }
   }
 }

@@ -22,6 +22,7 @@
 #include "solver/bond_kinematics.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
+#include "solver/multiply_add.hpp"
 #include "solver/point_data.hpp"
 #include "solver/symmetric_tensor.hpp"
 
@@ -146,10 +147,11 @@ class BondWorkPolicy<D, Effects, true> {
     double dw = 0.0;
     for (int r = 0; r < D; ++r) {
       double both = 0.0;
-      for (int col = 0; col < D; ++col)
-        both += (ai_both_[r * D + col] + aj_both[r * D + col]) * xi[col] +
-                (cki_[symmetric_index<D>(r, col)] + ckj[symmetric_index<D>(r, col)]) * (U0[col] + U[col]);
-      dw += both * (U[r] - U0[r]);
+      for (int col = 0; col < D; ++col) {
+        both = multiply_add(ai_both_[r * D + col] + aj_both[r * D + col], xi[col], both);
+        both = multiply_add(cki_[symmetric_index<D>(r, col)] + ckj[symmetric_index<D>(r, col)], U0[col] + U[col], both);
+      }
+      dw = multiply_add(both, U[r] - U0[r], dw);
     }
     if constexpr (polar) {
       const double* qj_both = q_sum_ + j * RD;
@@ -157,8 +159,9 @@ class BondWorkPolicy<D, Effects, true> {
       for (int r = 0; r < R; ++r) {
         const double om = wj[r] - wi[r], om0 = wj0[r] - wi0_[r];
         double both = g * (om0 + om);
-        for (int col = 0; col < D; ++col) both += (qi_both_[r * D + col] + qj_both[r * D + col]) * xi[col];
-        dw += both * (om - om0);
+        for (int col = 0; col < D; ++col)
+          both = multiply_add(qi_both_[r * D + col] + qj_both[r * D + col], xi[col], both);
+        dw = multiply_add(both, om - om0, dw);
       }
     }
     // The pair's work W_ij, at this (lower-index) end; counted here and broken afterwards by

@@ -27,6 +27,12 @@ class GhostExchange {
   // notes the other processes sent about this one's owned points (by sending process, then in
   // its order). A collective call (damage: a bond broken at one end, to be broken at the other).
   virtual std::vector<PointNote> notify_owners(std::span<const PointNote> about_ghosts) const = 0;
+  // update_ghosts in two halves, so that work that reads no ghost runs while the values travel:
+  // begin_update sends this process's values of a field (several fields may be begun, in the same
+  // order on every process); finish_updates waits for the ghosts' values of every begun field and
+  // puts them in place. A begun field's values must not change before finish_updates.
+  virtual void begin_update(std::vector<double>& values, int components) const = 0;
+  virtual void finish_updates() const = 0;
 };
 
 }  // namespace mppm::solver

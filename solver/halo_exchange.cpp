@@ -103,52 +103,67 @@ HaloExchange::HaloExchange(const LocalPoints& local, std::span<const std::int32_
   ghost_slot_.resize(local.global_id.size() - local.owned);
   for (std::size_t l = 0; l < links_.size(); ++l)
     for (std::size_t k = 0; k < links_[l].receive.size(); ++k) ghost_slot_[links_[l].receive[k] - owned_] = {l, k};
-  send_buffer_.resize(links_.size());
-  receive_buffer_.resize(links_.size());
 }
 
 void HaloExchange::update_ghosts(std::vector<double>& values, int components) const {
+  begin_update(values, components);
+  finish_updates();
+}
+
+void HaloExchange::begin_update(std::vector<double>& values, int components) const {
   const double start = MPI_Wtime();
-  const auto c = static_cast<std::size_t>(components);
-  constexpr int kTag = 23;
-  std::vector<MPI_Request> requests;
-  requests.reserve(2 * links_.size());
+  if (begun_ == 0) requests_.clear();
+  if (begun_ == fields_.size()) fields_.emplace_back();
+  Field& field = fields_[begun_];
+  const int tag = 23 + static_cast<int>(begun_);  // one tag per field in flight
+  ++begun_;
+  field.values = &values;
+  field.components = static_cast<std::size_t>(components);
+  field.send.resize(links_.size());
+  field.receive.resize(links_.size());
+  const std::size_t c = field.components;
   for (std::size_t l = 0; l < links_.size(); ++l) {
-    std::vector<double>& in = receive_buffer_[l];
+    std::vector<double>& in = field.receive[l];
     in.resize(links_[l].receive.size() * c);
     if (in.empty()) continue;
-    requests.emplace_back();
-    MPI_Irecv(in.data(), as_count(in.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
+    requests_.emplace_back();
+    MPI_Irecv(in.data(), as_count(in.size()), MPI_DOUBLE, links_[l].rank, tag, MPI_COMM_WORLD, &requests_.back());
   }
-  double packing = 0.0;
   for (std::size_t l = 0; l < links_.size(); ++l) {
-    std::vector<double>& out = send_buffer_[l];
+    std::vector<double>& out = field.send[l];
     out.resize(links_[l].send.size() * c);
     if (out.empty()) continue;
-    const double pack_start = MPI_Wtime();
     copy_rows(links_[l].send, values, out, c, true);
-    packing += MPI_Wtime() - pack_start;
     traffic_.values_sent += static_cast<std::int64_t>(out.size());
     ++traffic_.messages_sent;
-    requests.emplace_back();
-    MPI_Isend(out.data(), as_count(out.size()), MPI_DOUBLE, links_[l].rank, kTag, MPI_COMM_WORLD, &requests.back());
+    requests_.emplace_back();
+    MPI_Isend(out.data(), as_count(out.size()), MPI_DOUBLE, links_[l].rank, tag, MPI_COMM_WORLD, &requests_.back());
   }
+  const double packed = MPI_Wtime() - start;
+  traffic_.pack_seconds += packed;
+  traffic_.seconds += packed;
+}
+
+void HaloExchange::finish_updates() const {
   const double wait_start = MPI_Wtime();
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
   const double unpack_start = MPI_Wtime();
-  for (std::size_t l = 0; l < links_.size(); ++l) copy_rows(links_[l].receive, values, receive_buffer_[l], c, false);
+  for (std::size_t k = 0; k < begun_; ++k)
+    for (std::size_t l = 0; l < links_.size(); ++l)
+      copy_rows(links_[l].receive, *fields_[k].values, fields_[k].receive[l], fields_[k].components, false);
   const double end = MPI_Wtime();
-  ++traffic_.exchanges;
-  traffic_.seconds += end - start;
-  traffic_.pack_seconds += packing;
+  traffic_.exchanges += static_cast<std::int64_t>(begun_);
   traffic_.wait_seconds += unpack_start - wait_start;
   traffic_.unpack_seconds += end - unpack_start;
+  traffic_.seconds += end - wait_start;
+  begun_ = 0;
+  requests_.clear();
 }
 
 std::vector<PointNote> HaloExchange::notify_owners(std::span<const PointNote> about_ghosts) const {
   // Each note travels as (the ghost's place in the owner's send list, value); every link carries a
   // message, empty or not, so that each process knows how many to wait for.
-  constexpr int kTag = 24;
+  constexpr int kTag = 17;  // apart from the fields' tags (23 on)
   std::vector<std::vector<std::int64_t>> out(links_.size());
   for (const PointNote& note : about_ghosts) {
     const auto [l, k] = ghost_slot_.at(note.point - owned_);

@@ -3,6 +3,8 @@
 // values from their owners, with one message per neighbouring process and field. The lists are
 // agreed once, when the run starts: each process asks every owner for its ghosts by global id.
 #pragma once
+#include <mpi.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -21,6 +23,8 @@ class HaloExchange final : public GhostExchange {
 
   void update_ghosts(std::vector<double>& values, int components) const override;
   std::vector<PointNote> notify_owners(std::span<const PointNote> about_ghosts) const override;
+  void begin_update(std::vector<double>& values, int components) const override;
+  void finish_updates() const override;
 
   // The processes this one exchanges with, and the points it sends and receives per exchange.
   std::size_t neighbours() const { return links_.size(); }
@@ -46,7 +50,16 @@ class HaloExchange final : public GhostExchange {
   std::size_t owned_ = 0;
   // Per ghost (local index - owned_): its link and its place in the link's receive list.
   std::vector<std::pair<std::size_t, std::size_t>> ghost_slot_;
-  mutable std::vector<std::vector<double>> send_buffer_, receive_buffer_;
+  // A begun field: where its ghosts' values go, and its buffers per link (kept from one exchange to
+  // the next: no allocation in the time loop once warm).
+  struct Field {
+    std::vector<double>* values = nullptr;
+    std::size_t components = 0;
+    std::vector<std::vector<double>> send, receive;
+  };
+  mutable std::vector<Field> fields_;  // slots; the first `begun_` are in flight
+  mutable std::size_t begun_ = 0;
+  mutable std::vector<MPI_Request> requests_;
   mutable Traffic traffic_;
 };
 

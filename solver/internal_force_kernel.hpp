@@ -28,6 +28,7 @@
 #include "solver/cosserat_material.hpp"
 #include "solver/exact_point_sums.hpp"
 #include "solver/internal_forces.hpp"
+#include "solver/multiply_add.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/point_data.hpp"
 #include "solver/step_advance.hpp"
@@ -52,11 +53,11 @@ using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
 template <int D>
 MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, double* out) {
   if constexpr (D == 2) {
-    out[0] += factor * (xi[0] * t[1] - xi[1] * t[0]);
+    out[0] = multiply_add(factor, multiply_add(xi[0], t[1], -xi[1] * t[0]), out[0]);
   } else {
-    out[0] += factor * (xi[1] * t[2] - xi[2] * t[1]);
-    out[1] += factor * (xi[2] * t[0] - xi[0] * t[2]);
-    out[2] += factor * (xi[0] * t[1] - xi[1] * t[0]);
+    out[0] = multiply_add(factor, multiply_add(xi[1], t[2], -xi[2] * t[1]), out[0]);
+    out[1] = multiply_add(factor, multiply_add(xi[2], t[0], -xi[0] * t[2]), out[1]);
+    out[2] = multiply_add(factor, multiply_add(xi[0], t[1], -xi[1] * t[0]), out[2]);
   }
 }
 
@@ -78,12 +79,13 @@ struct StabilizationEnergySum {
                        double vj) {
     for (int r = 0; r < D; ++r) {
       const double vu = vj * U[r];
-      for (int col = r; col < D; ++col) uu[symmetric_index<D>(r, col)] += vu * U[col];
+      for (int col = r; col < D; ++col)
+        uu[symmetric_index<D>(r, col)] = multiply_add(vu, U[col], uu[symmetric_index<D>(r, col)]);
     }
     if constexpr (Polar)
       for (int r = 0; r < R; ++r) {
         const double om = wj[r] - wi[r];
-        ww += vj * om * om;
+        ww = multiply_add(vj * om, om, ww);
       }
   }
   // sum_j V_j [z_u . Ck z_u + g |z_w|^2] with the point's strain and wryness (row-major), its
@@ -165,14 +167,14 @@ MPPM_INLINE void bond_sums(const PointData& p, const BondFamilies& f, std::size_
     composite_state<D, R, polar>(ui, u + bond.j * D, wi, wj, xi, U);
     for (int r = 0; r < D; ++r) {
       const double vu = vj * U[r];
-      for (int col = 0; col < D; ++col) S[r * D + col] += vu * xi[col];
+      for (int col = 0; col < D; ++col) S[r * D + col] = multiply_add(vu, xi[col], S[r * D + col]);
       s[r] += vu;
-      m[r] += vj * xi[r];
+      m[r] = multiply_add(vj, xi[r], m[r]);
     }
     if constexpr (polar)
       for (int r = 0; r < R; ++r) {
         const double om = vj * (wj[r] - wi[r]);
-        for (int col = 0; col < D; ++col) Sk[r * D + col] += om * xi[col];
+        for (int col = 0; col < D; ++col) Sk[r * D + col] = multiply_add(om, xi[col], Sk[r * D + col]);
         sw[r] += om;
       }
   }
@@ -496,17 +498,20 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     double t[D];  // the neighbour's share A_j xi + C:K_j^-1 U
     for (int r = 0; r < D; ++r) {
       double sum = 0.0;
-      for (int col = 0; col < D; ++col) sum += aj[r * D + col] * xi[col] + ckj[symmetric_index<D>(r, col)] * U[col];
+      for (int col = 0; col < D; ++col) {
+        sum = multiply_add(aj[r * D + col], xi[col], sum);
+        sum = multiply_add(ckj[symmetric_index<D>(r, col)], U[col], sum);
+      }
       t[r] = sum;
-      force[r] += vj * sum;
+      force[r] = multiply_add(vj, sum, force[r]);
     }
     if constexpr (polar) {
       const double* qj = q_all + j * RD;
       const double gj = g_all[j];
       for (int r = 0; r < R; ++r) {
         double sum = gj * (wj[r] - wi[r]);
-        for (int col = 0; col < D; ++col) sum += qj[r * D + col] * xi[col];
-        moment[r] += vj * sum;
+        for (int col = 0; col < D; ++col) sum = multiply_add(qj[r * D + col], xi[col], sum);
+        moment[r] = multiply_add(vj, sum, moment[r]);
       }
       add_cross<D>(xi, t, 0.5 * vj, moment);
     }
@@ -530,66 +535,107 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   work.finish(p, i);
 }
 
+// The points a pass visits: a list of local indices, or (no list) 0 .. count-1.
+struct PointSelection {
+  const std::size_t* list = nullptr;
+  std::int64_t count = 0;
+  std::size_t operator[](std::int64_t s) const { return list ? list[s] : static_cast<std::size_t>(s); }
+};
+
+inline PointSelection all_owned(const PointData& p) { return {nullptr, static_cast<std::int64_t>(p.owned)}; }
+inline PointSelection listed(const std::vector<std::size_t>& points) {
+  return {points.data(), static_cast<std::int64_t>(points.size())};
+}
+
+// The two passes over a selection of points, shared by every evaluation: all owned points on one
+// process, the interior and then the border points of a distributed run, the points around broken
+// bonds. A point gives the same bits in each: the kernel fuses multiply-adds only where its source
+// says so (multiply_add.hpp).
 template <int D, class Effects, bool StoredXi>
-void pass1_points(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance) {
-  const auto n = static_cast<std::int64_t>(p.owned);
+void pass1_points(PointData& p, const BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance,
+                  PointSelection points) {
 #pragma omp for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s) pass1_point<D, Effects, StoredXi>(p, f, c, static_cast<std::size_t>(s), advance);
+  for (std::int64_t s = 0; s < points.count; ++s) pass1_point<D, Effects, StoredXi>(p, f, c, points[s], advance);
 }
 
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
-void pass2_points(PointData& p, BondFamilies& f, const CosseratConstants& c, bool accumulate_work) {
-  const auto n = static_cast<std::int64_t>(p.owned);
+void pass2_points(PointData& p, BondFamilies& f, const CosseratConstants& c, bool accumulate_work,
+                  PointSelection points) {
 #pragma omp for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s)
-    pass2_point<D, Effects, WithEnergy, StoredXi>(p, f, c, static_cast<std::size_t>(s), accumulate_work);
-  // Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2),
-  // the ghosts' too (their owners' values of this evaluation): the lower end of a pair reads it.
+  for (std::int64_t s = 0; s < points.count; ++s)
+    pass2_point<D, Effects, WithEnergy, StoredXi>(p, f, c, points[s], accumulate_work);
+}
+
+// Damage: this evaluation's state for the next bond-work increment (after the barrier of pass 2),
+// the ghosts' too (their owners' values of this evaluation): the lower end of a pair reads it.
+template <int D, class Effects>
+void remember_state(PointData& p) {
   BondWorkPolicy<D, Effects>::remember_state(p, static_cast<std::int64_t>(p.total()));
 }
 
 // A distributed run's ghosts get their owners' displacement and rotation before pass 1 and their
 // pass-1 tensors between the passes, with damage in an advancing evaluation also the sums A + A_prev
 // and Q + Q_prev the bond work reads at either end (one thread calls MPI, outside the parallel
-// regions).
+// regions). Each exchange is begun, the interior points (no ghost in their families) are computed
+// while the values travel, and the exchange is finished before the border points.
 template <int D, class Effects>
-void update_ghost_kinematics(PointData& p) {
+void begin_ghost_kinematics(PointData& p) {
   constexpr int R = rotation_components<D>;
-  p.ghost_source->update_ghosts(p.displacement, D);
-  if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.rotation, R);
+  p.ghost_source->begin_update(p.displacement, D);
+  if constexpr (Effects::micropolar) p.ghost_source->begin_update(p.rotation, R);
 }
 template <int D, class Effects>
-void update_ghost_tensors(PointData& p, [[maybe_unused]] bool advancing) {
+void begin_ghost_tensors(PointData& p, [[maybe_unused]] bool advancing) {
   constexpr int R = rotation_components<D>;
-  p.ghost_source->update_ghosts(p.force_tensor, D * D);
-  if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.moment_tensor, R * D);
+  p.ghost_source->begin_update(p.force_tensor, D * D);
+  if constexpr (Effects::micropolar) p.ghost_source->begin_update(p.moment_tensor, R * D);
   if constexpr (Effects::damage) {
     if (advancing) {
-      p.ghost_source->update_ghosts(p.force_tensor_sum, D * D);
-      if constexpr (Effects::micropolar) p.ghost_source->update_ghosts(p.moment_tensor_sum, R * D);
+      p.ghost_source->begin_update(p.force_tensor_sum, D * D);
+      if constexpr (Effects::micropolar) p.ghost_source->begin_update(p.moment_tensor_sum, R * D);
     }
   }
 }
 
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
-void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance) {
+void overlapped_internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance,
+                                bool threaded) {
+  if (f.interior_points.size() + f.border_points.size() != p.owned)
+    throw std::logic_error("internal forces: the families' interior and border points are not set");
   const bool accumulate_work = Effects::damage && advance != nullptr;
+  const PointSelection interior = listed(f.interior_points), border = listed(f.border_points);
+  begin_ghost_kinematics<D, Effects>(p);
+#pragma omp parallel if (threaded)
+  pass1_points<D, Effects, StoredXi>(p, f, c, advance, interior);
+  p.ghost_source->finish_updates();
+#pragma omp parallel if (threaded)
+  pass1_points<D, Effects, StoredXi>(p, f, c, advance, border);
+  begin_ghost_tensors<D, Effects>(p, accumulate_work);
+#pragma omp parallel if (threaded)
+  pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work, interior);
+  p.ghost_source->finish_updates();
+#pragma omp parallel if (threaded)
+  {
+    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work, border);
+    remember_state<D, Effects>(p);
+  }
+}
+
+template <int D, class Effects, bool WithEnergy, bool StoredXi>
+void internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance) {
   const bool threaded = thread_bond_loop(f.bond_count());
   if (p.ghost > 0 && p.ghost_source) {
-    update_ghost_kinematics<D, Effects>(p);
-#pragma omp parallel if (threaded)
-    pass1_points<D, Effects, StoredXi>(p, f, c, advance);
-    update_ghost_tensors<D, Effects>(p, accumulate_work);
-#pragma omp parallel if (threaded)
-    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work);
+    overlapped_internal_forces<D, Effects, WithEnergy, StoredXi>(p, f, c, advance, threaded);
     return;
   }
+  const bool accumulate_work = Effects::damage && advance != nullptr;
   // One parallel region for both passes (one fork/join per evaluation); the barrier at the end
   // of pass 1 makes every neighbour's tensors ready for pass 2.
 #pragma omp parallel if (threaded)
   {
-    pass1_points<D, Effects, StoredXi>(p, f, c, advance);
-    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work);
+    pass1_points<D, Effects, StoredXi>(p, f, c, advance, all_owned(p));
+    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work, all_owned(p));
+    remember_state<D, Effects>(p);
   }
 }
 
@@ -629,19 +675,20 @@ void refresh_after_breakage(PointData& p, BondFamilies& f, const CosseratConstan
       if constexpr (polar)
         for (int r = 0; r < R; ++r) p.moment_before_refresh[k * R + r] = p.moment[i * R + r];
     }
-    for (const std::size_t i : around) {
-      if (stored_xi)
-        pass1_point<D, Effects, true>(p, f, c, i, nullptr);
-      else
-        pass1_point<D, Effects, false>(p, f, c, i, nullptr);
+    // Serial (outside a parallel region, the passes' loops run on this thread alone): the lists are
+    // short, and the ghosts' fetch between the passes is a collective call.
+    if (stored_xi)
+      pass1_points<D, Effects, true>(p, f, c, nullptr, listed(around));
+    else
+      pass1_points<D, Effects, false>(p, f, c, nullptr, listed(around));
+    if (p.ghost > 0 && p.ghost_source) {
+      begin_ghost_tensors<D, Effects>(p, false);
+      p.ghost_source->finish_updates();
     }
-    if (p.ghost > 0 && p.ghost_source) update_ghost_tensors<D, Effects>(p, false);
-    for (const std::size_t i : around) {
-      if (stored_xi)
-        pass2_point<D, Effects, true, true>(p, f, c, i, false);
-      else
-        pass2_point<D, Effects, true, false>(p, f, c, i, false);
-    }
+    if (stored_xi)
+      pass2_points<D, Effects, true, true>(p, f, c, false, listed(around));
+    else
+      pass2_points<D, Effects, true, false>(p, f, c, false, listed(around));
   } else {
     (void)p, (void)f, (void)c;
   }

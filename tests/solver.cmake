@@ -36,8 +36,9 @@ mppm_add_gtest(test_solver_verification verification
   verification/test_richards_reference.cpp
   verification/test_solver_unsaturated_infiltration.cpp
 )
-# The energies are computed without the force kernel's fused multiply-adds only if the two files
-# share no out-of-line inline function (cmake/check_kernel_objects.cmake says why).
+# The energies are computed by their own file's code, not the force kernel's (compiled with other
+# options), only if the two files share no out-of-line inline function
+# (cmake/check_kernel_objects.cmake says why).
 add_test(NAME SolverBuild.EnergiesShareNoArithmeticWithTheForceKernel
   COMMAND ${CMAKE_COMMAND} -DNM=${CMAKE_NM} "-DOBJECTS=$<JOIN:$<TARGET_OBJECTS:mppm_solver>,|>"
           -P ${PROJECT_SOURCE_DIR}/cmake/check_kernel_objects.cmake)

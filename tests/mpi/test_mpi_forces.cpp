@@ -4,13 +4,17 @@
 // point the force, moment and stabilization energy of the one-process model to the last bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "solver/bond_families.hpp"
+#include "solver/ghost_exchange.hpp"
 #include "solver/halo_exchange.hpp"
 #include "solver/horizon_search.hpp"
 #include "solver/internal_forces.hpp"
@@ -56,6 +60,35 @@ struct Case {
   bool micropolar;
 };
 
+// This process's part of a lattice: its points (owned, then ghosts) with their families, the ghosts'
+// shape terms and the field of set_field, and the halo that fetches the ghosts' values.
+struct LocalPart {
+  std::unique_ptr<HaloExchange> halo;
+  PointData p;
+  BondFamilies f;
+};
+
+LocalPart local_part(const PointCloud& cloud, const ModelOptions& o, const ProcessGroup& group) {
+  const int D = cloud.dimension;
+  const double reach = bond_reach(o.horizon, o.spacing);
+  const std::vector<double> x = cloud_positions(cloud);
+  const PointPositions positions{D, x.data(), cloud.size()};
+  const std::vector<std::int32_t> part = partition_cloud(positions, reach, group.size());
+  const LocalPoints local = local_points(positions, part, group.rank(), reach);
+  LocalPart l{std::make_unique<HaloExchange>(local, part), make_local_point_data(cloud, local, o.effects), {}};
+  PointData& p = l.p;
+  p.ghost_source = l.halo.get();
+  FamilyOptions fo;
+  fo.horizon = o.horizon;
+  fo.spacing = o.spacing;
+  l.f = build_families(p, fo);
+  update_shape_tensors(p, l.f, o.constants);
+  l.halo->update_ghosts(p.stabilization_ck, D * (D + 1) / 2);
+  if (o.effects.micropolar) l.halo->update_ghosts(p.stabilization_rot, 1);
+  set_field(p, p.owned, p.global_id);
+  return l;
+}
+
 void expect_distributed_forces_equal_whole(const Case& k) {
   const ProcessGroup group = ProcessGroup::world();
   const double dx = 1e-3;
@@ -69,27 +102,13 @@ void expect_distributed_forces_equal_whole(const Case& k) {
   set_field(whole.points, whole.points.owned, {});
   whole.kernel.forces_and_energy(whole.points, whole.bonds, whole.constants, nullptr);
 
-  // This process's part.
-  const double reach = bond_reach(o.horizon, o.spacing);
-  const std::vector<double> x = cloud_positions(cloud);
-  const PointPositions positions{D, x.data(), cloud.size()};
-  const std::vector<std::int32_t> part = partition_cloud(positions, reach, group.size());
-  const LocalPoints local = local_points(positions, part, group.rank(), reach);
-  PointData p = make_local_point_data(cloud, local, o.effects);
-  const HaloExchange halo(local, part);
-  p.ghost_source = &halo;
-  FamilyOptions fo;
-  fo.horizon = o.horizon;
-  fo.spacing = o.spacing;
-  BondFamilies f = build_families(p, fo);
-  update_shape_tensors(p, f, o.constants);
-  halo.update_ghosts(p.stabilization_ck, D * (D + 1) / 2);
-  if (k.micropolar) halo.update_ghosts(p.stabilization_rot, 1);
-  set_field(p, p.owned, p.global_id);
-  halo.update_ghosts(p.displacement, D);
-  if (k.micropolar) halo.update_ghosts(p.rotation, p.rotation_components);
+  // This process's part (the force pass fetches the ghosts' displacement and rotation).
+  LocalPart part = local_part(cloud, o, group);
+  PointData& p = part.p;
+  const HaloExchange& halo = *part.halo;
+  const BondFamilies& f = part.f;
   const InternalForceFunctions kernel = internal_force_functions(D, o.effects);
-  kernel.forces_and_energy(p, f, o.constants, nullptr);
+  kernel.forces_and_energy(p, part.f, o.constants, nullptr);
 
   // Every ghost is a neighbour of an owned point, and every owned point's bonds are the whole
   // model's.
@@ -128,6 +147,73 @@ TEST(MpiForces, PartsThinnerThanTheHorizonGiveTheOneProcessBits) {
 
 TEST(MpiForces, MicropolarBlockGivesTheOneProcessBits) {
   expect_distributed_forces_equal_whole({"3-D micro-polar 9 x 8 x 7", 3, {9, 8, 7}, true});
+}
+
+// Forwards to the halo and, when the first exchange (pass 1's displacement and rotation) is
+// finished, records which owned points already have their pass-1 force tensor.
+class WatchedExchange final : public GhostExchange {
+ public:
+  WatchedExchange(const HaloExchange& halo, const PointData& p) : halo_(halo), p_(p) {}
+  void update_ghosts(std::vector<double>& values, int components) const override {
+    halo_.update_ghosts(values, components);
+  }
+  std::vector<PointNote> notify_owners(std::span<const PointNote> notes) const override {
+    return halo_.notify_owners(notes);
+  }
+  void begin_update(std::vector<double>& values, int components) const override {
+    halo_.begin_update(values, components);
+  }
+  void finish_updates() const override {
+    if (computed_before_first_finish.empty()) {
+      const std::size_t dd = static_cast<std::size_t>(p_.dimension * p_.dimension);
+      for (std::size_t i = 0; i < p_.owned; ++i)
+        computed_before_first_finish.push_back(!std::isnan(p_.force_tensor[i * dd]));
+    }
+    halo_.finish_updates();
+  }
+  mutable std::vector<bool> computed_before_first_finish;
+
+ private:
+  const HaloExchange& halo_;
+  const PointData& p_;
+};
+
+// The overlap: the interior points (no ghost in their families) get their pass-1 tensors while the
+// ghosts' displacement and rotation travel, the border points only after they arrived.
+TEST(MpiForces, TheInteriorIsComputedWhileTheGhostsTravel) {
+  const ProcessGroup group = ProcessGroup::world();
+  const Scene scene = verification::make_scene(2, true, 1e-3, 3.05);
+  const PointCloud cloud = verification::make_lattice(2, {30, 20, 1}, 1e-3, scene.thickness);
+  const ModelOptions o = model_options(scene);
+  LocalPart part = local_part(cloud, o, group);
+  PointData& p = part.p;
+  const BondFamilies& f = part.f;
+  if (group.size() == 1) {
+    EXPECT_TRUE(f.interior_points.empty() && f.border_points.empty());
+    return;
+  }
+  // The split: every owned point once, ascending in each list; an interior point's neighbours are
+  // all owned, a border point has a ghost among them; a part of the 30 x 20 plate has both kinds.
+  ASSERT_EQ(f.interior_points.size() + f.border_points.size(), p.owned);
+  EXPECT_TRUE(std::is_sorted(f.interior_points.begin(), f.interior_points.end()));
+  EXPECT_TRUE(std::is_sorted(f.border_points.begin(), f.border_points.end()));
+  EXPECT_FALSE(f.interior_points.empty());
+  EXPECT_FALSE(f.border_points.empty());
+  auto has_ghost = [&](std::size_t i) {
+    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b)
+      if (f.neighbor_of(b) >= p.owned) return true;
+    return false;
+  };
+  for (const std::size_t i : f.interior_points) EXPECT_FALSE(has_ghost(i)) << i;
+  for (const std::size_t i : f.border_points) EXPECT_TRUE(has_ghost(i)) << i;
+
+  const WatchedExchange watched(*part.halo, p);
+  p.ghost_source = &watched;
+  std::fill(p.force_tensor.begin(), p.force_tensor.end(), std::nan(""));
+  internal_force_functions(2, o.effects).forces(p, part.f, o.constants, nullptr);
+  ASSERT_EQ(watched.computed_before_first_finish.size(), p.owned);
+  for (const std::size_t i : f.interior_points) EXPECT_TRUE(watched.computed_before_first_finish[i]) << i;
+  for (const std::size_t i : f.border_points) EXPECT_FALSE(watched.computed_before_first_finish[i]) << i;
 }
 
 }  // namespace
