@@ -5,6 +5,8 @@
 #include <cerrno>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "common/atomic_file.hpp"
 #include "common/checksummed_binary.hpp"
@@ -50,16 +52,44 @@ const char* element_name(CheckpointElement e) {
   return "?";
 }
 
+// A chunk of values of an integer array, delivered as doubles (exact: CheckpointArrayView::rows), in
+// the array's element type.
+template <class T>
+void write_as(ChecksummedWriter& w, const std::vector<double>& chunk, std::size_t n, std::vector<T>& converted) {
+  converted.resize(n);
+  for (std::size_t k = 0; k < n; ++k) converted[k] = static_cast<T>(chunk[k]);
+  w.bytes(converted.data(), n * sizeof(T));
+}
+
 // The rows of an array given by its `rows` function, a chunk of rows at a time.
 void write_rows(ChecksummedWriter& w, const CheckpointArrayView& a) {
   constexpr std::uint64_t kChunkRows = 4096;
   const auto width = static_cast<std::uint64_t>(a.components);
   const std::uint64_t rows = a.count / width;
   std::vector<double> chunk(std::min(rows, kChunkRows) * width);
+  std::vector<std::int64_t> i64;
+  std::vector<std::int32_t> i32;
+  std::vector<std::uint8_t> u8;
   for (std::uint64_t first = 0; first < rows; first += kChunkRows) {
     const std::uint64_t n = std::min(kChunkRows, rows - first);
     a.rows(first, n, chunk.data());
-    w.bytes(chunk.data(), n * width * sizeof(double));
+    const std::size_t values = n * width;
+    switch (a.element) {
+      case CheckpointElement::f64:
+        w.bytes(chunk.data(), values * sizeof(double));
+        break;
+      case CheckpointElement::i64:
+        write_as(w, chunk, values, i64);
+        break;
+      case CheckpointElement::i32:
+        write_as(w, chunk, values, i32);
+        break;
+      case CheckpointElement::u8:
+        write_as(w, chunk, values, u8);
+        break;
+      default:
+        throw std::logic_error("checkpoint array '" + a.name + "': rows of this element type cannot be written");
+    }
   }
 }
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
-#include <list>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -173,77 +173,79 @@ TrackedRows tracked_rows(const PointData& p, const ExplicitDynamics& dynamics, c
   return rows;
 }
 
-// A local array's rows as a gathered field's source (f64 only: the arrays a distributed run carries).
+// The values of rows [first, first + n) of an array of `width` values per row, as doubles (an
+// integer array's values exactly: CheckpointArrayView::rows).
+template <class T>
+std::function<void(std::uint64_t, std::uint64_t, double*)> rows_as_doubles(const void* values, int width) {
+  const auto* data = static_cast<const T*>(values);
+  const auto w = static_cast<std::uint64_t>(width);
+  return [data, w](std::uint64_t first, std::uint64_t n, double* out) {
+    for (std::uint64_t k = 0; k < n * w; ++k) out[k] = static_cast<double>(data[first * w + k]);
+  };
+}
+
+// A local array's rows as a gathered field's source (the element types a distributed run carries).
 SnapshotFieldSource row_source(const CheckpointArrayView& a, std::size_t local_rows) {
-  if (a.element != CheckpointElement::f64 || local_rows == 0 || a.count % local_rows != 0)
+  if (local_rows == 0 || a.count % local_rows != 0)
     throw std::logic_error("checkpoint array '" + a.name + "' cannot be written across processes");
   const auto width = static_cast<int>(a.count / local_rows);
-  const auto* data = static_cast<const double*>(a.data);
-  return {a.name, width, [data, width](std::uint64_t first, std::uint64_t n, double* out) {
-            std::copy_n(data + first * static_cast<std::uint64_t>(width), n * static_cast<std::uint64_t>(width), out);
-          }};
-}
-
-// The damage state that is not rows of doubles per point (distributed_bond_state.hpp), gathered
-// whole: the views of `arrays` (the carried arrays, in their order) that hold it point at `kept`.
-// Returns which of the carried arrays they are.
-std::vector<bool> gather_damage_state(std::vector<CheckpointArrayView>& arrays, std::size_t per_point,
-                                      const Model& model, const ProcessGroup& group,
-                                      std::list<std::vector<std::int32_t>>& kept_i32,
-                                      std::list<std::vector<std::uint8_t>>& kept_u8,
-                                      std::list<std::vector<double>>& kept_f64) {
-  std::vector<bool> whole(per_point, false);
-  if (!model.effects.damage) return whole;
-  const PointData& p = model.points;
-  for (std::size_t k = 0; k < per_point; ++k) {
-    CheckpointArrayView& a = arrays[k];
-    if (a.name == "bond_neighbor") {
-      a = checkpoint_array(a.name, kept_i32.emplace_back(gathered_bond_neighbors(p, model.bonds, group)));
-    } else if (a.name == "bond_work") {
-      a = checkpoint_array(a.name, kept_f64.emplace_back(gathered_bond_work(p, model.bonds, group)));
-    } else if (a.element == CheckpointElement::u8) {
-      const std::span<const std::uint8_t> local(static_cast<const std::uint8_t*>(a.data), a.count);
-      a = checkpoint_array(a.name, kept_u8.emplace_back(gathered_point_values(p, local, group)));
-    } else if (a.element == CheckpointElement::i32) {
-      const std::span<const std::int32_t> local(static_cast<const std::int32_t*>(a.data), a.count);
-      a = checkpoint_array(a.name, kept_i32.emplace_back(gathered_point_values(p, local, group)));
-    } else {
-      continue;
-    }
-    whole[k] = true;
+  switch (a.element) {
+    case CheckpointElement::f64:
+      return {a.name, width, rows_as_doubles<double>(a.data, width)};
+    case CheckpointElement::i32:
+      return {a.name, width, rows_as_doubles<std::int32_t>(a.data, width)};
+    case CheckpointElement::u8:
+      return {a.name, width, rows_as_doubles<std::uint8_t>(a.data, width)};
+    default:
+      throw std::logic_error("checkpoint array '" + a.name + "' cannot be written across processes");
   }
-  return whole;
 }
 
-// The first process writes `arrays` (through `write`) with the per-point arrays (the first
-// `per_point`, but those gathered `whole` already) and body_force (the next) gathered from every
-// process; the others answer.
-void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t per_point, const std::vector<bool>& whole,
-                    const Model& model, const ExplicitDynamics& dynamics, const CheckpointProcesses& processes,
+// Where a gathered field goes: the array it fills and its whole model's rows.
+struct GatheredArray {
+  std::size_t array = 0;
+  std::uint64_t rows = 0;
+};
+
+// The first process writes `arrays` (through `write`) with the carried arrays (the first
+// `carried`) and body_force (the next) gathered from every process, a chunk of rows at a time: the
+// per-point arrays by point, body_force by tracked point, a damage run's bond arrays by bond entry
+// and by pair (BondRows); the others answer.
+void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t carried, const Model& model,
+                    const ExplicitDynamics& dynamics, const CheckpointProcesses& processes,
                     const std::function<void()>& write) {
   const PointData& p = model.points;
   const TrackedRows tracked = tracked_rows(p, dynamics, processes);
+  std::optional<BondRows> bond_rows;
+  if (model.effects.damage) bond_rows.emplace(p, model.bonds, processes.part_of, processes.group);
   std::vector<GatheredRowSet> sets(2);
-  sets[0].rows = {std::span<const std::int64_t>(p.global_id.data(), p.owned), processes.part_of};
-  std::vector<std::size_t> rowed;  // the arrays gathered by rows
-  for (std::size_t k = 0; k < per_point; ++k)
-    if (!whole[k]) rowed.push_back(k);
-  for (const std::size_t k : rowed) sets[0].local.push_back(row_source(arrays[k], p.owned + p.ghost));
-  sets[1].rows = {tracked.local_ids, tracked.owner};
-  const CheckpointArrayView& body_force = arrays[per_point];
+  std::vector<std::vector<GatheredArray>> targets(2);  // per set, per field
+  sets[0].rows = {std::span<const std::int64_t>(p.global_id.data(), p.owned), processes.part_of, {}};
+  for (std::size_t k = 0; k < carried; ++k) {
+    const std::string& name = arrays[k].name;
+    if (name == "bond_neighbor" || name == "bond_work") {
+      sets.push_back(name == "bond_neighbor" ? bond_rows->entries() : bond_rows->pairs());
+      targets.push_back({{k, name == "bond_neighbor" ? bond_rows->entry_count() : bond_rows->pair_count()}});
+    } else {
+      sets[0].local.push_back(row_source(arrays[k], p.owned + p.ghost));
+      targets[0].push_back({k, processes.part_of.size()});
+    }
+  }
+  sets[1].rows = {tracked.local_ids, tracked.owner, {}};
+  const CheckpointArrayView& body_force = arrays[carried];
   // A process without tracked points has no rows to give (and no width to derive).
   sets[1].local.push_back(tracked.local_ids.empty() ? SnapshotFieldSource{body_force.name, p.dimension, {}}
                                                     : row_source(body_force, tracked.local_ids.size()));
+  targets[1].push_back({carried, tracked.count()});
   with_gathered_row_sets(sets, processes.group, [&](const std::vector<std::vector<SnapshotFieldSource>>& gathered) {
-    for (std::size_t r = 0; r <= rowed.size(); ++r) {
-      const bool point_rows = r < rowed.size();
-      const SnapshotFieldSource& s = point_rows ? gathered[0][r] : gathered[1][0];
-      const std::uint64_t rows = point_rows ? processes.part_of.size() : tracked.count();
-      CheckpointArrayView& a = arrays[point_rows ? rowed[r] : per_point];
-      a.components = s.components;
-      a.count = rows * static_cast<std::uint64_t>(s.components);
-      a.rows = s.values;
-    }
+    for (std::size_t set = 0; set < sets.size(); ++set)
+      for (std::size_t field = 0; field < targets[set].size(); ++field) {
+        const SnapshotFieldSource& s = gathered[set][field];
+        CheckpointArrayView& a = arrays[targets[set][field].array];
+        a.components = s.components;
+        a.count = targets[set][field].rows * static_cast<std::uint64_t>(s.components);
+        a.rows = s.values;
+      }
     write();
   });
 }
@@ -322,7 +324,9 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
   std::vector<CheckpointArrayView> arrays;
   visit_carried_arrays(model,
                        [&](const char* name, const auto& values) { arrays.push_back(checkpoint_array(name, values)); });
-  const std::size_t per_point = arrays.size();  // the arrays above are per point, body_force per tracked point
+  // The arrays above are per point (a damage run's bond arrays per bond entry and per pair),
+  // body_force per tracked point.
+  const std::size_t carried_arrays = arrays.size();
   arrays.push_back(checkpoint_array("body_force", dynamics.body_force()));
   // Small arrays: built here, alive until the file is written.
   const std::vector<double> energy = energy_values(carried.energy);
@@ -375,12 +379,7 @@ void write_checkpoint(const std::string& path, const RunIdentity& identity, cons
     write_checkpoint_file(path, header, arrays, simulate_write_failure);
   };
   if (processes) {
-    std::list<std::vector<std::int32_t>> kept_i32;
-    std::list<std::vector<std::uint8_t>> kept_u8;
-    std::list<std::vector<double>> kept_f64;
-    const std::vector<bool> whole =
-        gather_damage_state(arrays, per_point, model, processes->group, kept_i32, kept_u8, kept_f64);
-    write_gathered(arrays, per_point, whole, model, dynamics, *processes, write);
+    write_gathered(arrays, carried_arrays, model, dynamics, *processes, write);
   } else {
     write();
   }

@@ -2,10 +2,8 @@
 #include "solver/distributed_bond_state.hpp"
 
 #include <algorithm>
-#include <bit>
-#include <numeric>
 #include <span>
-#include <tuple>
+#include <stdexcept>
 
 #include "common/input_error.hpp"
 
@@ -13,52 +11,11 @@ namespace mppm::solver {
 
 namespace {
 
-template <class T>
-std::int64_t as_integer(T v) {
-  if constexpr (std::is_same_v<T, double>)
-    return std::bit_cast<std::int64_t>(v);
-  else
-    return static_cast<std::int64_t>(v);
-}
-
-template <class T>
-T from_integer(std::int64_t v) {
-  if constexpr (std::is_same_v<T, double>)
-    return std::bit_cast<double>(v);
-  else
-    return static_cast<T>(v);
-}
-
-// Every owned point's values (`values(i, out)` appends point i's), of every process, in global-id
-// order. Each point travels as its global id, its count of values and the values as integers.
-template <class T, class Values>
-std::vector<T> gather_by_global_id(const PointData& p, const ProcessGroup& group, Values&& values) {
-  std::vector<std::int64_t> mine, point;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    point.clear();
-    values(i, point);
-    mine.push_back(p.global_id[i]);
-    mine.push_back(static_cast<std::int64_t>(point.size()));
-    mine.insert(mine.end(), point.begin(), point.end());
-  }
-  const std::vector<std::vector<std::int64_t>> all = group.gather(std::span<const std::int64_t>(mine));
-  std::vector<std::tuple<std::int64_t, std::size_t, std::size_t>> where;  // global id, process, position
-  for (std::size_t r = 0; r < all.size(); ++r)
-    for (std::size_t m = 0; m + 1 < all[r].size(); m += 2 + static_cast<std::size_t>(all[r][m + 1]))
-      where.emplace_back(all[r][m], r, m);
-  std::sort(where.begin(), where.end());
-  std::vector<T> out;
-  for (const auto& [id, r, m] : where) {
-    const auto n = static_cast<std::size_t>(all[r][m + 1]);
-    for (std::size_t k = 0; k < n; ++k) out.push_back(from_integer<T>(all[r][m + 2 + k]));
-  }
-  return out;
-}
-
-// The first entry of each owned point's rows in the one-process array whose point g has
-// `count(i)` entries: the sums of the counts of the points before it in global-id order.
+// Each point's first row in the one-process array whose point g has `count(i)` rows (owned point i
+// of some process): the sums of the counts of the points before it in global-id order, for every
+// point of the whole cloud (global ids are 0 .. n-1), and the whole array's length last.
 template <class Count>
-std::vector<std::size_t> whole_offsets(const PointData& p, const ProcessGroup& group, Count&& count) {
+std::vector<std::uint64_t> first_rows(const PointData& p, const ProcessGroup& group, Count&& count) {
   std::vector<std::int64_t> mine;
   for (std::size_t i = 0; i < p.owned; ++i) {
     mine.push_back(p.global_id[i]);
@@ -68,47 +25,88 @@ std::vector<std::size_t> whole_offsets(const PointData& p, const ProcessGroup& g
   for (const std::vector<std::int64_t>& from : group.gather(std::span<const std::int64_t>(mine)))
     for (std::size_t m = 0; m + 1 < from.size(); m += 2) all.emplace_back(from[m], from[m + 1]);
   std::sort(all.begin(), all.end());
-  std::vector<std::size_t> start(all.size() + 1, 0);
-  for (std::size_t k = 0; k < all.size(); ++k) start[k + 1] = start[k] + static_cast<std::size_t>(all[k].second);
-  std::vector<std::size_t> offset(p.owned + 1);
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    const auto it = std::lower_bound(all.begin(), all.end(), std::pair{p.global_id[i], std::int64_t{0}});
-    offset[i] = start[static_cast<std::size_t>(it - all.begin())];
+  std::vector<std::uint64_t> first(all.size() + 1, 0);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (all[k].first != static_cast<std::int64_t>(k))
+      throw std::logic_error("bond rows: the processes' points are not the global ids 0 .. n-1");
+    first[k + 1] = first[k] + static_cast<std::uint64_t>(all[k].second);
   }
-  offset[p.owned] = start.back();  // the whole array's length
+  return first;
+}
+
+// The global row of every local row: owned point i's rows follow its first row.
+template <class Count>
+std::vector<std::int64_t> own_row_ids(const PointData& p, const std::vector<std::uint64_t>& first, Count&& count) {
+  std::vector<std::int64_t> ids;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    const auto start = static_cast<std::int64_t>(first[static_cast<std::size_t>(p.global_id[i])]);
+    for (std::int64_t k = 0; k < count(i); ++k) ids.push_back(start + k);
+  }
+  return ids;
+}
+
+// The rows' distribution: a row's owner is the owner of the point whose rows hold it.
+DistributedRows rows_by_point(std::span<const std::int64_t> ids, const std::vector<std::uint64_t>& first,
+                              std::span<const std::int32_t> part_of) {
+  DistributedRows rows;
+  rows.local_ids = ids;
+  rows.owner_of = [&first, part_of](std::int64_t g) {
+    const auto after = std::upper_bound(first.begin(), first.end(), static_cast<std::uint64_t>(g));
+    return part_of[static_cast<std::size_t>(after - first.begin() - 1)];
+  };
+  return rows;
+}
+
+// The first entry of each owned point's rows in the one-process array, and the array's length last.
+template <class Count>
+std::vector<std::size_t> whole_offsets(const PointData& p, const ProcessGroup& group, Count&& count) {
+  const std::vector<std::uint64_t> first = first_rows(p, group, count);
+  std::vector<std::size_t> offset(p.owned + 1);
+  for (std::size_t i = 0; i < p.owned; ++i) offset[i] = first[static_cast<std::size_t>(p.global_id[i])];
+  offset[p.owned] = first.back();
   return offset;
 }
 
 }  // namespace
 
-std::vector<std::int32_t> gathered_bond_neighbors(const PointData& p, const BondFamilies& f,
-                                                  const ProcessGroup& group) {
-  return gather_by_global_id<std::int32_t>(p, group, [&](std::size_t i, std::vector<std::int64_t>& out) {
-    for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      const auto id = static_cast<std::int32_t>(p.global_id[f.neighbor_of(b)]);
-      out.push_back(f.acting(b) ? id : (id | BondFamilies::kBrokenBit));
-    }
-  });
+BondRows::BondRows(const PointData& p, const BondFamilies& f, std::span<const std::int32_t> part_of,
+                   const ProcessGroup& group)
+    : points_(p), bonds_(f), part_of_(part_of) {
+  auto entries = [&](std::size_t i) { return f.offset[i + 1] - f.offset[i]; };
+  auto pairs = [&](std::size_t i) { return f.pair_offset[i + 1] - f.pair_offset[i]; };
+  first_entry_ = first_rows(p, group, entries);
+  first_pair_ = first_rows(p, group, pairs);
+  entry_ids_ = own_row_ids(p, first_entry_, entries);
+  pair_ids_ = own_row_ids(p, first_pair_, pairs);
+  if (group.rank() != 0) {  // only the first process places rows
+    first_entry_ = {};
+    first_pair_ = {};
+  }
 }
 
-std::vector<double> gathered_bond_work(const PointData& p, const BondFamilies& f, const ProcessGroup& group) {
-  return gather_by_global_id<double>(p, group, [&](std::size_t i, std::vector<std::int64_t>& out) {
-    for (std::int64_t k = f.pair_offset[i]; k < f.pair_offset[i + 1]; ++k)
-      out.push_back(as_integer(f.work[static_cast<std::size_t>(k)]));
-  });
+// The local rows are the owned points' entries and pairs in the local arrays' order: the k-th local
+// row is bond entry k, and pair k.
+GatheredRowSet BondRows::entries() const {
+  GatheredRowSet set;
+  set.rows = rows_by_point(entry_ids_, first_entry_, part_of_);
+  set.local.push_back({"bond_neighbor", 1, [this](std::uint64_t first, std::uint64_t n, double* out) {
+                         for (std::uint64_t k = 0; k < n; ++k) {
+                           const auto b = static_cast<std::int64_t>(first + k);
+                           const auto id = static_cast<std::int32_t>(points_.global_id[bonds_.neighbor_of(b)]);
+                           out[k] = bonds_.acting(b) ? id : (id | BondFamilies::kBrokenBit);
+                         }
+                       }});
+  return set;
 }
 
-template <class T>
-std::vector<T> gathered_point_values(const PointData& p, std::span<const T> values, const ProcessGroup& group) {
-  const std::size_t width = values.size() / p.total();
-  return gather_by_global_id<T>(p, group, [&](std::size_t i, std::vector<std::int64_t>& out) {
-    for (std::size_t c = 0; c < width; ++c) out.push_back(as_integer(values[i * width + c]));
-  });
+GatheredRowSet BondRows::pairs() const {
+  GatheredRowSet set;
+  set.rows = rows_by_point(pair_ids_, first_pair_, part_of_);
+  set.local.push_back({"bond_work", 1, [this](std::uint64_t first, std::uint64_t n, double* out) {
+                         std::copy_n(bonds_.work.data() + first, n, out);
+                       }});
+  return set;
 }
-template std::vector<std::uint8_t> gathered_point_values(const PointData&, std::span<const std::uint8_t>,
-                                                         const ProcessGroup&);
-template std::vector<std::int32_t> gathered_point_values(const PointData&, std::span<const std::int32_t>,
-                                                         const ProcessGroup&);
 
 void restore_own_bonds(const std::vector<std::int32_t>& neighbors, const std::vector<double>& work, PointData& p,
                        BondFamilies& f, const ProcessGroup& group, const std::string& file) {

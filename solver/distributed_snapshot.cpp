@@ -61,11 +61,11 @@ void serve(const std::vector<GatheredRowSet>& sets) {
 void gather_chunk(const std::vector<GatheredRowSet>& sets, const std::vector<FieldOfSet>& fields, int processes,
                   std::int64_t f, std::uint64_t first, std::uint64_t count, double* out) {
   const FieldOfSet& field = fields[static_cast<std::size_t>(f)];
-  const std::span<const std::int32_t> part = sets[field.set].rows.owner;
+  const DistributedRows& rows = sets[field.set].rows;
   const auto c = static_cast<std::size_t>(sets[field.set].local[field.field].components);
   const auto begin = static_cast<std::int64_t>(first), end = static_cast<std::int64_t>(first + count);
   std::vector<std::size_t> expected(static_cast<std::size_t>(processes), 0);
-  for (std::int64_t g = begin; g < end; ++g) ++expected[static_cast<std::size_t>(part[static_cast<std::size_t>(g)])];
+  for (std::int64_t g = begin; g < end; ++g) ++expected[static_cast<std::size_t>(rows.owner_of_row(g))];
   std::vector<std::vector<double>> received(static_cast<std::size_t>(processes));
   std::vector<MPI_Request> pending;
   const Request request{f, begin, end};
@@ -82,7 +82,7 @@ void gather_chunk(const std::vector<GatheredRowSet>& sets, const std::vector<Fie
   MPI_Waitall(static_cast<int>(pending.size()), pending.data(), MPI_STATUSES_IGNORE);
   std::vector<std::size_t> next(static_cast<std::size_t>(processes), 0);
   for (std::int64_t g = begin; g < end; ++g) {
-    const auto r = static_cast<std::size_t>(part[static_cast<std::size_t>(g)]);
+    const auto r = static_cast<std::size_t>(rows.owner_of_row(g));
     std::copy_n(&received[r][next[r] * c], c, &out[static_cast<std::size_t>(g - begin) * c]);
     ++next[r];
   }
@@ -101,7 +101,7 @@ void with_gathered_fields(const PointData& points, const std::vector<SnapshotFie
                           const GatheredWrite& write) {
   const std::span<const std::int64_t> owned(points.global_id.data(), points.owned);
   with_gathered_row_sets(
-      {GatheredRowSet{DistributedRows{owned, part_of}, local}}, group,
+      {GatheredRowSet{DistributedRows{owned, part_of, {}}, local}}, group,
       [&](const std::vector<std::vector<SnapshotFieldSource>>& whole) { write(whole[0], part_of.size()); });
 }
 
