@@ -33,6 +33,8 @@ class GhostExchange {
   // puts them in place. A begun field's values must not change before finish_updates.
   virtual void begin_update(std::vector<double>& values, int components) const = 0;
   virtual void finish_updates() const = 0;
+  // Lets the begun fields' messages move on (called between blocks of work while they travel).
+  virtual void advance_transfers() const = 0;
 };
 
 }  // namespace mppm::solver

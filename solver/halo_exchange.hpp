@@ -25,6 +25,7 @@ class HaloExchange final : public GhostExchange {
   std::vector<PointNote> notify_owners(std::span<const PointNote> about_ghosts) const override;
   void begin_update(std::vector<double>& values, int components) const override;
   void finish_updates() const override;
+  void advance_transfers() const override;
 
   // The processes this one exchanges with, and the points it sends and receives per exchange.
   std::size_t neighbours() const { return links_.size(); }

@@ -597,6 +597,21 @@ void begin_ghost_tensors(PointData& p, [[maybe_unused]] bool advancing) {
   }
 }
 
+// A pass over the interior points in blocks, the ghosts' transfers advanced between them: an MPI
+// library moves a large message (over shared memory, or a network without its own progress) only
+// inside its calls, so without them the values would travel only once the pass waits for them.
+template <class Pass>
+void interior_in_blocks(const PointData& p, PointSelection interior, bool threaded, Pass&& pass) {
+  constexpr std::int64_t kBlocks = 8, kSmallestBlock = 2048;
+  const std::int64_t per_block = std::max(kSmallestBlock, (interior.count + kBlocks - 1) / kBlocks);
+  for (std::int64_t first = 0; first < interior.count; first += per_block) {
+    const PointSelection block{interior.list + first, std::min(per_block, interior.count - first)};
+#pragma omp parallel if (threaded)
+    pass(block);
+    p.ghost_source->advance_transfers();
+  }
+}
+
 template <int D, class Effects, bool WithEnergy, bool StoredXi>
 void overlapped_internal_forces(PointData& p, BondFamilies& f, const CosseratConstants& c, const StepAdvance* advance,
                                 bool threaded) {
@@ -605,14 +620,15 @@ void overlapped_internal_forces(PointData& p, BondFamilies& f, const CosseratCon
   const bool accumulate_work = Effects::damage && advance != nullptr;
   const PointSelection interior = listed(f.interior_points), border = listed(f.border_points);
   begin_ghost_kinematics<D, Effects>(p);
-#pragma omp parallel if (threaded)
-  pass1_points<D, Effects, StoredXi>(p, f, c, advance, interior);
+  interior_in_blocks(p, interior, threaded,
+                     [&](PointSelection block) { pass1_points<D, Effects, StoredXi>(p, f, c, advance, block); });
   p.ghost_source->finish_updates();
 #pragma omp parallel if (threaded)
   pass1_points<D, Effects, StoredXi>(p, f, c, advance, border);
   begin_ghost_tensors<D, Effects>(p, accumulate_work);
-#pragma omp parallel if (threaded)
-  pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work, interior);
+  interior_in_blocks(p, interior, threaded, [&](PointSelection block) {
+    pass2_points<D, Effects, WithEnergy, StoredXi>(p, f, c, accumulate_work, block);
+  });
   p.ghost_source->finish_updates();
 #pragma omp parallel if (threaded)
   {

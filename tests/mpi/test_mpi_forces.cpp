@@ -163,6 +163,7 @@ class WatchedExchange final : public GhostExchange {
   void begin_update(std::vector<double>& values, int components) const override {
     halo_.begin_update(values, components);
   }
+  void advance_transfers() const override { halo_.advance_transfers(); }
   void finish_updates() const override {
     if (computed_before_first_finish.empty()) {
       const std::size_t dd = static_cast<std::size_t>(p_.dimension * p_.dimension);
