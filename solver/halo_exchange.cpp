@@ -115,7 +115,9 @@ void HaloExchange::begin_update(std::vector<double>& values, int components) con
   if (begun_ == 0) requests_.clear();
   if (begun_ == fields_.size()) fields_.emplace_back();
   Field& field = fields_[begun_];
-  const int tag = 23 + static_cast<int>(begun_);  // one tag per field in flight
+  // One tag per field in flight, 23 on: below the snapshots' (41, 42).
+  if (begun_ >= 16) throw std::logic_error("halo exchange: more than 16 fields begun at once");
+  const int tag = 23 + static_cast<int>(begun_);
   ++begun_;
   field.values = &values;
   field.components = static_cast<std::size_t>(components);

@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <climits>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -466,6 +467,44 @@ TEST(CheckpointRestart, CheckpointHoldsTheStateOfTheEffectsOnly) {
       read_checkpoint_file(checkpoint_path(stopped_run(softening_compression(), "contents_plastic")));
   for (const char* name : {"plastic_strain", "plastic_wryness", "equivalent_plastic_strain", "strain"})
     EXPECT_TRUE(plastic.has(name)) << name;
+}
+
+// The container writes an array given by rows (a distributed run's, gathered a chunk at a time) in
+// its element type: integer values come as doubles and are stored as the integers they are, over
+// more rows than one chunk (4096), negative ones (a broken bond's mark) and 0/1 flags included.
+TEST(CheckpointFileRows, IntegerArraysGivenByRowsAreStoredInTheirType) {
+  const std::uint64_t rows = 10000;
+  auto value = [](std::uint64_t k) { return static_cast<std::int32_t>(k * 7919 % 100003) - 50000; };
+  CheckpointArrayView marks;
+  marks.name = "marks";
+  marks.element = CheckpointElement::i32;
+  marks.count = rows;
+  marks.rows = [&](std::uint64_t first, std::uint64_t n, double* out) {
+    for (std::uint64_t k = 0; k < n; ++k) out[k] = value(first + k) | ((first + k) % 3 == 0 ? INT32_MIN : 0);
+  };
+  CheckpointArrayView flags;
+  flags.name = "flags";
+  flags.element = CheckpointElement::u8;
+  flags.components = 2;
+  flags.count = 2 * rows;
+  flags.rows = [](std::uint64_t first, std::uint64_t n, double* out) {
+    for (std::uint64_t k = 0; k < 2 * n; ++k) out[k] = static_cast<double>((2 * first + k) % 2);
+  };
+  const std::string dir = fresh_directory("container_rows");
+  fs::create_directories(dir);
+  const std::string path = dir + "/rows.ckpt";
+  write_checkpoint_file(path, CheckpointHeader{}, {marks, flags});
+  const CheckpointFile file = read_checkpoint_file(path);
+  const std::vector<std::int32_t> read_marks = file.array<std::int32_t>("marks");
+  const std::vector<std::uint8_t> read_flags = file.array<std::uint8_t>("flags");
+  ASSERT_EQ(read_marks.size(), rows);
+  ASSERT_EQ(read_flags.size(), 2 * rows);
+  std::size_t wrong = 0;
+  for (std::uint64_t k = 0; k < rows; ++k) {
+    wrong += read_marks[k] != (value(k) | (k % 3 == 0 ? INT32_MIN : 0));
+    wrong += read_flags[2 * k] != 0 || read_flags[2 * k + 1] != 1;
+  }
+  EXPECT_EQ(wrong, 0u);
 }
 
 }  // namespace
