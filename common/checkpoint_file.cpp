@@ -67,7 +67,6 @@ void write_rows(ChecksummedWriter& w, const CheckpointArrayView& a) {
   const auto width = static_cast<std::uint64_t>(a.components);
   const std::uint64_t rows = a.count / width;
   std::vector<double> chunk(std::min(rows, kChunkRows) * width);
-  std::vector<std::int64_t> i64;
   std::vector<std::int32_t> i32;
   std::vector<std::uint8_t> u8;
   for (std::uint64_t first = 0; first < rows; first += kChunkRows) {
@@ -77,9 +76,6 @@ void write_rows(ChecksummedWriter& w, const CheckpointArrayView& a) {
     switch (a.element) {
       case CheckpointElement::f64:
         w.bytes(chunk.data(), values * sizeof(double));
-        break;
-      case CheckpointElement::i64:
-        write_as(w, chunk, values, i64);
         break;
       case CheckpointElement::i32:
         write_as(w, chunk, values, i32);

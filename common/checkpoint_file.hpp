@@ -74,7 +74,7 @@ struct CheckpointArrayView {
   // ... or, for an array not held in one place (a distributed run's, gathered from its processes),
   // its rows of `components` values: rows [first, first + n) into `out`, asked for a chunk of rows
   // at a time (count = rows x components; data unused). An integer array's values come as doubles,
-  // which hold them exactly (below 2^53), and are written in its element type.
+  // which hold them exactly, and are written in its element type (i32 or u8).
   int components = 1;
   std::function<void(std::uint64_t first, std::uint64_t n, double* out)> rows;
 };

@@ -220,7 +220,7 @@ void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t carrie
   if (model.effects.damage) bond_rows.emplace(p, model.bonds, processes.part_of, processes.group);
   std::vector<GatheredRowSet> sets(2);
   std::vector<std::vector<GatheredArray>> targets(2);  // per set, per field
-  sets[0].rows = {std::span<const std::int64_t>(p.global_id.data(), p.owned), processes.part_of, {}};
+  sets[0].rows = {std::span<const std::int64_t>(p.global_id.data(), p.owned), owners_listed(processes.part_of)};
   for (std::size_t k = 0; k < carried; ++k) {
     const std::string& name = arrays[k].name;
     if (name == "bond_neighbor" || name == "bond_work") {
@@ -231,7 +231,7 @@ void write_gathered(std::vector<CheckpointArrayView>& arrays, std::size_t carrie
       targets[0].push_back({k, processes.part_of.size()});
     }
   }
-  sets[1].rows = {tracked.local_ids, tracked.owner, {}};
+  sets[1].rows = {tracked.local_ids, owners_listed(tracked.owner)};
   const CheckpointArrayView& body_force = arrays[carried];
   // A process without tracked points has no rows to give (and no width to derive).
   sets[1].local.push_back(tracked.local_ids.empty() ? SnapshotFieldSource{body_force.name, p.dimension, {}}

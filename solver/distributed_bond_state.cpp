@@ -45,14 +45,18 @@ std::vector<std::int64_t> own_row_ids(const PointData& p, const std::vector<std:
   return ids;
 }
 
-// The rows' distribution: a row's owner is the owner of the point whose rows hold it.
+// The rows' distribution: a row's owner is the owner of the point whose rows hold it. A chunk's rows
+// are consecutive: the first row's point is found by bisection, the others by walking on.
 DistributedRows rows_by_point(std::span<const std::int64_t> ids, const std::vector<std::uint64_t>& first,
                               std::span<const std::int32_t> part_of) {
   DistributedRows rows;
   rows.local_ids = ids;
-  rows.owner_of = [&first, part_of](std::int64_t g) {
-    const auto after = std::upper_bound(first.begin(), first.end(), static_cast<std::uint64_t>(g));
-    return part_of[static_cast<std::size_t>(after - first.begin() - 1)];
+  rows.owners = [&first, part_of](std::int64_t begin, std::int64_t end, std::int32_t* out) {
+    auto point = std::upper_bound(first.begin(), first.end(), static_cast<std::uint64_t>(begin)) - first.begin() - 1;
+    for (std::int64_t g = begin; g < end; ++g) {
+      while (first[static_cast<std::size_t>(point) + 1] <= static_cast<std::uint64_t>(g)) ++point;
+      out[g - begin] = part_of[static_cast<std::size_t>(point)];
+    }
   };
   return rows;
 }

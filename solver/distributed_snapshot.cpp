@@ -64,8 +64,10 @@ void gather_chunk(const std::vector<GatheredRowSet>& sets, const std::vector<Fie
   const DistributedRows& rows = sets[field.set].rows;
   const auto c = static_cast<std::size_t>(sets[field.set].local[field.field].components);
   const auto begin = static_cast<std::int64_t>(first), end = static_cast<std::int64_t>(first + count);
+  std::vector<std::int32_t> owner(count);
+  rows.owners(begin, end, owner.data());
   std::vector<std::size_t> expected(static_cast<std::size_t>(processes), 0);
-  for (std::int64_t g = begin; g < end; ++g) ++expected[static_cast<std::size_t>(rows.owner_of_row(g))];
+  for (const std::int32_t r : owner) ++expected[static_cast<std::size_t>(r)];
   std::vector<std::vector<double>> received(static_cast<std::size_t>(processes));
   std::vector<MPI_Request> pending;
   const Request request{f, begin, end};
@@ -82,13 +84,19 @@ void gather_chunk(const std::vector<GatheredRowSet>& sets, const std::vector<Fie
   MPI_Waitall(static_cast<int>(pending.size()), pending.data(), MPI_STATUSES_IGNORE);
   std::vector<std::size_t> next(static_cast<std::size_t>(processes), 0);
   for (std::int64_t g = begin; g < end; ++g) {
-    const auto r = static_cast<std::size_t>(rows.owner_of_row(g));
+    const auto r = static_cast<std::size_t>(owner[static_cast<std::size_t>(g - begin)]);
     std::copy_n(&received[r][next[r] * c], c, &out[static_cast<std::size_t>(g - begin) * c]);
     ++next[r];
   }
 }
 
 }  // namespace
+
+RowOwners owners_listed(std::span<const std::int32_t> owner) {
+  return [owner](std::int64_t begin, std::int64_t end, std::int32_t* out) {
+    std::copy(owner.begin() + begin, owner.begin() + end, out);
+  };
+}
 
 void with_gathered_fields(const Model& model, const std::vector<std::string>& fields,
                           std::span<const std::int32_t> part_of, const ProcessGroup& group,
@@ -101,7 +109,7 @@ void with_gathered_fields(const PointData& points, const std::vector<SnapshotFie
                           const GatheredWrite& write) {
   const std::span<const std::int64_t> owned(points.global_id.data(), points.owned);
   with_gathered_row_sets(
-      {GatheredRowSet{DistributedRows{owned, part_of, {}}, local}}, group,
+      {GatheredRowSet{DistributedRows{owned, owners_listed(part_of)}, local}}, group,
       [&](const std::vector<std::vector<SnapshotFieldSource>>& whole) { write(whole[0], part_of.size()); });
 }
 

@@ -31,16 +31,17 @@ void with_gathered_fields(const PointData& points, const std::vector<SnapshotFie
 
 // Rows of an array spread over the processes, each row on one process: a point's, or a row of the
 // points some array holds (the integrator's tracked points).
+// The process of each global row in [begin, end), into out (called on the first process, once per
+// chunk).
+using RowOwners = std::function<void(std::int64_t begin, std::int64_t end, std::int32_t* out)>;
+
 struct DistributedRows {
   std::span<const std::int64_t> local_ids;  // the global index of each of this process's rows, ascending
-  std::span<const std::int32_t> owner;      // the process of every global row (read on the first process)
-  // Instead of `owner`, where a row's process follows from a coarser index (a bond entry's is its
-  // point's): the process of a global row (called on the first process).
-  std::function<std::int32_t(std::int64_t)> owner_of;
-  std::int32_t owner_of_row(std::int64_t g) const {
-    return owner_of ? owner_of(g) : owner[static_cast<std::size_t>(g)];
-  }
+  RowOwners owners;
 };
+
+// The owners of rows listed one per row (`owner`: the process of every global row).
+RowOwners owners_listed(std::span<const std::int32_t> owner);
 
 // Fields over one set of rows: `local` gives this process's rows by local index.
 struct GatheredRowSet {
