@@ -46,6 +46,15 @@ constexpr Convergence step_convergence{1e-8, 5, 20, 150};
 // 3-D benchmark block: 5e-4 after 14 iterations), at half the cost or less.
 constexpr Convergence naming_convergence{1e-2, 3, 10, 60};
 
+// What a Lanczos run works with: where the previous Lanczos vector lives (see largest_eigenvalue)
+// and the kernel that applies the operator, chosen once per set of estimates
+// (Model::linear_operator_kernel).
+struct Workspace {
+  std::vector<double>& prev_u;
+  std::vector<double>& prev_w;
+  InternalForceFunction apply;
+};
+
 struct OperatorEstimate {
   double lambda = 0.0;  // omega_max^2 (a Ritz value: approaches it from below)
   int iterations = 0;
@@ -61,8 +70,9 @@ struct OperatorEstimate {
 // previous q in `prev_u`, `prev_w` (the model's velocity and spin before a run: see
 // critical_time_step), so that no vector of the model's size is allocated here: this runs before
 // the time loop, and its vectors would otherwise set the run's peak memory.
-OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence& convergence,
-                                    std::vector<double>& prev_u, std::vector<double>& prev_w) {
+OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence& convergence, Workspace& ws) {
+  std::vector<double>& prev_u = ws.prev_u;
+  std::vector<double>& prev_w = ws.prev_w;
   PointData& p = model.points;
   const int D = p.dimension;
   const int R = p.rotation_components;
@@ -103,7 +113,7 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence
   std::vector<double> history;
   for (int it = 1; it <= convergence.most; ++it) {
     // w = M^-1 K q = -(internal force of the field q) / mass density
-    model.compute_internal_forces(false);
+    ws.apply(model.points, model.bonds, model.constants, nullptr);
     for (std::size_t k = 0; k < n * D; ++k) w_u[k] = use_u ? -w_u[k] / rho : 0.0;
     for (std::size_t k = 0; k < n * R; ++k) w_w[k] = use_w ? -w_w[k] / inertia : 0.0;
     const double a = mass_dot(w_u, w_w, q_u, q_w);
@@ -169,7 +179,8 @@ void with_operator(Model& model, Estimates&& estimates) {
     for (std::size_t i = 0; i < p.owned; ++i)
       if (p.region[i] == 0) p.fluid_content_change[i] = 0.0;
   }
-  estimates(rest ? p.velocity : own_prev_u, rest ? p.spin : own_prev_w);
+  Workspace ws{rest ? p.velocity : own_prev_u, rest ? p.spin : own_prev_w, model.linear_operator_kernel()};
+  estimates(ws);
   if (rest) {
     for (auto* v : {&p.displacement, &p.rotation, &p.velocity, &p.spin}) std::fill(v->begin(), v->end(), 0.0);
   } else {
@@ -182,13 +193,12 @@ void with_operator(Model& model, Estimates&& estimates) {
 
 // The translational and rotational block steps, the limiting mode and the parameter that drives
 // it, for the model whose coupled step is in `out`.
-void name_mode(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u, std::vector<double>& prev_w) {
+void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
   PointData& p = model.points;
   // Without rotation dofs the translational block is the coupled operator.
-  const double trans_lambda =
-      p.rotation_components > 0
-          ? largest_eigenvalue(model, Block::translational, naming_convergence, prev_u, prev_w).lambda
-          : 4.0 / (out.step * out.step);
+  const double trans_lambda = p.rotation_components > 0
+                                  ? largest_eigenvalue(model, Block::translational, naming_convergence, ws).lambda
+                                  : 4.0 / (out.step * out.step);
   out.translational = 2.0 / std::sqrt(trans_lambda);
   CosseratConstants& c = model.constants;
   const bool fluid = !p.fluid_content_change.empty();
@@ -219,7 +229,7 @@ void name_mode(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u,
   auto estimate_without = [&](Block b, auto&& switch_off) {
     const CosseratConstants saved = c;
     switch_off();
-    const OperatorEstimate e = largest_eigenvalue(model, b, naming_convergence, prev_u, prev_w);
+    const OperatorEstimate e = largest_eigenvalue(model, b, naming_convergence, ws);
     c = saved;
     update_stabilization_tensors(p, c);
     return e.lambda;
@@ -228,7 +238,7 @@ void name_mode(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u,
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
   double rot_lambda = 0.0;
   if (p.rotation_components > 0) {
-    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, naming_convergence, prev_u, prev_w);
+    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, naming_convergence, ws);
     out.rotational = 2.0 / std::sqrt(rot.lambda);
     rot_lambda = rot.lambda;
   }
@@ -268,8 +278,8 @@ void name_mode(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u,
 }
 
 // The coupled estimate sets the step (step_convergence).
-void estimate_coupled(Model& model, CriticalTimeStep& out, std::vector<double>& prev_u, std::vector<double>& prev_w) {
-  const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, step_convergence, prev_u, prev_w);
+void estimate_coupled(Model& model, CriticalTimeStep& out, Workspace& ws) {
+  const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, step_convergence, ws);
   out.step = 2.0 / std::sqrt(coupled.lambda);
   out.iterations = coupled.iterations;
 }
@@ -278,23 +288,19 @@ void estimate_coupled(Model& model, CriticalTimeStep& out, std::vector<double>& 
 
 CriticalTimeStep coupled_critical_time_step(Model& model) {
   CriticalTimeStep out;
-  with_operator(model, [&](std::vector<double>& prev_u, std::vector<double>& prev_w) {
-    estimate_coupled(model, out, prev_u, prev_w);
-  });
+  with_operator(model, [&](Workspace& ws) { estimate_coupled(model, out, ws); });
   return out;
 }
 
 void name_limiting_mode(Model& model, CriticalTimeStep& critical) {
-  with_operator(model, [&](std::vector<double>& prev_u, std::vector<double>& prev_w) {
-    name_mode(model, critical, prev_u, prev_w);
-  });
+  with_operator(model, [&](Workspace& ws) { name_mode(model, critical, ws); });
 }
 
 CriticalTimeStep critical_time_step(Model& model) {
   CriticalTimeStep out;
-  with_operator(model, [&](std::vector<double>& prev_u, std::vector<double>& prev_w) {
-    estimate_coupled(model, out, prev_u, prev_w);
-    name_mode(model, out, prev_u, prev_w);
+  with_operator(model, [&](Workspace& ws) {
+    estimate_coupled(model, out, ws);
+    name_mode(model, out, ws);
   });
   return out;
 }

@@ -40,6 +40,10 @@ struct InternalForceFunctions {
   ElasticEnergyFunction elastic_energy = nullptr;        // one point's elastic energies (breakage)
   StoredEnergySumFunction stored_energy_sums = nullptr;  // the stored energy's totals (energy rows)
   BreakageRefreshFunction refresh_after_breakage = nullptr;
+  // The same model's kernel without the history effects (damage, viscoplasticity): the linear
+  // operator K v of the start-up estimates, at fewer instructions per bond, while no bond is broken
+  // and no plastic strain is held (Model::linear_operator_kernel).
+  InternalForceFunction elastic_forces = nullptr;
 };
 
 InternalForceFunctions internal_force_functions(int dimension, const EffectSet& effects);

@@ -212,6 +212,27 @@ Model build_local_model(const PointCloud& cloud, const LocalPoints& local, const
   return complete_model(std::move(points), cloud, o, phases);
 }
 
+namespace {
+
+// A broken bond, or a plastic strain or wryness that is not zero, among the owned points.
+bool holds_history(const PointData& p, const BondFamilies& f) {
+  const auto nonzero = [](const std::vector<double>& v) {
+    return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  };
+  const auto broken = [](std::int32_t entry) { return entry < 0; };
+  const auto first = f.neighbor.begin();
+  const auto last = first + static_cast<std::ptrdiff_t>(f.offset[p.owned]);
+  return std::any_of(first, last, broken) || nonzero(p.plastic_strain) || nonzero(p.plastic_wryness);
+}
+
+}  // namespace
+
+InternalForceFunction Model::linear_operator_kernel() const {
+  double history = holds_history(points, bonds) ? 1.0 : 0.0;
+  if (points.processes) history = points.processes->highest(history);
+  return history > 0.0 ? kernel.forces : kernel.elastic_forces;
+}
+
 void Model::advance_internal_forces(double dt, double end_time, bool with_energy) {
   const StepAdvance step{viscoplastic_model.get(), dt};
   (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, &step);

@@ -83,6 +83,11 @@ struct Model {
   void compute_internal_forces(bool with_energy = false) {
     (with_energy ? kernel.forces_and_energy : kernel.forces)(points, bonds, constants, nullptr);
   }
+  // The kernel the start-up estimates apply as the linear operator K v (critical_time_step.cpp):
+  // the one without the history effects while the state holds no history (no broken bond, no
+  // plastic strain; on every process), the same operator at fewer instructions per bond; else the
+  // model's own (kernel.forces).
+  InternalForceFunction linear_operator_kernel() const;
   // The same at the end of a time step of length dt, with the history advanced from the start of
   // the step: the viscoplastic state by the return map (points.plastic_dissipation set), and with
   // damage the bond work, the bonds that reach the critical work broken (points.bonds_broken and

@@ -18,6 +18,7 @@ namespace {
 
 using testing::make_lattice;
 using testing::make_model;
+using testing::make_scene;
 
 // workflows/shear-band/README.md material on a small lattice of its spacing and horizon.
 Scene shear_band_scene(double a3) {
@@ -94,6 +95,55 @@ TEST(SolverTimeStep, NamingBlockStepsAgreeWithTheCoupledStep) {
     if (a3 > 1e3) {
       EXPECT_NEAR(limiting, c.step, 1e-3 * c.step);
     }
+  }
+}
+
+// The start-up estimates apply the kernel without the history effects (Model::linear_operator_kernel):
+// with every bond acting and no plastic strain it is the model's own operator, bit for bit (the
+// damage kernel skips no bond, the viscoplastic one subtracts a zero plastic strain, and both round
+// alike: the fusions are written in the source). Once a bond is broken or a plastic strain is held,
+// the model's own kernel answers (the elastic one would read the broken entry as a neighbour).
+TEST(SolverTimeStep, ElasticResponseIsTheModelsOwnOperatorWhileNoHistoryIsHeld) {
+  for (const int d : {2, 3}) {
+    Scene s = make_scene(d, true, 1e-3, 3.05);
+    s.effects.damage = true;
+    s.material.damage = DamageParameters{100.0, 0.0, DamageCalibration::lattice, std::nullopt};
+    s.effects.viscoplasticity = true;
+    ViscoplasticParameters vp;
+    vp.cohesion = 1e6;
+    s.material.viscoplasticity = vp;
+    Model m = make_model(make_lattice(d, {6, 5, d == 3 ? 4 : 1}, 1e-3, s.thickness), s);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> g(-1e-6, 1e-6);
+    for (auto& u : m.points.displacement) u = g(rng);
+    for (auto& w : m.points.rotation) w = 1e3 * g(rng);
+    auto forces = [&](bool elastic) {
+      if (elastic)
+        m.linear_operator_kernel()(m.points, m.bonds, m.constants, nullptr);
+      else
+        m.compute_internal_forces();
+      std::vector<double> both = m.points.force;
+      both.insert(both.end(), m.points.moment.begin(), m.points.moment.end());
+      return both;
+    };
+    const std::vector<double> own = forces(false);
+    EXPECT_EQ(forces(true), own) << d << "-D";
+    // A held plastic strain: the model's kernel (the elastic one would not subtract it).
+    m.points.plastic_strain[0] = 1e-4;
+    const std::vector<double> plastic = forces(false);
+    EXPECT_NE(plastic, own) << d << "-D";
+    EXPECT_EQ(forces(true), plastic) << d << "-D";
+    m.points.plastic_strain[0] = 0.0;
+    // A broken bond (both entries of its pair): the model's kernel skips it.
+    const std::size_t i = 0;
+    const auto b = static_cast<std::size_t>(m.bonds.offset[i]);
+    const auto j = static_cast<std::size_t>(m.bonds.neighbor[b]);
+    m.bonds.break_bond(static_cast<std::int64_t>(b));
+    for (auto k = m.bonds.offset[j]; k < m.bonds.offset[j + 1]; ++k)
+      if (m.bonds.neighbor[static_cast<std::size_t>(k)] == static_cast<std::int32_t>(i)) m.bonds.break_bond(k);
+    const std::vector<double> broken = forces(false);
+    EXPECT_NE(broken, own) << d << "-D";
+    EXPECT_EQ(forces(true), broken) << d << "-D";
   }
 }
 
