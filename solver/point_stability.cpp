@@ -7,7 +7,8 @@
 //    zw_ij = -theta (1 - c_i . xi_ij) give 1/2 V_i (F_i - s_i . c_i)(a . Ck_i a + g_i |theta|^2);
 //  - every k with i in its family (xi_ki = -xi_ik, d = K_k^-1 xi_ki, r = V_i xi_ki . d <= 1):
 //    only the bond k-i moves, U_ki = a + 1/2 theta x xi_ik, so eps_k = V_i U_ki (x) d,
-//    kap_k = V_i theta (x) d, and the stabilization gives 1/2 V_k V_i (1 - r)(U . Ck_k U + g_k |theta|^2).
+//    kap_k = V_i theta (x) d (both of rank one: their energy in closed form, rank_one_energy), and
+//    the stabilization gives 1/2 V_k V_i (1 - r)(U . Ck_k U + g_k |theta|^2).
 // The energy is 1/2 q^T H_i q, assembled from these linear maps of q.
 #include "solver/point_stability.hpp"
 
@@ -59,6 +60,16 @@ void add_elastic(const CosseratConstants& c, double volume, const std::array<Mat
       if (q != p) H(q, p) += volume * v;
     }
   }
+}
+
+// (t + r) d d^T + s |d|^2 1: e : law(e) = a^T [this] a for e = a (x) d under the isotropic law
+// t tr(e) 1 + s e + r e^T (isotropic_cosserat_law).
+template <int D>
+Mat<D> rank_one_energy(const Vec<D>& d, double d2, double trace_modulus, double symmetric_modulus,
+                       double transpose_modulus) {
+  Mat<D> m = (trace_modulus + transpose_modulus) * (d * d.transpose());
+  m.diagonal().array() += symmetric_modulus * d2;
+  return m;
 }
 
 template <int D, bool Polar>
@@ -127,19 +138,24 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     Eigen::Matrix<double, D, N> L = Eigen::Matrix<double, D, N>::Zero();
     L.template leftCols<D>().setIdentity();
     if constexpr (Polar) L.template rightCols<R>() = 0.5 * cross_map<D>(xi_ik);
-    std::array<Mat<D>, N> eps_k{};
-    std::array<RMat, N> kap_k{};
-    for (int q = 0; q < N; ++q) {
-      eps_k[q] = vi * L.col(q) * d.transpose();
-      kap_k[q].setZero();
-      if (q >= D) kap_k[q].row(q - D) = vi * d.transpose();
-    }
-    add_elastic<D, N>(c, vk, eps_k, Polar ? &kap_k : nullptr, H);
+    // eps_k = V_i (L q) (x) d and kap_k = V_i theta (x) d are of rank one, and for e = a (x) d the
+    // isotropic law's e : s(e) (trace, symmetric and transpose moduli t, s, r) is
+    // a^T [(t + r) d d^T + s |d|^2 1] a: the elastic part in closed form, without a stress per probe.
+    const double d2 = d.squaredNorm();
+    const double vk_vi2 = vk * vi * vi;
     const double r = std::min(1.0, vi * xi_ki.dot(d));
     const Mat<D> ck_k = unpack_symmetric<D>(&p.stabilization_ck[k * S]);
     const double w = vk * vi * (1.0 - r);
-    H += w * (L.transpose() * ck_k * L);
-    if constexpr (Polar) H.template bottomRightCorner<R, R>().diagonal().array() += w * p.stabilization_rot[k];
+    const Mat<D> strain_block = vk_vi2 * rank_one_energy<D>(d, d2, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c) + w * ck_k;
+    H += L.transpose() * strain_block * L;
+    if constexpr (Polar) {
+      auto rotations = H.template bottomRightCorner<R, R>();
+      if constexpr (D == 2)
+        rotations(0, 0) += vk_vi2 * c.bending_modulus * d2;
+      else
+        rotations += vk_vi2 * rank_one_energy<D>(d, d2, c.a1, c.a2, c.a3);
+      rotations.diagonal().array() += w * p.stabilization_rot[k];
+    }
   }
   return H;
 }
