@@ -23,6 +23,7 @@
 
 #include "solver/bond_families.hpp"
 #include "solver/bond_kinematics.hpp"
+#include "solver/bond_sums.hpp"
 #include "solver/bond_work_policy.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
@@ -122,68 +123,6 @@ struct StabilizationEnergySum {
     return e;
   }
 };
-
-// The bond sums of pass 1 over the bonds that act (BondFamilies::acting; a bond that reached its
-// critical work in this step still acts until update_after_breakage breaks it):
-// S = sum_j V_j U_ij (x) xi, Sk = sum_j V_j (w_j - w_i) (x) xi, and the first moments
-// s = sum_j V_j U_ij, m = sum_j V_j xi, sw = sum_j V_j (w_j - w_i), with which pass 1 forms the
-// share of point i's own tensors in its force and moment (pass1_point).
-template <int D, int R>
-struct BondSums {
-  double S[D * D];
-  double Sk[R * D];
-  double s[D];
-  double m[D];
-  double sw[R];
-};
-
-template <int D, class Effects, bool StoredXi>
-MPPM_INLINE void bond_sums(const PointData& p, const BondFamilies& f, std::size_t i,
-                           BondSums<D, rotation_components<D>>& out) {
-  constexpr int R = rotation_components<D>;
-  constexpr bool polar = Effects::micropolar;
-  constexpr int DD = D * D, RD = R * D;
-  const double zero_rotation[3] = {0.0, 0.0, 0.0};
-  const double* __restrict u = p.displacement.data();
-  const double* __restrict w = polar ? p.rotation.data() : zero_rotation;
-  const double* __restrict vol = p.volume.data();
-  const double* __restrict xis = f.xi.data();
-  const double* __restrict pos = p.position.data();
-  const std::int32_t* __restrict nb = f.neighbor.data();
-  double pos_i[D], ui[D], wi[3] = {0.0, 0.0, 0.0};
-  for (int a = 0; a < D; ++a) pos_i[a] = pos[i * D + a];
-  for (int a = 0; a < D; ++a) ui[a] = u[i * D + a];
-  if constexpr (polar)
-    for (int a = 0; a < R; ++a) wi[a] = w[i * R + a];
-  // Locals, not the output struct: the compiler keeps them in registers.
-  double S[DD] = {}, s[D] = {}, m[D] = {}, Sk[RD > 0 ? RD : 1] = {}, sw[R > 0 ? R : 1] = {};
-  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-    BondView<D> bond;
-    if (!read_bond<D, R, polar, Effects::damage, StoredXi>(b, nb, xis, pos, pos_i, vol, w, bond)) continue;
-    const double* xi = bond.xi;
-    const double vj = bond.vj;
-    const double* wj = bond.wj;
-    double U[D];
-    composite_state<D, R, polar>(ui, u + bond.j * D, wi, wj, xi, U);
-    for (int r = 0; r < D; ++r) {
-      const double vu = vj * U[r];
-      for (int col = 0; col < D; ++col) S[r * D + col] = multiply_add(vu, xi[col], S[r * D + col]);
-      s[r] += vu;
-      m[r] = multiply_add(vj, xi[r], m[r]);
-    }
-    if constexpr (polar)
-      for (int r = 0; r < R; ++r) {
-        const double om = vj * (wj[r] - wi[r]);
-        for (int col = 0; col < D; ++col) Sk[r * D + col] = multiply_add(om, xi[col], Sk[r * D + col]);
-        sw[r] += om;
-      }
-  }
-  for (int k = 0; k < DD; ++k) out.S[k] = S[k];
-  for (int r = 0; r < D; ++r) out.s[r] = s[r];
-  for (int r = 0; r < D; ++r) out.m[r] = m[r];
-  for (int k = 0; k < RD; ++k) out.Sk[k] = Sk[k];
-  for (int r = 0; r < R; ++r) out.sw[r] = sw[r];
-}
 
 // eps_i = [sum_j V_j U_ij (x) xi] K_i^-1 and kap_i = [sum_j V_j (w_j - w_i) (x) xi] K_i^-1.
 template <int D, class Effects, bool StoredXi>

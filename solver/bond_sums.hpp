@@ -1,0 +1,178 @@
+// The bond sums of the force kernel's pass 1 (docs/theory.md sections 2-3), over the bonds that act
+// (BondFamilies::acting; a bond that reached its critical work in this step still acts until
+// update_after_breakage breaks it): S = sum_j V_j U_ij (x) xi, Sk = sum_j V_j (w_j - w_i) (x) xi,
+// and the first moments s = sum_j V_j U_ij, m = sum_j V_j xi, sw = sum_j V_j (w_j - w_i), with which
+// pass 1 forms point i's tensors and its own share of its force and moment.
+// In 3-D, where the instruction set has 4-lane vectors and fused multiply-adds (AVX2 and FMA),
+// a bond's three components go through one vector operation each (bond_sums_vector). Every lane
+// does the scalar loop's operations in its order (the fusions are written in both), so the two
+// give the same bits; `BondSumsPath` pins that (tests/unit/test_solver_bond_sums.cpp).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define MPPM_BOND_SUMS_VECTOR 1
+#endif
+
+#include "solver/bond_families.hpp"
+#include "solver/bond_kinematics.hpp"
+#include "solver/compiled_effects.hpp"
+#include "solver/multiply_add.hpp"
+#include "solver/point_data.hpp"
+
+namespace mppm::solver::kernel {
+
+template <int D, int R>
+struct BondSums {
+  double S[D * D];
+  double Sk[R * D];
+  double s[D];
+  double m[D];
+  double sw[R];
+};
+
+// The bond sums one bond at a time, in plain doubles (any dimension, any instruction set).
+template <int D, class Effects, bool StoredXi>
+[[gnu::always_inline]] inline void bond_sums_scalar(const PointData& p, const BondFamilies& f, std::size_t i,
+                                                    BondSums<D, rotation_components<D>>& out) {
+  constexpr int R = rotation_components<D>;
+  constexpr bool polar = Effects::micropolar;
+  constexpr int DD = D * D, RD = R * D;
+  const double zero_rotation[3] = {0.0, 0.0, 0.0};
+  const double* __restrict u = p.displacement.data();
+  const double* __restrict w = polar ? p.rotation.data() : zero_rotation;
+  const double* __restrict vol = p.volume.data();
+  const double* __restrict xis = f.xi.data();
+  const double* __restrict pos = p.position.data();
+  const std::int32_t* __restrict nb = f.neighbor.data();
+  double pos_i[D], ui[D], wi[3] = {0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) pos_i[a] = pos[i * D + a];
+  for (int a = 0; a < D; ++a) ui[a] = u[i * D + a];
+  if constexpr (polar)
+    for (int a = 0; a < R; ++a) wi[a] = w[i * R + a];
+  // Locals, not the output struct: the compiler keeps them in registers.
+  double S[DD] = {}, s[D] = {}, m[D] = {}, Sk[RD > 0 ? RD : 1] = {}, sw[R > 0 ? R : 1] = {};
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    BondView<D> bond;
+    if (!read_bond<D, R, polar, Effects::damage, StoredXi>(b, nb, xis, pos, pos_i, vol, w, bond)) continue;
+    const double* xi = bond.xi;
+    const double vj = bond.vj;
+    const double* wj = bond.wj;
+    double U[D];
+    composite_state<D, R, polar>(ui, u + bond.j * D, wi, wj, xi, U);
+    for (int r = 0; r < D; ++r) {
+      const double vu = vj * U[r];
+      for (int col = 0; col < D; ++col) S[r * D + col] = multiply_add(vu, xi[col], S[r * D + col]);
+      s[r] += vu;
+      m[r] = multiply_add(vj, xi[r], m[r]);
+    }
+    if constexpr (polar)
+      for (int r = 0; r < R; ++r) {
+        const double om = vj * (wj[r] - wi[r]);
+        for (int col = 0; col < D; ++col) Sk[r * D + col] = multiply_add(om, xi[col], Sk[r * D + col]);
+        sw[r] += om;
+      }
+  }
+  for (int k = 0; k < DD; ++k) out.S[k] = S[k];
+  for (int r = 0; r < D; ++r) out.s[r] = s[r];
+  for (int r = 0; r < D; ++r) out.m[r] = m[r];
+  for (int k = 0; k < RD; ++k) out.Sk[k] = Sk[k];
+  for (int r = 0; r < R; ++r) out.sw[r] = sw[r];
+}
+
+#ifdef MPPM_BOND_SUMS_VECTOR
+// Three doubles into the low lanes of a vector (lane 3 zero); masked, so the last point's values
+// are read without touching memory past them.
+[[gnu::always_inline]] inline __m256d load3(const double* v) {
+  return _mm256_maskload_pd(v, _mm256_set_epi64x(0, -1, -1, -1));
+}
+[[gnu::always_inline]] inline void store3(__m256d v, double* out) {
+  _mm256_maskstore_pd(out, _mm256_set_epi64x(0, -1, -1, -1), v);
+}
+// Lane k of v in every lane.
+template <int K>
+[[gnu::always_inline]] inline __m256d lane(__m256d v) {
+  return _mm256_permute4x64_pd(v, K * 0x55);
+}
+
+// 3-D, a bond's components as vector lanes. The scalar loop's operations per component:
+// xi = pos_j - pos_i (or stored), U = (u_j - u_i) - [wm_1 xi_2 - wm_2 xi_1, ...] with wm = 1/2 (w_i + w_j)
+// (composite_state: fma(wm_1, xi_2, -(wm_2 xi_1)) and its cyclic permutations), vu = V_j U,
+// row r of S: fma(vu_r, xi, S_r), s + vu, m: fma(V_j, xi, m); om = V_j (w_j - w_i), row r of Sk:
+// fma(om_r, xi, Sk_r), sw + om.
+template <class Effects, bool StoredXi>
+[[gnu::always_inline]] inline void bond_sums_vector(const PointData& p, const BondFamilies& f, std::size_t i,
+                                                    BondSums<3, 3>& out) {
+  constexpr bool polar = Effects::micropolar;
+  const double* __restrict u = p.displacement.data();
+  const double* __restrict w = polar ? p.rotation.data() : nullptr;
+  const double* __restrict vol = p.volume.data();
+  const double* __restrict xis = f.xi.data();
+  const double* __restrict pos = p.position.data();
+  const std::int32_t* __restrict nb = f.neighbor.data();
+  const __m256d pos_i = load3(pos + i * 3), ui = load3(u + i * 3);
+  const __m256d wi = polar ? load3(w + i * 3) : _mm256_setzero_pd();
+  const __m256d half = _mm256_set1_pd(0.5);
+  __m256d S0 = _mm256_setzero_pd(), S1 = S0, S2 = S0, s = S0, m = S0;
+  __m256d K0 = S0, K1 = S0, K2 = S0, sw = S0;
+  for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
+    const std::int32_t entry = nb[b];
+    if constexpr (Effects::damage)
+      if (entry < 0) continue;  // broken (BondFamilies::kBrokenBit)
+    const auto j = static_cast<std::size_t>(entry);
+    const __m256d xi = StoredXi ? load3(xis + b * 3) : _mm256_sub_pd(load3(pos + j * 3), pos_i);
+    const __m256d vj = _mm256_broadcast_sd(vol + j);
+    __m256d U = _mm256_sub_pd(load3(u + j * 3), ui);
+    __m256d wj = _mm256_setzero_pd();
+    if constexpr (polar) {
+      wj = load3(w + j * 3);
+      const __m256d wm = _mm256_mul_pd(half, _mm256_add_pd(wi, wj));
+      // (wm_1, wm_2, wm_0) (xi_2, xi_0, xi_1) - (wm_2, wm_0, wm_1) (xi_1, xi_2, xi_0)
+      const __m256d wm120 = _mm256_permute4x64_pd(wm, 0xC9), wm201 = _mm256_permute4x64_pd(wm, 0xD2);
+      const __m256d xi201 = _mm256_permute4x64_pd(xi, 0xD2), xi120 = _mm256_permute4x64_pd(xi, 0xC9);
+      // -(wm_2 xi_1) by the sign bit, as the scalar negation rounds it (0 - x would turn -0 into +0).
+      const __m256d minus = _mm256_xor_pd(_mm256_mul_pd(wm201, xi120), _mm256_set1_pd(-0.0));
+      U = _mm256_sub_pd(U, _mm256_fmadd_pd(wm120, xi201, minus));
+    }
+    const __m256d vu = _mm256_mul_pd(vj, U);
+    S0 = _mm256_fmadd_pd(lane<0>(vu), xi, S0);
+    S1 = _mm256_fmadd_pd(lane<1>(vu), xi, S1);
+    S2 = _mm256_fmadd_pd(lane<2>(vu), xi, S2);
+    s = _mm256_add_pd(s, vu);
+    m = _mm256_fmadd_pd(vj, xi, m);
+    if constexpr (polar) {
+      const __m256d om = _mm256_mul_pd(vj, _mm256_sub_pd(wj, wi));
+      K0 = _mm256_fmadd_pd(lane<0>(om), xi, K0);
+      K1 = _mm256_fmadd_pd(lane<1>(om), xi, K1);
+      K2 = _mm256_fmadd_pd(lane<2>(om), xi, K2);
+      sw = _mm256_add_pd(sw, om);
+    }
+  }
+  store3(S0, out.S);
+  store3(S1, out.S + 3);
+  store3(S2, out.S + 6);
+  store3(s, out.s);
+  store3(m, out.m);
+  store3(K0, out.Sk);
+  store3(K1, out.Sk + 3);
+  store3(K2, out.Sk + 6);
+  store3(sw, out.sw);
+}
+#endif
+
+// The kernel's bond sums: the vector form in 3-D where the instruction set has it, else the scalar.
+template <int D, class Effects, bool StoredXi>
+[[gnu::always_inline]] inline void bond_sums(const PointData& p, const BondFamilies& f, std::size_t i,
+                                             BondSums<D, rotation_components<D>>& out) {
+#ifdef MPPM_BOND_SUMS_VECTOR
+  if constexpr (D == 3) {
+    bond_sums_vector<Effects, StoredXi>(p, f, i, out);
+    return;
+  }
+#endif
+  bond_sums_scalar<D, Effects, StoredXi>(p, f, i, out);
+}
+
+}  // namespace mppm::solver::kernel
