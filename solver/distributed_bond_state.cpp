@@ -2,8 +2,10 @@
 #include "solver/distributed_bond_state.hpp"
 
 #include <algorithm>
+#include <array>
 #include <span>
 #include <stdexcept>
+#include <utility>
 
 #include "common/input_error.hpp"
 
@@ -11,25 +13,34 @@ namespace mppm::solver {
 
 namespace {
 
-// Each point's first row in the one-process array whose point g has `count(i)` rows (owned point i
-// of some process): the sums of the counts of the points before it in global-id order, for every
-// point of the whole cloud (global ids are 0 .. n-1), and the whole array's length last.
-template <class Count>
-std::vector<std::uint64_t> first_rows(const PointData& p, const ProcessGroup& group, Count&& count) {
+// Each point's first bond entry and first pair in the one-process arrays (bond_neighbor, bond_work):
+// the sums of the counts of the points before it in global-id order, for every point of the whole
+// cloud (global ids are 0 .. n-1), and each array's length last. One gather of (global id, entries,
+// pairs) per owned point, on every process.
+struct FirstRows {
+  std::vector<std::uint64_t> entry, pair;
+};
+
+std::int64_t entries_of(const BondFamilies& f, std::size_t i) { return f.offset[i + 1] - f.offset[i]; }
+std::int64_t pairs_of(const BondFamilies& f, std::size_t i) { return f.pair_offset[i + 1] - f.pair_offset[i]; }
+
+FirstRows first_rows(const PointData& p, const BondFamilies& f, const ProcessGroup& group) {
   std::vector<std::int64_t> mine;
   for (std::size_t i = 0; i < p.owned; ++i) {
     mine.push_back(p.global_id[i]);
-    mine.push_back(count(i));
+    mine.push_back(entries_of(f, i));
+    mine.push_back(pairs_of(f, i));
   }
-  std::vector<std::pair<std::int64_t, std::int64_t>> all;
+  std::vector<std::array<std::int64_t, 3>> all;
   for (const std::vector<std::int64_t>& from : group.gather(std::span<const std::int64_t>(mine)))
-    for (std::size_t m = 0; m + 1 < from.size(); m += 2) all.emplace_back(from[m], from[m + 1]);
+    for (std::size_t m = 0; m + 2 < from.size(); m += 3) all.push_back({from[m], from[m + 1], from[m + 2]});
   std::sort(all.begin(), all.end());
-  std::vector<std::uint64_t> first(all.size() + 1, 0);
+  FirstRows first{std::vector<std::uint64_t>(all.size() + 1, 0), std::vector<std::uint64_t>(all.size() + 1, 0)};
   for (std::size_t k = 0; k < all.size(); ++k) {
-    if (all[k].first != static_cast<std::int64_t>(k))
+    if (all[k][0] != static_cast<std::int64_t>(k))
       throw std::logic_error("bond rows: the processes' points are not the global ids 0 .. n-1");
-    first[k + 1] = first[k] + static_cast<std::uint64_t>(all[k].second);
+    first.entry[k + 1] = first.entry[k] + static_cast<std::uint64_t>(all[k][1]);
+    first.pair[k + 1] = first.pair[k] + static_cast<std::uint64_t>(all[k][2]);
   }
   return first;
 }
@@ -61,27 +72,16 @@ DistributedRows rows_by_point(std::span<const std::int64_t> ids, const std::vect
   return rows;
 }
 
-// The first entry of each owned point's rows in the one-process array, and the array's length last.
-template <class Count>
-std::vector<std::size_t> whole_offsets(const PointData& p, const ProcessGroup& group, Count&& count) {
-  const std::vector<std::uint64_t> first = first_rows(p, group, count);
-  std::vector<std::size_t> offset(p.owned + 1);
-  for (std::size_t i = 0; i < p.owned; ++i) offset[i] = first[static_cast<std::size_t>(p.global_id[i])];
-  offset[p.owned] = first.back();
-  return offset;
-}
-
 }  // namespace
 
 BondRows::BondRows(const PointData& p, const BondFamilies& f, std::span<const std::int32_t> part_of,
                    const ProcessGroup& group)
     : points_(p), bonds_(f), part_of_(part_of) {
-  auto entries = [&](std::size_t i) { return f.offset[i + 1] - f.offset[i]; };
-  auto pairs = [&](std::size_t i) { return f.pair_offset[i + 1] - f.pair_offset[i]; };
-  first_entry_ = first_rows(p, group, entries);
-  first_pair_ = first_rows(p, group, pairs);
-  entry_ids_ = own_row_ids(p, first_entry_, entries);
-  pair_ids_ = own_row_ids(p, first_pair_, pairs);
+  FirstRows first = first_rows(p, f, group);
+  entry_ids_ = own_row_ids(p, first.entry, [&](std::size_t i) { return entries_of(f, i); });
+  pair_ids_ = own_row_ids(p, first.pair, [&](std::size_t i) { return pairs_of(f, i); });
+  first_entry_ = std::move(first.entry);
+  first_pair_ = std::move(first.pair);
   if (group.rank() != 0) {  // only the first process places rows
     first_entry_ = {};
     first_pair_ = {};
@@ -114,19 +114,17 @@ GatheredRowSet BondRows::pairs() const {
 
 void restore_own_bonds(const std::vector<std::int32_t>& neighbors, const std::vector<double>& work, PointData& p,
                        BondFamilies& f, const ProcessGroup& group, const std::string& file) {
-  const std::vector<std::size_t> entry =
-      whole_offsets(p, group, [&](std::size_t i) { return f.offset[i + 1] - f.offset[i]; });
-  const std::vector<std::size_t> pair =
-      whole_offsets(p, group, [&](std::size_t i) { return f.pair_offset[i + 1] - f.pair_offset[i]; });
-  bool same = entry.back() == neighbors.size() && pair.back() == work.size();
+  const FirstRows first = first_rows(p, f, group);
+  bool same = first.entry.back() == neighbors.size() && first.pair.back() == work.size();
   for (std::size_t i = 0; same && i < p.owned; ++i) {
+    const auto g = static_cast<std::size_t>(p.global_id[i]);
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      const std::int32_t saved = neighbors[entry[i] + static_cast<std::size_t>(b - f.offset[i])];
+      const std::int32_t saved = neighbors[first.entry[g] + static_cast<std::size_t>(b - f.offset[i])];
       same = same && static_cast<std::int64_t>(BondFamilies::index_of(saved)) == p.global_id[f.neighbor_of(b)];
       if (same && saved < 0) f.break_bond(b);
     }
     for (std::int64_t k = f.pair_offset[i]; k < f.pair_offset[i + 1]; ++k)
-      f.work[static_cast<std::size_t>(k)] = work[pair[i] + static_cast<std::size_t>(k - f.pair_offset[i])];
+      f.work[static_cast<std::size_t>(k)] = work[first.pair[g] + static_cast<std::size_t>(k - f.pair_offset[i])];
   }
   if (group.any(!same))
     throw InputError(file + ": the checkpoint's bonds are not those of these points (corrupted checkpoint?)");

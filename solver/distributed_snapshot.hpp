@@ -29,12 +29,12 @@ void with_gathered_fields(const Model& model, const std::vector<std::string>& fi
 void with_gathered_fields(const PointData& points, const std::vector<SnapshotFieldSource>& local,
                           std::span<const std::int32_t> part_of, const ProcessGroup& group, const GatheredWrite& write);
 
-// Rows of an array spread over the processes, each row on one process: a point's, or a row of the
-// points some array holds (the integrator's tracked points).
 // The process of each global row in [begin, end), into out (called on the first process, once per
 // chunk).
 using RowOwners = std::function<void(std::int64_t begin, std::int64_t end, std::int32_t* out)>;
 
+// Rows of an array spread over the processes, each row on one process: a point's, a row of the
+// points some array holds (the integrator's tracked points), or a bond's (BondRows).
 struct DistributedRows {
   std::span<const std::int64_t> local_ids;  // the global index of each of this process's rows, ascending
   RowOwners owners;
