@@ -145,21 +145,22 @@ TEST(PostCrackAngle, CrackLeavingAStraightPrecrack) {
 }
 
 TEST(PostCrackAngle, KalthoffWinklerTwoNotchesOneCrackEach) {
-  // 200 x 100 mm, dx 1 mm, delta 3.015 dx; notches from the left edge at y = 25 and 75 mm,
-  // 50 mm long; from each tip a crack at 65 degrees toward the nearer edge (down from the lower
-  // notch, up from the upper one). The cracks reach the edges 25 / sin 65 = 27.6 mm from the tips.
+  // The specimen: 100 mm along the notches by 200 mm along the struck edge, dx 1 mm, delta
+  // 3.015 dx; notches from the left edge at y = 75 and 125 mm, 50 mm long; from each tip a crack
+  // at 65 degrees away from the struck block (down from the lower notch, up from the upper one),
+  // 40 mm long: past the default ring's 12 horizons, short of the edges 75 mm away.
   const double dx = 1e-3;
-  const Plate plate(0.2, 0.1, dx, 3.015);
-  const Segment lower{0.0, 0.025, 0.05, 0.025}, upper{0.0, 0.075, 0.05, 0.075};
-  const double length = 0.025 / std::sin(65 * kDegree);
+  const Plate plate(0.1, 0.2, dx, 3.015);
+  const Segment lower{0.0, 0.075, 0.05, 0.075}, upper{0.0, 0.125, 0.05, 0.125};
+  const double length = 0.04;
   const auto first = plate.damage({lower, upper}, dx);
-  const auto last = plate.damage({lower, upper, ray(0.05, 0.025, -65, length), ray(0.05, 0.075, 65, length)}, dx);
+  const auto last = plate.damage({lower, upper, ray(0.05, 0.075, -65, length), ray(0.05, 0.125, 65, length)}, dx);
   const auto result = measure_crack_angles(plate.lattice(), first, last, plate.settings());
   ASSERT_EQ(result.tips.size(), 2u);
-  EXPECT_NEAR(result.tips[0].position[1], 0.025, 1e-9);  // bottom to top
-  EXPECT_NEAR(result.tips[1].position[1], 0.075, 1e-9);
+  EXPECT_NEAR(result.tips[0].position[1], 0.075, 1e-9);  // bottom to top
+  EXPECT_NEAR(result.tips[1].position[1], 0.125, 1e-9);
   ASSERT_EQ(result.cracks.size(), 2u);
-  const double tolerance = tolerance_deg(length - 2 * plate.horizon, dx);
+  const double tolerance = tolerance_deg(12 * plate.horizon - 2 * plate.horizon, dx);
   EXPECT_EQ(result.cracks[0].tip_index, 0u);
   EXPECT_NEAR(result.cracks[0].signed_angle_deg, -65.0, tolerance);
   EXPECT_EQ(result.cracks[1].tip_index, 1u);

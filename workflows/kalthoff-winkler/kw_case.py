@@ -12,21 +12,40 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import mppm_outputs  # noqa: E402
 from elastic_waves import rayleigh_speed  # noqa: E402,F401  (for the scripts)
 from mppm_outputs import RunOutputError  # noqa: E402,F401  (the readers' error, for the scripts)
-from case_runs import energy_rows, frames, run_info, summary  # noqa: E402,F401  (for the scripts)
+import case_runs  # noqa: E402
+from case_runs import energy_rows, frames, run_info  # noqa: E402,F401  (for the scripts)
+
+
+def summary(out, run):
+    """The run's summary.json, with the plate's mirror line added (`mirror_line_y_m`)."""
+    run_summary = case_runs.summary(out, run)
+    run_summary["mirror_line_y_m"] = mirror_line_y(out, run)
+    return run_summary
+
+
+def mirror_line_y(out, run):
+    """The height half-way between the two notches: the mean of the lowest and the highest point
+    damaged at the start (the notches' pre-crack) in the run's crack-arrival table. The struck
+    edge lies between the notches, and the case is symmetric about this line."""
+    rows = mppm_outputs.read_csv_rows(os.path.join(out, run, "run", "crack_path.csv"))
+    heights = [float(row["y_m"]) for row in rows if float(row["time_s"]) == 0]
+    if not heights:
+        raise RunOutputError(f"{os.path.join(out, run, 'run', 'crack_path.csv')}: no pre-crack point at t = 0")
+    return (min(heights) + max(heights)) / 2
 
 
 def cracks_by_tip(run_summary):
     """{'upper' | 'lower': [entries of crack_angles leaving that notch's tip]}."""
     out = {"upper": [], "lower": []}
     for entry in run_summary.get("crack_angles") or []:
-        out[tip_side(entry)].append(entry)
+        out[tip_side(entry, run_summary)].append(entry)
     return out
 
 
-def outward(entry):
+def outward(entry, run_summary):
     """Whether a crack runs toward the unstruck side: the upper notch's up (counter-clockwise,
     positive), the lower one's down."""
-    return (entry["signed_angle_deg"] > 0) == (tip_side(entry) == "upper")
+    return (entry["signed_angle_deg"] > 0) == (tip_side(entry, run_summary) == "upper")
 
 
 def main_cracks(run_summary):
@@ -36,16 +55,15 @@ def main_cracks(run_summary):
     is sheared off); report_case.py lists those too."""
     best = {}
     for side, entries in cracks_by_tip(run_summary).items():
-        candidates = [e for e in entries if outward(e)]
+        candidates = [e for e in entries if outward(e, run_summary)]
         if candidates:
             best[side] = max(candidates, key=lambda e: e["points"])
     return best
 
 
-def tip_side(entry):
-    """'upper' or 'lower' notch: the tip above or below the plate's mid-height (the struck edge
-    lies between the two notches)."""
-    return "upper" if entry["tip_m"][1] > 0.05 else "lower"
+def tip_side(entry, run_summary):
+    """'upper' or 'lower' notch: the tip above or below the plate's mirror line."""
+    return "upper" if entry["tip_m"][1] > run_summary["mirror_line_y_m"] else "lower"
 
 
 def spacing_mm(run_summary):

@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """results.md of the Kalthoff-Winkler case from its outputs (nothing typed in).
 
-usage: report_case.py --out OUT --runs RUN... --results results.md --figures figures
+usage: report_case.py --out OUT --runs RUN... [--specimen-runs RUN...] --results results.md
+         --figures figures
 
-Writes the table of crack angles (each notch's main crack against the notch direction), crack
-start time, largest tip speed and wall time per run; the crack paths of every run with their
-straight-line fits (figures/crack_paths.png); and copies the damage pictures that
-mppm-postprocess --figures rendered for the runs.
+Writes, for the case's plate (--runs) and for the experiment's specimen (--specimen-runs), the
+table of crack angles (each notch's main crack against the notch direction), crack start time,
+largest tip speed and wall time per run; the crack paths of every run with their straight-line
+fits (figures/crack_paths.png, figures/crack_paths_specimen.png); and copies the damage pictures
+that mppm-postprocess --figures rendered for the runs.
 """
 import argparse
 import glob
@@ -31,12 +33,17 @@ def crack_frame(out, run, cracks):
 
 def plot_crack_paths(out, runs, summaries, target):
     import meshio  # Debian python3-meshio, under /usr/bin/python3
-    fig, axes = plt.subplots(1, len(runs), figsize=(4.2 * len(runs), 3.4), squeeze=False)
+    frames = {}
+    for run in runs:
+        time, path = crack_frame(out, run, kw_case.main_cracks(summaries[run]))
+        frames[run] = (time, meshio.read(path))
+    low, high = frames[runs[0]][1].points.min(axis=0) * 1e3, frames[runs[0]][1].points.max(axis=0) * 1e3
+    wide = high[0] - low[0] > high[1] - low[1]
+    width, height = (4.2, 3.4) if wide else (2.6, 4.6)  # one panel, inches
+    fig, axes = plt.subplots(1, len(runs), figsize=(width * len(runs), height), squeeze=False)
     for ax, run in zip(axes[0], runs):
         s = summaries[run]
-        cracks = kw_case.main_cracks(s)
-        time, path = crack_frame(out, run, cracks)
-        mesh = meshio.read(path)
+        time, mesh = frames[run]
         threshold = s["crack_damage_threshold"]
         body = [(p[0] * 1e3, p[1] * 1e3) for p, r, d in
                 zip(mesh.points, mesh.point_data["region"], mesh.point_data["damage"]) if r == 0 and d >= threshold]
@@ -49,8 +56,8 @@ def plot_crack_paths(out, runs, summaries, target):
             ax.plot([e[0] for e in ends], [e[1] for e in ends], color="C3", lw=1.6)
             ax.annotate(f"{entry['signed_angle_deg']:+.1f}°", ends[1][:2], fontsize=8, color="C3")
         ax.set_title(f"{run} (t = {time * 1e6:.3g} us)", fontsize=9)
-        ax.set_xlim(0, 200)
-        ax.set_ylim(0, 100)
+        ax.set_xlim(low[0], high[0])
+        ax.set_ylim(low[1], high[1])
         ax.set_aspect("equal")
         ax.set_xlabel("x [mm]")
     axes[0][0].set_ylabel("y [mm]")
@@ -69,7 +76,7 @@ def table_row(out, run, s, info, energy):
 
     def angle(side):
         c = cracks.get(side)
-        inward = [e for e in every[side] if not kw_case.outward(e)]
+        inward = [e for e in every[side] if not kw_case.outward(e, s)]
         return (("-" if c is None else f"**{c['signed_angle_deg']:+.1f}**")
                 + "".join(f" ({e['signed_angle_deg']:+.1f})" for e in inward))
 
@@ -88,41 +95,34 @@ def table_row(out, run, s, info, energy):
             f"{s['detached_points']} | {info['threads']} | {info['wall_seconds']:.1f} |")
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--runs", nargs="+", required=True)
-    ap.add_argument("--results", required=True)
-    ap.add_argument("--figures", required=True)
-    args = ap.parse_args()
-    os.makedirs(args.figures, exist_ok=True)
-    summaries = {r: kw_case.summary(args.out, r) for r in args.runs}
-    plot_crack_paths(args.out, args.runs, summaries, os.path.join(args.figures, "crack_paths.png"))
-    first = summaries[args.runs[0]]
-    lines = ["# Kalthoff-Winkler (workflows/kalthoff-winkler/README.md): results", "",
-             "Written by `make report` from the run outputs under `out/` (nothing typed in). Crack angles: "
-             "each notch's main crack (the fit through the most points) against the notch direction, "
-             "counter-clockwise positive, measured on the crack path between "
-             f"{first['crack_angles'][0]['range_from_m'] * 1e3:.3g} and {first['crack_angles'][0]['range_to_m'] * 1e3:.3g} mm "
-             "from the notch tip (postprocess/README.md, crack angle).", "",
-             "In bold the crack toward the unstruck side (the experiment's crack), in brackets damage the tip "
-             "sheds toward the struck block, where it is sheared off. "
-             "Crack start and largest tip speed per notch (upper / lower), from the run's crack-arrival table: "
-             "the arrivals within two horizons of the fitted line, the start when one lies more than 2 dx "
-             "along it, the speed over advances of at least 3 dx (kw_case.py).", "",
-             "| run | model | dx [mm] | points | steps | crack angle, upper / lower [deg] | measured at [us] | "
-             "crack start [us] | largest tip speed [m/s] | Rayleigh speed [m/s] | max balance error | detached points | "
-             "threads | wall time [s] |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for run in args.runs:
-        lines.append(table_row(args.out, run, summaries[run], kw_case.run_info(args.out, run),
-                               kw_case.energy_rows(args.out, run)))
-    lines += ["", "Wall times on 2 cores with `make -j2` (two runs at a time, one thread each), on the machine that "
-              "ran `make`.", "", "## Crack paths and their straight-line fits", "",
-              "![crack paths](figures/crack_paths.png)", ""]
-    for stale in glob.glob(os.path.join(args.figures, "*_damage_*.png")):  # an earlier report's pictures
-        os.remove(stale)
-    for run in args.runs:
+TABLE_HEAD = ["| run | model | dx [mm] | points | steps | crack angle, upper / lower [deg] | measured at [us] | "
+              "crack start [us] | largest tip speed [m/s] | Rayleigh speed [m/s] | max balance error | "
+              "detached points | threads | wall time [s] |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+
+
+def ring_text(run_summary):
+    entry = (run_summary.get("crack_angles") or [{}])[0]
+    if "range_from_m" not in entry:
+        return "(no crack measured)"
+    return f"between {entry['range_from_m'] * 1e3:.3g} and {entry['range_to_m'] * 1e3:.3g} mm"
+
+
+def plate_section(args, runs, figure_name):
+    """The table and the crack-path figure of one plate's runs, as lines of results.md."""
+    summaries = {r: kw_case.summary(args.out, r) for r in runs}
+    plot_crack_paths(args.out, runs, summaries, os.path.join(args.figures, figure_name))
+    lines = [f"Crack angles measured on the crack path {ring_text(summaries[runs[0]])} from the notch tip.", ""]
+    lines += TABLE_HEAD
+    lines += [table_row(args.out, run, summaries[run], kw_case.run_info(args.out, run), kw_case.energy_rows(args.out, run))
+              for run in runs]
+    return lines + ["", f"![crack paths](figures/{figure_name})", ""]
+
+
+def damage_pictures(args, runs):
+    """Copies each run's damage pictures to the figures folder; their lines of results.md."""
+    lines = []
+    for run in runs:
         pictures = sorted(glob.glob(os.path.join(args.out, run, "post", "figures", "damage_*.png")))
         if not pictures:
             continue
@@ -132,6 +132,36 @@ def main():
             copy_file(p, os.path.join(args.figures, name))
             lines.append(f"![{name}](figures/{name})")
         lines.append("")
+    return lines
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--runs", nargs="+", required=True)
+    ap.add_argument("--specimen-runs", nargs="*", default=[])
+    ap.add_argument("--results", required=True)
+    ap.add_argument("--figures", required=True)
+    args = ap.parse_args()
+    os.makedirs(args.figures, exist_ok=True)
+    lines = ["# Kalthoff-Winkler (workflows/kalthoff-winkler/README.md): results", "",
+             "Written by `make report` from the run outputs under `out/` (nothing typed in). Crack angles: "
+             "each notch's main crack (the fit through the most points) against the notch direction, "
+             "counter-clockwise positive (postprocess/README.md, crack angle).", "",
+             "In bold the crack toward the unstruck side (the experiment's crack), in brackets damage the tip "
+             "sheds toward the struck block, where it is sheared off. "
+             "Crack start and largest tip speed per notch (upper / lower), from the run's crack-arrival table: "
+             "the arrivals within two horizons of the fitted line, the start when one lies more than 2 dx "
+             "along it, the speed over advances of at least 3 dx (kw_case.py). Wall times on 2 cores with "
+             "`make -j2` (two runs at a time, one thread each), on the machine that ran `make`.", "",
+             "## The case's plate (200 mm along the notches, 100 mm along the struck edge)", ""]
+    lines += plate_section(args, args.runs, "crack_paths.png")
+    if args.specimen_runs:
+        lines += ["## The experiment's specimen (100 mm along the notches, 200 mm along the struck edge)", ""]
+        lines += plate_section(args, args.specimen_runs, "crack_paths_specimen.png")
+    for stale in glob.glob(os.path.join(args.figures, "*_damage_*.png")):  # an earlier report's pictures
+        os.remove(stale)
+    lines += damage_pictures(args, args.runs + args.specimen_runs)
     write_text(args.results, "\n".join(lines))
     print(f"report: {os.path.abspath(args.results)}")
     return 0
