@@ -30,6 +30,7 @@
 #include "postprocess/crack_path_table.hpp"
 #include "postprocess/derived_fields.hpp"
 #include "postprocess/load_curve.hpp"
+#include "postprocess/mid_thickness_layer.hpp"
 #include "postprocess/paraview_state.hpp"
 #include "postprocess/pictures.hpp"
 #include "postprocess/pore_pressure_metrics.hpp"
@@ -305,12 +306,28 @@ std::optional<std::size_t> snapshot_at_or_before(const std::vector<SnapshotEntry
   return chosen;
 }
 
+// A 3-D run's crack angles are measured on its mid-thickness layer (mid_thickness_layer.hpp),
+// with a crack tracker of its own for the layer's free surface (the tips). On the heap: the
+// angle tracker keeps references to these arrays.
+struct AngleLayer {
+  MidThicknessLayer layer;
+  CrackTracker tracker;
+};
+
+// In 3-D the damage beside a planar crack reaches the crack threshold 0.35 only from a horizon
+// factor of about 3: 0.31 at 2.05 (10 of a point's 32 bonds cross a plane beside it), 0.39 at
+// 3.05 (postprocess/README.md "3-D crack metrics"); below, the layer's crack path would miss the
+// crack.
+constexpr double kLayerAngleLeastHorizonFactor = 3.0;
+
 // The crack angles, measured as the snapshots stream (crack_angle.hpp): on every snapshot until
 // each tip's crack has reached the ring's outer radius, or with --crack-angle-time on the one
 // snapshot it picks.
 struct CrackAngleStream {
+  std::unique_ptr<AngleLayer> layer;  // 3-D runs
   std::unique_ptr<CrackAngleTracker> tracker;
   std::optional<std::size_t> only_snapshot;
+  std::vector<std::string> notes;
 
   void add(std::size_t k, const Snapshot& snapshot) {
     if (!tracker || (only_snapshot && k != *only_snapshot) || tracker->settled()) return;
@@ -318,19 +335,53 @@ struct CrackAngleStream {
   }
 };
 
-// With crack tracking, the tips and rings of the crack angles, from the first snapshot, with the
-// crack tracker's threshold and free-surface points.
+// Four significant digits, for notes.
+std::string four_digits(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+
+// The crack angles' layer of a 3-D damage run, or a note why there is none.
+std::unique_ptr<AngleLayer> angle_layer(const RunDirectory& run, const PointGeometry& points,
+                                        std::vector<std::string>& notes) {
+  if (run.horizon < kLayerAngleLeastHorizonFactor * run.spacing * (1 - 1e-9)) {
+    notes.push_back(
+        "crack angle: not measured: on a 3-D run's mid-thickness layer it needs a horizon factor of at "
+        "least 3 (this run's " +
+        four_digits(run.horizon / run.spacing) +
+        "), below which the damage beside a planar crack stays under the crack threshold 0.35");
+    return nullptr;
+  }
+  MidThicknessLayer layer = mid_thickness_layer(points.z, points.body, run.spacing);
+  CrackSettings settings;
+  settings.spacing = run.spacing;
+  settings.horizon = run.horizon;
+  CrackTracker tracker(points.x, points.y, layer.flat_z, layer.include, settings);
+  return std::make_unique<AngleLayer>(AngleLayer{std::move(layer), std::move(tracker)});
+}
+
+// The tips and rings of the crack angles, from the first snapshot, with the crack tracker's
+// threshold and free-surface points: in 2-D on the body, with crack tracking; in 3-D on the
+// mid-thickness layer.
 CrackAngleStream crack_angle_stream(const RunDirectory& run, const PointGeometry& points, const FirstSnapshot& first,
                                     const std::optional<CrackTracker>& crack, CrackAngleSettings settings) {
   CrackAngleStream stream;
   // The angles need the damage fields (a run with the crack table alone has none in its snapshots).
-  if (!crack || !first.snapshot.find("damage")) return stream;
+  const auto* damage = first.snapshot.find("damage");
+  if (!damage || (run.info.dimension == 2 && !crack)) return stream;
+  if (run.info.dimension == 3) {
+    stream.layer = angle_layer(run, points, stream.notes);
+    if (!stream.layer) return stream;
+  }
+  const CrackTracker& tracker = stream.layer ? stream.layer->tracker : *crack;
+  const std::vector<double>& z = stream.layer ? stream.layer->layer.flat_z : points.z;
+  const std::vector<char>& include = stream.layer ? stream.layer->layer.include : points.body;
   settings.spacing = run.spacing;
   settings.horizon = run.horizon;
-  settings.damage_threshold = crack->damage_threshold();
+  settings.damage_threshold = tracker.damage_threshold();
   stream.tracker = std::make_unique<CrackAngleTracker>(
-      CrackAngleLattice{points.x, points.y, points.z, points.body, crack->near_boundary()},
-      first.snapshot.find("damage")->data, settings);
+      CrackAngleLattice{points.x, points.y, z, include, tracker.near_boundary()}, damage->data, settings);
   if (settings.measure_time) stream.only_snapshot = snapshot_at_or_before(run.info.snapshots, *settings.measure_time);
   return stream;
 }
@@ -533,8 +584,8 @@ void add_crack_metrics(JsonValue& summary, std::vector<std::string>& notes, cons
              std::find(run.info.effects.begin(), run.info.effects.end(), "damage") != run.info.effects.end()) {
     if (run.info.dimension == 2) return;
     notes.push_back(area_metrics
-                        ? "crack branching, end, tip speed, length and angles are measured in 2-D runs only (3-D "
-                          "runs: crack area, start time and front advance)"
+                        ? "crack branching, end, tip speed and length are measured in 2-D runs only (3-D runs: "
+                          "crack area, start time and front advance; the crack angle on the mid-thickness layer)"
                         : "crack metrics are measured in 2-D runs, and in 3-D runs from the crack_area field, which "
                           "this run's snapshots do not hold (output.fields)");
   }
@@ -557,15 +608,19 @@ void add_crack_area_metrics(JsonValue& summary, std::vector<std::string>& notes,
   write_text((post / "crack_area.csv").string(), crack_area_csv(m));
 }
 
-// Given crack tips need a 2-D run with damage and must lie in the body, and a measure time must
-// have a snapshot at or before it: checked before anything is written.
+// The crack-angle options need a run with damage; given crack tips need a 2-D run and must lie in
+// the body, and a measure time must have a snapshot at or before it: checked before anything is
+// written.
 void check_crack_angle_options(const CrackAngleSettings& settings, const RunDirectory& run, const PointGeometry& points,
                                bool has_damage) {
   if (settings.tips.empty() && !settings.range_from && !settings.measure_time) return;
-  if (!has_damage || run.info.dimension != 2)
+  if (!has_damage)
     throw InputError(
-        "--crack-tip, --crack-direction, --crack-angle-range and --crack-angle-time need a 2-D run with a damage "
-        "field (crack angles are measured in 2-D runs only)");
+        "--crack-tip, --crack-direction, --crack-angle-range and --crack-angle-time need a run with a damage field");
+  if (!settings.tips.empty() && run.info.dimension != 2)
+    throw InputError(
+        "--crack-tip and --crack-direction need a 2-D run (a 3-D run's crack angles are measured on its "
+        "mid-thickness layer, from the tips of its pre-crack)");
   check_crack_tips_in_body(settings.tips, points.x, points.y, points.z, points.body, run.horizon);
   if (settings.measure_time && !snapshot_at_or_before(run.info.snapshots, *settings.measure_time))
     throw InputError("--crack-angle-time: " + format_time(*settings.measure_time).substr(4) +
@@ -625,9 +680,15 @@ void add_pore_pressure_metrics(JsonValue& summary, const SeriesResult& series) {
 }
 
 void add_crack_angle_metrics(JsonValue& summary, std::vector<std::string>& notes, const CrackAngleStream& angles) {
+  notes.insert(notes.end(), angles.notes.begin(), angles.notes.end());
   if (!angles.tracker) return;
   const CrackAngleResult result = angles.tracker->result();
   for (const auto& note : result.notes) notes.push_back("crack angle: " + note);
+  if (angles.layer) {
+    summary.set("crack_angle_layer_z_m", angles.layer->layer.z);
+    notes.push_back("crack angle: measured on the mid-thickness layer z = " + four_digits(angles.layer->layer.z * 1e3) +
+                    " mm (" + std::to_string(angles.layer->layer.points) + " body points)");
+  }
   if (!result.tips.empty()) set_crack_angle_entries(summary, result);
 }
 

@@ -10,11 +10,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/input_error.hpp"
 #include "common/run_directory.hpp"
 #include "common/snapshot_file.hpp"
+#include "postprocess/crack_angle.hpp"
 #include "postprocess/postprocess_run.hpp"
 #include "solver/parallel_policy.hpp"
 #include "solver/solve_run.hpp"
@@ -131,12 +134,39 @@ TEST(CrackAreaStage, SummaryHasThe3dCrackKeys) {
   EXPECT_GT(s["crack_front_advance_m"].as<double>(), 3 * kDx);
   EXPECT_LT(s["crack_front_advance_m"].as<double>(), 6 * kDx);
   EXPECT_GE(s["crack_front_advance_time_s"].as<double>(), s["crack_start_time_s"].as<double>());
-  // The 2-D metrics are not there, and a note says so.
-  for (const char* key : {"crack_length_m", "crack_branch_time_s", "crack_tip_speed_max_m_per_s", "crack_angle_deg"})
+  // The 2-D metrics are not there, and a note says so. The crack angle of a 3-D run (its
+  // mid-thickness layer) needs a horizon factor of 3 or more: this bar's 2.05 gets a note instead.
+  for (const char* key : {"crack_length_m", "crack_branch_time_s", "crack_tip_speed_max_m_per_s", "crack_angle_deg",
+                          "crack_angle_layer_z_m"})
     EXPECT_FALSE(s[key]) << key;
-  bool noted = false;
-  for (const auto& note : s["notes"]) noted |= note.as<std::string>().find("2-D runs only") != std::string::npos;
+  bool noted = false, angle_noted = false;
+  for (const auto& note : s["notes"]) {
+    noted |= note.as<std::string>().find("2-D runs only") != std::string::npos;
+    angle_noted |=
+        note.as<std::string>().find("needs a horizon factor of at least 3 (this run's 2.05)") != std::string::npos;
+  }
   EXPECT_TRUE(noted);
+  EXPECT_TRUE(angle_noted);
+}
+
+TEST(CrackAreaStage, GivenCrackTipsAreRefusedIn3d) {
+  // A 3-D run's tips come from its pre-crack on the mid-thickness layer: a given tip is an error
+  // that names the options, before anything is written.
+  post::PostprocessOptions p;
+  p.run_directory = fs::path(post_directory()).parent_path() / "notched_bar_3d";
+  p.output_directory = fresh_directory("notched_bar_3d_given_tip");
+  fs::remove_all(p.output_directory);
+  p.quiet = true;
+  p.plot_load_curve = false;
+  post::parse_crack_angle_options({{"10mm,3mm,3mm"}, {"90deg"}, std::nullopt}, p.crack_angle);
+  try {
+    post::postprocess_run(p);
+    FAIL() << "a given tip on a 3-D run was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--crack-tip and --crack-direction need a 2-D run"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(p.output_directory));
 }
 
 TEST(CrackAreaStage, HistoryTableEndsWithTheSummarysValues) {

@@ -4,7 +4,7 @@
 // real crack and next to a crack running back at 150 degrees; an interior pre-crack (two tips)
 // and one through the body (none); a notch cut out of the body with the tip and direction
 // given; a series in which the angle is taken on the snapshot where the crack crosses the ring;
-// the parsing of the options.
+// the parsing of the options; a 3-D run measured on its mid-thickness layer.
 //
 // Tolerance of an angle: the points of a crack band are the lattice points within dx of the
 // crack line, so either end of the fitted stretch may sit up to about one dx off the line:
@@ -20,6 +20,7 @@
 #include "common/input_error.hpp"
 #include "postprocess/crack_angle.hpp"
 #include "postprocess/crack_metrics.hpp"
+#include "postprocess/mid_thickness_layer.hpp"
 
 namespace {
 
@@ -402,3 +403,82 @@ TEST(PostCrackAngle, BadOptionsAreRefusedWithTheReason) {
 }
 
 }  // namespace
+
+// 3-D runs: the angle on the mid-thickness layer (postprocess/mid_thickness_layer.hpp). A plate of
+// the 2-D lattice repeated over `planes` lattice planes z = (k + 1/2) dx, with a layer of
+// non-body points (a boundary layer) below and above.
+struct LayeredPlate {
+  Plate plate;
+  int planes;
+  std::vector<double> x, y, z;
+  std::vector<char> body;
+
+  LayeredPlate(const Plate& p, int n) : plate(p), planes(n) {
+    for (int k = -1; k <= n; ++k)
+      for (std::size_t i = 0; i < p.x.size(); ++i) {
+        x.push_back(p.x[i]);
+        y.push_back(p.y[i]);
+        z.push_back((k + 0.5) * p.dx + (i % 3 == 0 ? 1e-12 : 0.0));  // rounding of the lattice
+        body.push_back(k >= 0 && k < n ? 1 : 0);
+      }
+  }
+  std::size_t plane_of(std::size_t point) const { return point / plate.x.size(); }  // 0: the layer below
+  // The damage of plane k from `plane_damage(k)` (a 2-D field), 0 on the boundary layers.
+  template <typename PlaneDamage>
+  std::vector<double> damage(PlaneDamage&& plane_damage) const {
+    std::vector<double> d(x.size(), 0.0);
+    for (int k = 0; k < planes; ++k) {
+      const auto field = plane_damage(k);
+      std::copy(field.begin(), field.end(), d.begin() + static_cast<std::ptrdiff_t>((k + 1) * plate.x.size()));
+    }
+    return d;
+  }
+};
+
+TEST(PostCrackAngle, MidThicknessLayerIsTheMiddlePlaneOrTheLowerOfTheTwo) {
+  const Plate plate(0.01, 0.01, 1e-3, 3.05);
+  for (int planes : {5, 4, 1}) {
+    const LayeredPlate layered(plate, planes);
+    const auto layer = mppm::post::mid_thickness_layer(layered.z, layered.body, 1e-3);
+    const int expected = planes == 4 ? 1 : planes / 2;  // of planes 1 and 2 of four, the lower
+    EXPECT_NEAR(layer.z, (expected + 0.5) * 1e-3, 1e-11) << planes << " planes";
+    EXPECT_EQ(layer.points, plate.x.size()) << planes << " planes";
+    for (std::size_t i = 0; i < layered.z.size(); ++i) {
+      ASSERT_EQ(layer.include[i] != 0, layered.plane_of(i) == static_cast<std::size_t>(expected + 1)) << i;
+      ASSERT_EQ(layer.flat_z[i], layer.z);
+    }
+  }
+  EXPECT_THROW(mppm::post::mid_thickness_layer({0.0}, {1, 1}, 1e-3), std::invalid_argument);
+  EXPECT_THROW(mppm::post::mid_thickness_layer({0.0, 1.0}, {0, 0}, 1e-3), std::invalid_argument);
+  EXPECT_THROW(mppm::post::mid_thickness_layer({0.0}, {1}, 0.0), std::invalid_argument);
+}
+
+TEST(PostCrackAngle, ThreeDimensionalRunIsMeasuredOnItsMidThicknessLayer) {
+  // 80 x 80 mm, dx 1 mm, delta 3.05 dx; an edge pre-crack along y = 40 mm to x = 40 mm through
+  // every plane. On the middle plane a crack leaves the tip at 60 degrees, on the others at 20:
+  // the angle is the middle plane's. Five planes (the middle one) and four (the lower middle one).
+  const double dx = 1e-3;
+  const Plate plate(0.08, 0.08, dx, 3.05);
+  const Segment notch{0.0, 0.04, 0.04001, 0.04};
+  const double length = 0.03;
+  for (int planes : {5, 4}) {
+    const LayeredPlate layered(plate, planes);
+    const auto layer = mppm::post::mid_thickness_layer(layered.z, layered.body, dx);
+    const int middle = planes == 4 ? 1 : planes / 2;
+    const auto first = layered.damage([&](int) { return plate.damage({notch}, dx); });
+    const auto last = layered.damage([&](int k) {
+      return plate.damage({notch, ray(0.04001, 0.04, k == middle ? 60 : 20, length)}, dx);
+    });
+    mppm::post::CrackSettings settings;
+    settings.spacing = dx;
+    settings.horizon = plate.horizon;
+    const mppm::post::CrackTracker tracker(layered.x, layered.y, layer.flat_z, layer.include, settings);
+    const CrackAngleLattice lattice{layered.x, layered.y, layer.flat_z, layer.include, tracker.near_boundary()};
+    const auto result = measure_crack_angles(lattice, first, last, plate.settings());
+    ASSERT_EQ(result.tips.size(), 1u) << planes << " planes";
+    EXPECT_NEAR(result.tips[0].position[2], layer.z, 1e-12);
+    ASSERT_EQ(result.cracks.size(), 1u) << planes << " planes";
+    EXPECT_NEAR(result.cracks[0].signed_angle_deg, 60.0, tolerance_deg(12 * plate.horizon - 2 * plate.horizon, dx))
+        << planes << " planes";
+  }
+}

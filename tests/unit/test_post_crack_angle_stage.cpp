@@ -132,7 +132,7 @@ TEST(PostCrackAngleStage, BadOptionValues) {
   RunFixture no_damage;
   no_damage.damage = false;
   expect_refused("crack_angle_no_damage", {"--crack-tip", "8mm,15mm", "--crack-direction", "0deg"},
-                 "need a 2-D run with a damage field", no_damage);
+                 "need a run with a damage field", no_damage);
 }
 
 }  // namespace

@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """results.md of the Kalthoff-Winkler case from its outputs (nothing typed in).
 
-usage: report_case.py --out OUT --runs RUN... [--specimen-runs RUN...] --results results.md
-         --figures figures
+usage: report_case.py --out OUT --runs RUN... [--specimen-runs RUN...] [--runs-3d RUN...]
+         --results results.md --figures figures
 
-Writes, for the case's plate (--runs) and for the experiment's specimen (--specimen-runs), the
-table of crack angles (each notch's main crack against the notch direction), crack start time,
+Writes, for the case's plate (--runs), the experiment's specimen (--specimen-runs) and its 3-D
+form (--runs-3d: the crack paths of the mid-thickness layer), the table of crack angles (each notch's main crack against the notch direction), crack start time,
 largest tip speed and wall time per run; the crack paths of every run with their straight-line
-fits (figures/crack_paths.png, figures/crack_paths_specimen.png); and copies the damage pictures
+fits (figures/crack_paths.png, crack_paths_specimen.png, crack_paths_3d.png); and copies the damage pictures
 that mppm-postprocess --figures rendered for the runs.
 """
 import argparse
@@ -44,9 +44,12 @@ def plot_crack_paths(out, runs, summaries, target):
     for ax, run in zip(axes[0], runs):
         s = summaries[run]
         time, mesh = frames[run]
-        threshold = s["crack_damage_threshold"]
-        body = [(p[0] * 1e3, p[1] * 1e3) for p, r, d in
-                zip(mesh.points, mesh.point_data["region"], mesh.point_data["damage"]) if r == 0 and d >= threshold]
+        threshold = s.get("crack_damage_threshold", 0.35)
+        layer = s.get("crack_angle_layer_z_m")  # 3-D: the mid-thickness layer the angles are measured on
+        in_view = (lambda p: True) if layer is None else (lambda p: abs(p[2] - layer) < 0.25 * s["spacing_m"])
+        body = [(p[0] * 1e3, p[1] * 1e3) for p, r, d in  # reference positions, as the series holds them
+                zip(mesh.points, mesh.point_data["region"], mesh.point_data["damage"])
+                if r == 0 and d >= threshold and in_view(p)]
         ax.scatter([p[0] for p in body], [p[1] for p in body], s=1, color="0.55", label=f"damage >= {threshold:g}")
         for entry in s.get("crack_angles") or []:
             tip, point, direction = entry["tip_m"], entry["fit_point_m"], entry["fit_direction"]
@@ -140,6 +143,7 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--runs", nargs="+", required=True)
     ap.add_argument("--specimen-runs", nargs="*", default=[])
+    ap.add_argument("--runs-3d", nargs="*", default=[])
     ap.add_argument("--results", required=True)
     ap.add_argument("--figures", required=True)
     args = ap.parse_args()
@@ -159,9 +163,14 @@ def main():
     if args.specimen_runs:
         lines += ["## The experiment's specimen (100 mm along the notches, 200 mm along the struck edge)", ""]
         lines += plate_section(args, args.specimen_runs, "crack_paths_specimen.png")
+    if args.runs_3d:
+        lines += ["## The 3-D form (the experiment's specimen through its 9 mm thickness, to 50 us)", "",
+                  "Crack angles and the crack paths drawn on the mid-thickness layer (postprocess/README.md, crack "
+                  "angle); crack start and tip speed from the crack-arrival table of every layer.", ""]
+        lines += plate_section(args, args.runs_3d, "crack_paths_3d.png")
     for stale in glob.glob(os.path.join(args.figures, "*_damage_*.png")):  # an earlier report's pictures
         os.remove(stale)
-    lines += damage_pictures(args, args.runs + args.specimen_runs)
+    lines += damage_pictures(args, args.runs + args.specimen_runs + args.runs_3d)
     write_text(args.results, "\n".join(lines))
     print(f"report: {os.path.abspath(args.results)}")
     return 0
