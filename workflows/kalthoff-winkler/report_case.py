@@ -5,10 +5,11 @@ usage: report_case.py --out OUT --runs RUN... [--specimen-runs RUN...] [--runs-3
          --results results.md --figures figures
 
 Writes, for the case's plate (--runs), the experiment's specimen (--specimen-runs) and its 3-D
-form (--runs-3d: the crack paths of the mid-thickness layer), the table of crack angles (each notch's main crack against the notch direction), crack start time,
-largest tip speed and wall time per run; the crack paths of every run with their straight-line
-fits (figures/crack_paths.png, crack_paths_specimen.png, crack_paths_3d.png); and copies the damage pictures
-that mppm-postprocess --figures rendered for the runs.
+form (--runs-3d: the crack paths of the mid-thickness layer), the table of crack angles (each
+notch's main crack against the notch direction), crack start time, largest tip speed and wall
+time per run; the crack paths of every run with their straight-line fits
+(figures/crack_paths.png, crack_paths_specimen.png, crack_paths_3d.png); and copies the damage
+pictures that mppm-postprocess --figures rendered for the runs.
 """
 import argparse
 import glob
