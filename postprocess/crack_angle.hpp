@@ -10,7 +10,8 @@
 // - the snapshot: per tip, the first in which its crack reaches the outer radius `to` (later,
 //   damage spreading around the tip would swamp the crack path), else the last one; or the last
 //   one at or before a given time.
-// 2-D runs only (like the other crack metrics).
+// Measured in the x-y plane: on the body of a 2-D run, and on the mid-thickness layer of a 3-D run
+// (mid_thickness_layer.hpp; the driver, postprocess_run.cpp, picks the layer).
 #pragma once
 #include <array>
 #include <cstddef>
