@@ -402,8 +402,6 @@ TEST(PostCrackAngle, BadOptionsAreRefusedWithTheReason) {
   expect_error({{}, {}, std::nullopt, "-5us"}, "--crack-angle-time '-5us': a negative time (expected a time");
 }
 
-}  // namespace
-
 // 3-D runs: the angle on the mid-thickness layer (postprocess/mid_thickness_layer.hpp). A plate of
 // the 2-D lattice repeated over `planes` lattice planes z = (k + 1/2) dx, with a layer of
 // non-body points (a boundary layer) below and above.
@@ -482,3 +480,5 @@ TEST(PostCrackAngle, ThreeDimensionalRunIsMeasuredOnItsMidThicknessLayer) {
         << planes << " planes";
   }
 }
+
+}  // namespace
