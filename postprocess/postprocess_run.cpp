@@ -24,6 +24,7 @@
 #include "common/snapshot_file.hpp"
 #include "common/units.hpp"
 #include "postprocess/boundary_layer_mask.hpp"
+#include "postprocess/clip_plane.hpp"
 #include "postprocess/crack_angle.hpp"
 #include "postprocess/crack_area_metrics.hpp"
 #include "postprocess/crack_metrics.hpp"
@@ -335,21 +336,14 @@ struct CrackAngleStream {
   }
 };
 
-// Four significant digits, for notes.
-std::string four_digits(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", v);
-  return buffer;
-}
-
 // The crack angles' layer of a 3-D damage run, or a note why there is none.
 std::unique_ptr<AngleLayer> angle_layer(const RunDirectory& run, const PointGeometry& points,
                                         std::vector<std::string>& notes) {
   if (run.horizon < kLayerAngleLeastHorizonFactor * run.spacing * (1 - 1e-9)) {
     notes.push_back(
         "crack angle: not measured: on a 3-D run's mid-thickness layer it needs a horizon factor of at "
-        "least 3 (this run's " +
-        four_digits(run.horizon / run.spacing) +
+        "least 3 (this run's horizon is " +
+        format_length(run.horizon) + " at dx = " + format_length(run.spacing) +
         "), below which the damage beside a planar crack stays under the crack threshold 0.35");
     return nullptr;
   }
@@ -686,8 +680,8 @@ void add_crack_angle_metrics(JsonValue& summary, std::vector<std::string>& notes
   for (const auto& note : result.notes) notes.push_back("crack angle: " + note);
   if (angles.layer) {
     summary.set("crack_angle_layer_z_m", angles.layer->layer.z);
-    notes.push_back("crack angle: measured on the mid-thickness layer z = " + four_digits(angles.layer->layer.z * 1e3) +
-                    " mm (" + std::to_string(angles.layer->layer.points) + " body points)");
+    notes.push_back("crack angle: measured on the mid-thickness layer z = " + format_length(angles.layer->layer.z) +
+                    " (" + std::to_string(angles.layer->layer.points) + " body points)");
   }
   if (!result.tips.empty()) set_crack_angle_entries(summary, result);
 }

@@ -13,7 +13,9 @@
 #   many runs (RUNS set):  one points file $(OUT)/points.vtp, and per run $(OUT)/<run>/ with a
 #            copy of it (a run folder stands on its own), run/ and post/. The case defines, for
 #            a run name $(1): run_threads (default THREADS), run_args (solver options after
-#            --threads) and post_args (postprocessor options after --quiet). A case may also
+#            --threads) and post_args (postprocessor options after --quiet); run_scene (default
+#            SCENE) if some runs solve another scene (their points come from the case's own
+#            rule for $(OUT)/<run>/points.vtp). A case may also
 #            define announce (a line printed before a stage) and stage (how a stage's command
 #            runs: $(call stage,NAME,COMMAND), default the command itself), and STAGE_ECHO (@
 #            to hide the commands).
@@ -63,10 +65,13 @@ $(OUT)/%/points.vtp: $(OUT)/points.vtp
 	@mkdir -p $(@D)
 	@cp $< $@
 
-$(OUT)/%/run/run_info.json: $(OUT)/%/points.vtp $(SCENE) $(MPPM_BIN)/mppm-solve
+run_scene ?= $(SCENE)
+# The run's scene is a prerequisite named by run_scene, expanded per run (secondary expansion).
+.SECONDEXPANSION:
+$(OUT)/%/run/run_info.json: $(OUT)/%/points.vtp $$(call run_scene,$$*) $(MPPM_BIN)/mppm-solve
 	$(call announce,mppm-solve $* -> $(OUT)/$*/run)
-	$(STAGE_ECHO)$(call stage,solve-$*,$(MPPM_BIN)/mppm-solve $(SCENE) --points $< -o $(OUT)/$*/run --force --quiet \
-	  --threads $(call run_threads,$*) $(call run_args,$*))
+	$(STAGE_ECHO)$(call stage,solve-$*,$(MPPM_BIN)/mppm-solve $(call run_scene,$*) --points $< -o $(OUT)/$*/run \
+	  --force --quiet --threads $(call run_threads,$*) $(call run_args,$*))
 
 $(OUT)/%/post/summary.json: $(OUT)/%/run/run_info.json $(MPPM_BIN)/mppm-postprocess
 	$(call announce,mppm-postprocess $* -> $(OUT)/$*/post)

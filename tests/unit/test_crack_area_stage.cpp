@@ -143,7 +143,7 @@ TEST(CrackAreaStage, SummaryHasThe3dCrackKeys) {
   for (const auto& note : s["notes"]) {
     noted |= note.as<std::string>().find("2-D runs only") != std::string::npos;
     angle_noted |=
-        note.as<std::string>().find("needs a horizon factor of at least 3 (this run's 2.05)") != std::string::npos;
+        note.as<std::string>().find("at least 3 (this run's horizon is 2.05 mm at dx = 1 mm)") != std::string::npos;
   }
   EXPECT_TRUE(noted);
   EXPECT_TRUE(angle_noted);

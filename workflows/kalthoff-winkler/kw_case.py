@@ -4,6 +4,7 @@ A run folder OUT/RUN/ holds points.vtp, run/ and post/. Everything comes from th
 crack angles from summary.json (`crack_angles`, postprocess/README.md), the material from the
 resolved scene echoed there, the timings from run_info.json.
 """
+import functools
 import math
 import os
 import sys
@@ -23,12 +24,19 @@ def summary(out, run):
     return run_summary
 
 
+@functools.lru_cache(maxsize=None)
+def crack_path_rows(out, run):
+    """The rows of the run's crack-arrival table (run/crack_path.csv), read once per run: the
+    mirror line and each notch's crack front read them (a 3-D run's table has every plane's
+    arrivals)."""
+    return tuple(mppm_outputs.read_csv_rows(os.path.join(out, run, "run", "crack_path.csv")))
+
+
 def mirror_line_y(out, run):
     """The height half-way between the two notches: the mean of the lowest and the highest point
     damaged at the start (the notches' pre-crack) in the run's crack-arrival table. The struck
     edge lies between the notches, and the case is symmetric about this line."""
-    rows = mppm_outputs.read_csv_rows(os.path.join(out, run, "run", "crack_path.csv"))
-    heights = [float(row["y_m"]) for row in rows if float(row["time_s"]) == 0]
+    heights = [float(row["y_m"]) for row in crack_path_rows(out, run) if float(row["time_s"]) == 0]
     if not heights:
         raise RunOutputError(f"{os.path.join(out, run, 'run', 'crack_path.csv')}: no pre-crack point at t = 0")
     return (min(heights) + max(heights)) / 2
@@ -82,10 +90,9 @@ def crack_front(out, run, entry, spacing, horizon):
     joins when the crack reaches it), as (time joined, distance along the line) in time order. The
     postprocessor's crack metrics follow one crack from one pre-crack (the crack-branching plate);
     the two notches of this plate need one front each."""
-    rows = mppm_outputs.read_csv_rows(os.path.join(out, run, "run", "crack_path.csv"))
     tip, direction = entry["tip_m"], entry["fit_direction"]
     candidates = []
-    for row in rows:
+    for row in crack_path_rows(out, run):
         t = float(row["time_s"])
         rel = (float(row["x_m"]) - tip[0], float(row["y_m"]) - tip[1])
         along = rel[0] * direction[0] + rel[1] * direction[1]
