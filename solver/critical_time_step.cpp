@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -70,7 +71,13 @@ struct OperatorEstimate {
 // previous q in `prev_u`, `prev_w` (the model's velocity and spin before a run: see
 // critical_time_step), so that no vector of the model's size is allocated here: this runs before
 // the time loop, and its vectors would otherwise set the run's peak memory.
-OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence& convergence, Workspace& ws) {
+//
+// With `enough`, the iteration also stops as soon as the largest Ritz value reaches it: each
+// Lanczos matrix holds the previous one as its leading block, so the largest Ritz value never
+// falls (Cauchy interlacing), and the converged estimate would be at least as large. A caller
+// that only asks whether the estimate lies below a threshold gets the converged run's answer.
+OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence& convergence, Workspace& ws,
+                                    double enough = std::numeric_limits<double>::infinity()) {
   std::vector<double>& prev_u = ws.prev_u;
   std::vector<double>& prev_w = ws.prev_w;
   PointData& p = model.points;
@@ -132,6 +139,7 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence
     r.lambda = ritz;
     r.iterations = it;
     history.push_back(ritz);
+    if (ritz >= enough) break;
     if (it >= convergence.least &&
         std::abs(ritz - history[history.size() - 1 - static_cast<std::size_t>(convergence.window)]) <=
             convergence.tolerance * std::abs(ritz))
@@ -195,10 +203,15 @@ void with_operator(Model& model, Estimates&& estimates) {
 // it, for the model whose coupled step is in `out`.
 void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
   PointData& p = model.points;
+  out.naming_iterations = 0;
+  auto estimate = [&](Block b, double enough = std::numeric_limits<double>::infinity()) {
+    const OperatorEstimate e = largest_eigenvalue(model, b, naming_convergence, ws, enough);
+    out.naming_iterations += e.iterations;
+    return e;
+  };
   // Without rotation dofs the translational block is the coupled operator.
-  const double trans_lambda = p.rotation_components > 0
-                                  ? largest_eigenvalue(model, Block::translational, naming_convergence, ws).lambda
-                                  : 4.0 / (out.step * out.step);
+  const double trans_lambda =
+      p.rotation_components > 0 ? estimate(Block::translational).lambda : 4.0 / (out.step * out.step);
   out.translational = 2.0 / std::sqrt(trans_lambda);
   CosseratConstants& c = model.constants;
   const bool fluid = !p.fluid_content_change.empty();
@@ -223,13 +236,15 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
   // operator is linear in the moduli, and each term of the energy is positive semi-definite, so
   // switching one off can only lower omega_max^2; the block is credited to the modulus without
   // which less than half of omega_max^2 is left. These extra estimates run only for the limiting
-  // block.
+  // block, and each stops once its Ritz value reaches that half (`enough` of largest_eigenvalue:
+  // the converged estimate would not be below it either); its value is only used, in the driver's
+  // text, when it stays below.
   // The stabilization tensors C:K^-1 that a switch may zero are rebuilt from K^-1 and the restored
   // constants afterwards (the same bits), not copied: a copy would cost 9 doubles per point.
-  auto estimate_without = [&](Block b, auto&& switch_off) {
+  auto estimate_without = [&](Block b, double half, auto&& switch_off) {
     const CosseratConstants saved = c;
     switch_off();
-    const OperatorEstimate e = largest_eigenvalue(model, b, naming_convergence, ws);
+    const OperatorEstimate e = estimate(b, half);
     c = saved;
     update_stabilization_tensors(p, c);
     return e.lambda;
@@ -238,7 +253,7 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
   double rot_lambda = 0.0;
   if (p.rotation_components > 0) {
-    const OperatorEstimate rot = largest_eigenvalue(model, Block::rotational, naming_convergence, ws);
+    const OperatorEstimate rot = estimate(Block::rotational);
     out.rotational = 2.0 / std::sqrt(rot.lambda);
     rot_lambda = rot.lambda;
   }
@@ -251,14 +266,15 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
     // and the stabilization of U. First the bending modulus alone (lambda = mu = mu_c = 0, the
     // translational stabilization C:K^-1 off); if that is not it, the estimate without mu_c tells
     // mu_c from lambda and mu.
-    const double bending = estimate_without(Block::rotational, [&] {
+    const double bending = estimate_without(Block::rotational, 0.5 * rot_lambda, [&] {
       c.lambda = c.mu = c.mu_c = 0.0;
       std::fill(p.stabilization_ck.begin(), p.stabilization_ck.end(), 0.0);
     });
     if (bending >= 0.5 * rot_lambda) {
       out.driver = std::string("material.couple_moduli (bending modulus B_w = ") + (c.dimension == 2 ? "a3" : "a2") +
                    " = " + number(c.bending_modulus) + " N)" + inertia;
-    } else if (c.mu_c > 0.0 && estimate_without(Block::rotational, [&] { c.mu_c = 0.0; }) < 0.5 * rot_lambda) {
+    } else if (c.mu_c > 0.0 &&
+               estimate_without(Block::rotational, 0.5 * rot_lambda, [&] { c.mu_c = 0.0; }) < 0.5 * rot_lambda) {
       out.driver = "material.mu_c = " + number(c.mu_c) + " Pa" + inertia;
     } else {
       out.driver =
@@ -268,7 +284,7 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
           number(c.bending_modulus) + " N alone gives " + number(bending / rot_lambda) + " of omega_max^2)" + inertia;
     }
   } else if (c.mu_c > 0.0 && p.rotation_components > 0 &&
-             estimate_without(Block::translational, [&] { c.mu_c = 0.0; }) < 0.5 * trans_lambda) {
+             estimate_without(Block::translational, 0.5 * trans_lambda, [&] { c.mu_c = 0.0; }) < 0.5 * trans_lambda) {
     // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
     // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
     out.driver = "material.mu_c = " + number(c.mu_c) +

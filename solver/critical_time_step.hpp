@@ -17,6 +17,7 @@ struct CriticalTimeStep {
   std::string limiting_mode;   // "translational" or "rotational"
   std::string driver;          // the parameter that drives the limiting mode, with its value
   int iterations = 0;          // operator applications of the coupled estimate
+  int naming_iterations = 0;   // operator applications of the naming (0 when not named)
 };
 
 // Each of these leaves the model's displacement and rotation as they were.

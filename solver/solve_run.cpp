@@ -667,7 +667,8 @@ void RunDriver::log_start_up_report() {
   writer().log("critical time step " + log_number(critical.step) + " s (translational " +
                log_number(critical.translational) + " s" +
                (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
-               "; " + std::to_string(critical.iterations) + " Lanczos iterations), limiting mode " +
+               "; " + std::to_string(critical.iterations) + " Lanczos iterations, " +
+               std::to_string(critical.naming_iterations) + " more to name the mode), limiting mode " +
                critical.limiting_mode + ", driven by " + critical.driver);
   writer().log("time step " + log_number(dt) + " s (" +
                (scene_in_.time.step ? "given" : "auto, safety " + log_number(scene_.time.safety)) + "), " +
