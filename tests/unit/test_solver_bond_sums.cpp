@@ -1,5 +1,6 @@
-// The force kernel's pass-1 bond sums (solver/bond_sums.hpp): in 3-D, where the instruction set has
-// 4-lane vectors and fused multiply-adds, the kernel sums a bond's components as vector lanes. Each
+// The force kernel's pass-1 bond sums (solver/bond_sums.hpp): where the instruction set has vectors
+// and fused multiply-adds (AVX2 and FMA), the kernel sums a bond's components as vector lanes (4
+// lanes in 3-D, 2 in 2-D). Each
 // lane does the scalar loop's operations in its order, so the two forms agree to the bit (compared
 // as bytes: a zero's sign included), on every effect set, with broken bonds skipped, and with the
 // bond vectors from the positions or stored (periodic lattices).
@@ -22,31 +23,37 @@ using testing::make_scene;
 using kernel::BondSums;
 
 // Every point's sums by both forms, compared as bytes; the number of points compared.
-template <class Effects, bool StoredXi>
+template <int D, class Effects, bool StoredXi>
 int compare_every_point(const Model& m) {
   int compared = 0;
   for (std::size_t i = 0; i < m.points.owned; ++i) {
-    BondSums<3, 3> scalar{}, vector{};
-    kernel::bond_sums_scalar<3, Effects, StoredXi>(m.points, m.bonds, i, scalar);
-    kernel::bond_sums_vector<Effects, StoredXi>(m.points, m.bonds, i, vector);
-    EXPECT_EQ(std::memcmp(&scalar, &vector, sizeof scalar), 0) << "point " << i;
+    BondSums<D, rotation_components<D>> scalar{}, vector{};
+    kernel::bond_sums_scalar<D, Effects, StoredXi>(m.points, m.bonds, i, scalar);
+    if constexpr (D == 3)
+      kernel::bond_sums_vector<Effects, StoredXi>(m.points, m.bonds, i, vector);
+    else
+      kernel::bond_sums_vector_2d<Effects, StoredXi>(m.points, m.bonds, i, vector);
+    EXPECT_EQ(std::memcmp(&scalar, &vector, sizeof scalar), 0) << D << "-D, point " << i;
     ++compared;
   }
   return compared;
 }
 
-// A 3-D lattice with random displacements and rotations (zeros of both signs among them) and, with
-// damage, every fifth bond entry broken.
-Model random_model(bool micropolar, bool damage, bool periodic) {
+// A lattice (5^3 points in 3-D at horizon factor 2.05; 7^2 in 2-D at 3.05, the crack-branching
+// plate's family size; a period must exceed two horizons) with random displacements and rotations (zeros of both
+// signs among them) and, with damage, every fifth bond entry broken.
+Model random_model(int dimension, bool micropolar, bool damage, bool periodic) {
   constexpr double dx = 1e-3;
-  Scene s = make_scene(3, micropolar, dx, 2.05);
+  Scene s = make_scene(dimension, micropolar, dx, dimension == 3 ? 2.05 : 3.05);
   if (damage) {
     s.effects.damage = true;
     s.material.damage = DamageParameters{100.0, 0.0, DamageCalibration::lattice, std::nullopt};
   }
+  const int n = dimension == 3 ? 5 : 7;
+  const double side = n * dx;
   const std::array<double, 3> period =
-      periodic ? std::array<double, 3>{5 * dx, 5 * dx, 5 * dx} : std::array<double, 3>{0.0, 0.0, 0.0};
-  Model m = make_model(make_lattice(3, {5, 5, 5}, dx), s, period);
+      periodic ? std::array<double, 3>{side, side, dimension == 3 ? side : 0.0} : std::array<double, 3>{0.0, 0.0, 0.0};
+  Model m = make_model(make_lattice(dimension, {n, n, dimension == 3 ? n : 1}, dx, s.thickness), s, period);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> g(-1e-6, 1e-6);
   std::size_t k = 0;
@@ -57,21 +64,27 @@ Model random_model(bool micropolar, bool damage, bool periodic) {
   return m;
 }
 
-TEST(BondSumsPath, VectorLanesGiveTheScalarSumsBitForBit) {
+template <int D>
+void compare_every_effect_set() {
   for (const bool periodic : {false, true}) {
     SCOPED_TRACE(periodic ? "stored bond vectors" : "bond vectors from the positions");
     const bool stored = periodic;
     auto run = [&]<class E>(bool micropolar, bool damage) {
-      const Model m = random_model(micropolar, damage, periodic);
+      const Model m = random_model(D, micropolar, damage, periodic);
       ASSERT_EQ(!m.bonds.xi.empty(), stored);
-      const int n = stored ? compare_every_point<E, true>(m) : compare_every_point<E, false>(m);
-      EXPECT_EQ(n, 125);
+      const int n = stored ? compare_every_point<D, E, true>(m) : compare_every_point<D, E, false>(m);
+      EXPECT_EQ(n, D == 3 ? 125 : 49);
     };
     run.template operator()<CompiledEffects<false, false, false>>(false, false);
     run.template operator()<CompiledEffects<true, false, false>>(true, false);
     run.template operator()<CompiledEffects<true, true, false>>(true, true);
     run.template operator()<CompiledEffects<false, true, false>>(false, true);
   }
+}
+
+TEST(BondSumsPath, VectorLanesGiveTheScalarSumsBitForBit) {
+  compare_every_effect_set<3>();
+  compare_every_effect_set<2>();
 }
 #else
 TEST(BondSumsPath, VectorLanesGiveTheScalarSumsBitForBit) {
