@@ -4,6 +4,7 @@
 // and every sum over all processes), give the one-process critical step, energy and load rows and
 // final state to the last bit.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <bit>
 #include <cmath>
@@ -207,7 +208,9 @@ void expect_gathered_snapshot_equals_whole(int dimension, std::array<int, 3> n) 
   DistributedModel distributed = build_distributed_model(cloud, model_options(scene), group);
   const History got = integrate(distributed.model, scene, cloud, &distributed.local, steps);
   const std::vector<std::string> fields = available_fields(whole);
-  const std::string directory = "mpi_snapshot_" + std::to_string(group.size()) + "_" + std::to_string(dimension);
+  // Named by the writing process's id: ctest runs the same executable at several thread counts at
+  // once, in the same directory, and one run must not read or remove another's files.
+  const std::string directory = "mpi_snapshot_" + std::to_string(::getpid()) + "_" + std::to_string(dimension);
   const std::string whole_path = directory + "_whole.snap", gathered_path = directory + "_gathered.snap";
   if (group.rank() == 0)
     write_snapshot(dimension, steps, expected.time, cloud.size(), snapshot_sources(whole, fields), whole_path);
