@@ -221,15 +221,13 @@ template <int D, class Effects, bool StoredXi>
 [[gnu::always_inline]] inline void bond_sums(const PointData& p, const BondFamilies& f, std::size_t i,
                                              BondSums<D, rotation_components<D>>& out) {
 #ifdef MPPM_BOND_SUMS_VECTOR
-  if constexpr (D == 3) {
+  if constexpr (D == 3)
     bond_sums_vector<Effects, StoredXi>(p, f, i, out);
-    return;
-  } else {
+  else
     bond_sums_vector_2d<Effects, StoredXi>(p, f, i, out);
-    return;
-  }
-#endif
+#else
   bond_sums_scalar<D, Effects, StoredXi>(p, f, i, out);
+#endif
 }
 
 }  // namespace mppm::solver::kernel
