@@ -236,18 +236,19 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
   // operator is linear in the moduli, and each term of the energy is positive semi-definite, so
   // switching one off can only lower omega_max^2; the block is credited to the modulus without
   // which less than half of omega_max^2 is left. These extra estimates run only for the limiting
-  // block, and each stops once its Ritz value reaches that half (`enough` of largest_eigenvalue:
-  // the converged estimate would not be below it either); its value is only used, in the driver's
-  // text, when it stays below.
+  // block. Each gives the fraction of the block's omega_max^2 left without the modulus, and stops
+  // once that reaches the half (`enough` of largest_eigenvalue: the converged estimate would not be
+  // below it either), so a fraction is exact only below the half, the one case where it is quoted.
   // The stabilization tensors C:K^-1 that a switch may zero are rebuilt from K^-1 and the restored
   // constants afterwards (the same bits), not copied: a copy would cost 9 doubles per point.
-  auto estimate_without = [&](Block b, double half, auto&& switch_off) {
+  constexpr double credit = 0.5;
+  auto fraction_left_without = [&](Block b, double block_lambda, auto&& switch_off) {
     const CosseratConstants saved = c;
     switch_off();
-    const OperatorEstimate e = estimate(b, half);
+    const OperatorEstimate e = estimate(b, credit * block_lambda);
     c = saved;
     update_stabilization_tensors(p, c);
-    return e.lambda;
+    return e.lambda / block_lambda;
   };
   const std::string inertia = " over the micro-inertia I = 1/2 pi rho l^2 = " + number(c.micro_inertia) +
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
@@ -266,25 +267,24 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws) {
     // and the stabilization of U. First the bending modulus alone (lambda = mu = mu_c = 0, the
     // translational stabilization C:K^-1 off); if that is not it, the estimate without mu_c tells
     // mu_c from lambda and mu.
-    const double bending = estimate_without(Block::rotational, 0.5 * rot_lambda, [&] {
+    const double bending = fraction_left_without(Block::rotational, rot_lambda, [&] {
       c.lambda = c.mu = c.mu_c = 0.0;
       std::fill(p.stabilization_ck.begin(), p.stabilization_ck.end(), 0.0);
     });
-    if (bending >= 0.5 * rot_lambda) {
+    if (bending >= credit) {
       out.driver = std::string("material.couple_moduli (bending modulus B_w = ") + (c.dimension == 2 ? "a3" : "a2") +
                    " = " + number(c.bending_modulus) + " N)" + inertia;
-    } else if (c.mu_c > 0.0 &&
-               estimate_without(Block::rotational, 0.5 * rot_lambda, [&] { c.mu_c = 0.0; }) < 0.5 * rot_lambda) {
+    } else if (c.mu_c > 0.0 && fraction_left_without(Block::rotational, rot_lambda, [&] { c.mu_c = 0.0; }) < credit) {
       out.driver = "material.mu_c = " + number(c.mu_c) + " Pa" + inertia;
     } else {
       out.driver =
           "material.lambda and material.mu (lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
           " Pa) acting on the micro-rotation through the composite state U = (u_j - u_i) - 1/2 (w_i + w_j) x xi "
           "(the bending modulus B_w = " +
-          number(c.bending_modulus) + " N alone gives " + number(bending / rot_lambda) + " of omega_max^2)" + inertia;
+          number(c.bending_modulus) + " N alone gives " + number(bending) + " of omega_max^2)" + inertia;
     }
   } else if (c.mu_c > 0.0 && p.rotation_components > 0 &&
-             estimate_without(Block::translational, 0.5 * trans_lambda, [&] { c.mu_c = 0.0; }) < 0.5 * trans_lambda) {
+             fraction_left_without(Block::translational, trans_lambda, [&] { c.mu_c = 0.0; }) < credit) {
     // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
     // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
     out.driver = "material.mu_c = " + number(c.mu_c) +
