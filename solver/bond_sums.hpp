@@ -12,16 +12,12 @@
 #include <cstddef>
 #include <cstdint>
 
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#define MPPM_BOND_SUMS_VECTOR 1
-#endif
-
 #include "solver/bond_families.hpp"
 #include "solver/bond_kinematics.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/multiply_add.hpp"
 #include "solver/point_data.hpp"
+#include "solver/vector_lanes.hpp"
 
 namespace mppm::solver::kernel {
 
@@ -83,7 +79,7 @@ template <int D, class Effects, bool StoredXi>
   for (int r = 0; r < R; ++r) out.sw[r] = sw[r];
 }
 
-#ifdef MPPM_BOND_SUMS_VECTOR
+#ifdef MPPM_VECTOR_LANES
 // Three doubles into the low lanes of a vector (lane 3 zero); masked, so the last point's values
 // are read without touching memory past them.
 [[gnu::always_inline]] inline __m256d load3(const double* v) {
@@ -220,7 +216,7 @@ template <class Effects, bool StoredXi>
 template <int D, class Effects, bool StoredXi>
 [[gnu::always_inline]] inline void bond_sums(const PointData& p, const BondFamilies& f, std::size_t i,
                                              BondSums<D, rotation_components<D>>& out) {
-#ifdef MPPM_BOND_SUMS_VECTOR
+#ifdef MPPM_VECTOR_LANES
   if constexpr (D == 3)
     bond_sums_vector<Effects, StoredXi>(p, f, i, out);
   else

@@ -20,6 +20,7 @@
 
 #include "solver/bond_families.hpp"
 #include "solver/bond_kinematics.hpp"
+#include "solver/bond_products.hpp"
 #include "solver/compiled_effects.hpp"
 #include "solver/cosserat_material.hpp"
 #include "solver/multiply_add.hpp"
@@ -144,15 +145,10 @@ class BondWorkPolicy<D, Effects, true> {
     double U0[D];
     composite_state<D, R, polar>(ui0_, u_old_ + j * D, wi0_, wj0, xi, U0);
     const double* aj_both = a_sum_ + j * DD;
+    double pair_force[D];  // t0 + t
+    pair_force_sum<D>(ai_both_, aj_both, cki_, ckj, xi, U0, U, pair_force);
     double dw = 0.0;
-    for (int r = 0; r < D; ++r) {
-      double both = 0.0;
-      for (int col = 0; col < D; ++col) {
-        both = multiply_add(ai_both_[r * D + col] + aj_both[r * D + col], xi[col], both);
-        both = multiply_add(cki_[symmetric_index<D>(r, col)] + ckj[symmetric_index<D>(r, col)], U0[col] + U[col], both);
-      }
-      dw = multiply_add(both, U[r] - U0[r], dw);
-    }
+    for (int r = 0; r < D; ++r) dw = multiply_add(pair_force[r], U[r] - U0[r], dw);
     if constexpr (polar) {
       const double* qj_both = q_sum_ + j * RD;
       const double g = gi_ + g_all_[j];

@@ -23,6 +23,7 @@
 
 #include "solver/bond_families.hpp"
 #include "solver/bond_kinematics.hpp"
+#include "solver/bond_products.hpp"
 #include "solver/bond_sums.hpp"
 #include "solver/bond_work_policy.hpp"
 #include "solver/compiled_effects.hpp"
@@ -435,15 +436,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     double U[D];
     composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
     double t[D];  // the neighbour's share A_j xi + C:K_j^-1 U
-    for (int r = 0; r < D; ++r) {
-      double sum = 0.0;
-      for (int col = 0; col < D; ++col) {
-        sum = multiply_add(aj[r * D + col], xi[col], sum);
-        sum = multiply_add(ckj[symmetric_index<D>(r, col)], U[col], sum);
-      }
-      t[r] = sum;
-      force[r] = multiply_add(vj, sum, force[r]);
-    }
+    add_neighbour_share<D>(aj, ckj, xi, U, vj, t, force);
     if constexpr (polar) {
       const double* qj = q_all + j * RD;
       const double gj = g_all[j];

@@ -9,6 +9,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_momentum.cpp
   unit/test_solver_time_step.cpp
   unit/test_solver_bond_sums.cpp
+  unit/test_solver_bond_products.cpp
   unit/test_solver_run.cpp
   unit/test_solver_families.cpp
   unit/test_solver_command.cpp

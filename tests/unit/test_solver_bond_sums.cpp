@@ -19,7 +19,7 @@ using testing::make_lattice;
 using testing::make_model;
 using testing::make_scene;
 
-#ifdef MPPM_BOND_SUMS_VECTOR
+#ifdef MPPM_VECTOR_LANES
 using kernel::BondSums;
 
 // Every point's sums by both forms, compared as bytes; the number of points compared.
