@@ -65,7 +65,11 @@ template <typename Tensor>
                                                                                   double trace_modulus,
                                                                                   double symmetric_modulus,
                                                                                   double transpose_modulus) {
-  const typename Tensor::PlainObject e = t;
+  // A plain matrix by reference (eval() of one is itself), not copied: the copy was one 64-byte
+  // load of entries its caller had just stored one by one, which the processor cannot forward
+  // from those stores (measured: half of the law's time in the 3-D force kernel). An expression
+  // is evaluated once into a temporary.
+  const auto& e = t.eval();
   typename Tensor::PlainObject s = symmetric_modulus * e + transpose_modulus * e.transpose();
   // The trace summed in index order (Eigen's trace of a 3 x 3 adds e_00 + (e_11 + e_22)), so that
   // the plane-strain zz entry can be formed from the in-plane trace (plane_strain_normal_stress).
