@@ -28,6 +28,9 @@ struct BondSums {
   double s[D];
   double m[D];
   double sw[R];
+  // The 3-D lanes store 4 doubles for each 3 (bond_sums_vector): each store's fourth lane lands on
+  // the next member, which is stored after it, and the last one's here.
+  double lane_spill;
 };
 
 // The bond sums one bond at a time, in plain doubles (any dimension, any instruction set).
@@ -84,9 +87,6 @@ template <int D, class Effects, bool StoredXi>
 // are read without touching memory past them.
 [[gnu::always_inline]] inline __m256d load3(const double* v) {
   return _mm256_maskload_pd(v, _mm256_set_epi64x(0, -1, -1, -1));
-}
-[[gnu::always_inline]] inline void store3(__m256d v, double* out) {
-  _mm256_maskstore_pd(out, _mm256_set_epi64x(0, -1, -1, -1), v);
 }
 // Lane k of v in every lane.
 template <int K>
@@ -147,15 +147,18 @@ template <class Effects, bool StoredXi>
       sw = _mm256_add_pd(sw, om);
     }
   }
-  store3(S0, out.S);
-  store3(S1, out.S + 3);
-  store3(S2, out.S + 6);
-  store3(s, out.s);
-  store3(m, out.m);
-  store3(K0, out.Sk);
-  store3(K1, out.Sk + 3);
-  store3(K2, out.Sk + 6);
-  store3(sw, out.sw);
+  // Whole 4-lane stores in member order, each overwriting the previous one's fourth lane (a masked
+  // store is slow on some processors, and a later load cannot take its value from it).
+  static_assert(sizeof(BondSums<3, 3>) == 28 * sizeof(double), "BondSums<3, 3>: members packed in order");
+  _mm256_storeu_pd(out.S, S0);
+  _mm256_storeu_pd(out.S + 3, S1);
+  _mm256_storeu_pd(out.S + 6, S2);
+  _mm256_storeu_pd(out.Sk, K0);
+  _mm256_storeu_pd(out.Sk + 3, K1);
+  _mm256_storeu_pd(out.Sk + 6, K2);
+  _mm256_storeu_pd(out.s, s);
+  _mm256_storeu_pd(out.m, m);
+  _mm256_storeu_pd(out.sw, sw);
 }
 
 // 2-D, a bond's two components as the lanes of a 2-lane vector, with the scalar loop's operations
