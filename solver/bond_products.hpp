@@ -3,14 +3,20 @@
 //   - the neighbour's share of the force, A_j xi + C:K_j^-1 U, added to point i's force as V_j t
 //     (the kernel also needs t itself for the moment's 1/2 xi x t): add_neighbour_share;
 //   - the pair force of the bond work's increment, with both ends' tensors and both evaluations
-//     summed, (A_i0 + A_i + A_j0 + A_j) xi + (Ck_i + Ck_j)(U0 + U): pair_force_sum.
+//     summed, (A_i0 + A_i + A_j0 + A_j) xi + (Ck_i + Ck_j)(U0 + U): pair_force_sum;
+// and their micro-polar counterparts, the neighbour's share of the moment, V_j [Q_j xi + g_j Om +
+// 1/2 xi x t] (add_neighbour_moment), and the pair moment of the bond work,
+// (Q_i0 + Q_i + Q_j0 + Q_j) xi + (g_i + g_j)(Om0 + Om) with Om - Om0 (pair_moment_sum).
 // Per row r the scalar form sums fma(A[r][c], xi_c, .) then fma(C[r][c], U_c, .) for c = 0, 1, ...
 // from zero (each entry of A or C, and each U_c, the sum of its two terms first in the pair form).
-// In 2-D with vector lanes (vector_lanes.hpp) the two rows are the two lanes of one vector: the
-// columns of A are two unpack operations of its rows, and the columns of a packed C are plain
-// loads (its entries are 00, 01, 11). Each lane does its row's scalar operations in their order,
-// so both forms give the same bits (`BondProducts`, tests/unit/test_solver_bond_sums.cpp). 3-D
-// keeps the scalar form: its 3 rows in 4 lanes did not make pass 2 faster.
+// With vector lanes (vector_lanes.hpp) the rows are the lanes of one vector, and each lane does its
+// row's scalar operations in their order, so both forms give the same bits (`BondProducts`,
+// tests/unit/test_solver_bond_products.cpp). In 2-D the columns of A are two unpack operations of
+// its rows and those of a packed C (entries 00 01 11) plain loads; in 3-D, lanes 0-2 of 4, the
+// columns of A come from an in-register transpose of its rows and those of C from two loads of its
+// packed entries (00 01 02 11 and 02 11 12 22), and the moments' rows are lanes 0-2 too (in 2-D
+// the moment has one component, and stays scalar). The 3-D forms write 4 doubles to t, force,
+// moment and the pair force and moment (the fourth is not used).
 #pragma once
 
 #include "solver/multiply_add.hpp"
@@ -48,6 +54,48 @@ template <int D>
   }
 }
 
+// xi x t (its z component in 2-D), added with a factor: fma(factor, fma(xi_b, t_c, -xi_c t_b), .).
+template <int D>
+[[gnu::always_inline]] inline void add_cross(const double* xi, const double* t, double factor, double* out) {
+  if constexpr (D == 2) {
+    out[0] = multiply_add(factor, multiply_add(xi[0], t[1], -xi[1] * t[0]), out[0]);
+  } else {
+    out[0] = multiply_add(factor, multiply_add(xi[1], t[2], -xi[2] * t[1]), out[0]);
+    out[1] = multiply_add(factor, multiply_add(xi[2], t[0], -xi[0] * t[2]), out[1]);
+    out[2] = multiply_add(factor, multiply_add(xi[0], t[1], -xi[1] * t[0]), out[2]);
+  }
+}
+
+// Per rotation component r: fma(V_j, g_j (w_j - w_i)_r + sum_c Q_j[r][c] xi_c, moment_r) (the Q
+// terms fused in column order), then the cross product with t.
+template <int D, int R>
+[[gnu::always_inline]] inline void neighbour_moment_scalar(const double* qj, double gj, const double* wi,
+                                                           const double* wj, const double* xi, const double* t,
+                                                           double vj, double* moment) {
+  for (int r = 0; r < R; ++r) {
+    double sum = gj * (wj[r] - wi[r]);
+    for (int col = 0; col < D; ++col) sum = multiply_add(qj[r * D + col], xi[col], sum);
+    moment[r] = multiply_add(vj, sum, moment[r]);
+  }
+  add_cross<D>(xi, t, 0.5 * vj, moment);
+}
+
+// Per rotation component r: Om_r = (w_j - w_i)_r, Om0_r as Om_r of the previous state; the pair
+// moment g (Om0 + Om)_r + sum_c (Q_i[r][c] + Q_j[r][c]) xi_c (fused in column order), and Om - Om0.
+template <int D, int R>
+[[gnu::always_inline]] inline void pair_moment_sum_scalar(const double* qi, const double* qj, double g,
+                                                          const double* wi, const double* wj, const double* wi0,
+                                                          const double* wj0, const double* xi, double* both,
+                                                          double* change) {
+  for (int r = 0; r < R; ++r) {
+    const double om = wj[r] - wi[r], om0 = wj0[r] - wi0[r];
+    double sum = g * (om0 + om);
+    for (int col = 0; col < D; ++col) sum = multiply_add(qi[r * D + col] + qj[r * D + col], xi[col], sum);
+    both[r] = sum;
+    change[r] = om - om0;
+  }
+}
+
 #ifdef MPPM_VECTOR_LANES
 // 2-D: t's two rows as lanes, from A's rows and C's packed entries 00 01 (ck_lo) and 01 11 (ck_hi).
 [[gnu::always_inline]] inline __m128d bond_product_lanes_2d(__m128d a_row0, __m128d a_row1, __m128d ck_lo,
@@ -76,19 +124,113 @@ template <int D>
   const __m128d ck_hi = _mm_add_pd(_mm_loadu_pd(cki + 1), _mm_loadu_pd(ckj + 1));
   _mm_storeu_pd(both, bond_product_lanes_2d(a_row0, a_row1, ck_lo, ck_hi, xi[0], xi[1], U0[0] + U[0], U0[1] + U[1]));
 }
+
+// 3-D: the columns of A (lanes 0-2) from its rows, each read as 4 doubles (the third masked, so
+// that the last point's tensor is read without touching memory past it).
+struct Columns3 {
+  __m256d c0, c1, c2;
+};
+[[gnu::always_inline]] inline Columns3 columns_of_rows(__m256d r0, __m256d r1, __m256d r2) {
+  const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);  // 00 10 02 12, 01 11 . .
+  const __m256d t2 = _mm256_unpacklo_pd(r2, r2), t3 = _mm256_unpackhi_pd(r2, r2);  // 20 20 22 22, 21 21 . .
+  return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
+          _mm256_permute2f128_pd(t0, t2, 0x31)};
+}
+[[gnu::always_inline]] inline __m256d third_row(const double* a) {
+  return _mm256_maskload_pd(a + 6, _mm256_set_epi64x(0, -1, -1, -1));
+}
+// The columns of a packed symmetric C from lo = (00 01 02 11) and hi = (02 11 12 22): lo itself,
+// (01 11 12) and (02 12 22).
+[[gnu::always_inline]] inline Columns3 columns_of_packed(__m256d lo, __m256d hi) {
+  return {lo, _mm256_blend_pd(_mm256_permute4x64_pd(lo, 0xFD), hi, 0x4), _mm256_permute4x64_pd(hi, 0xF8)};
+}
+[[gnu::always_inline]] inline __m256d bond_product_lanes_3d(const Columns3& a, const Columns3& c, const double* xi,
+                                                            double U0, double U1, double U2) {
+  __m256d sum = _mm256_fmadd_pd(a.c0, _mm256_set1_pd(xi[0]), _mm256_setzero_pd());
+  sum = _mm256_fmadd_pd(c.c0, _mm256_set1_pd(U0), sum);
+  sum = _mm256_fmadd_pd(a.c1, _mm256_set1_pd(xi[1]), sum);
+  sum = _mm256_fmadd_pd(c.c1, _mm256_set1_pd(U1), sum);
+  sum = _mm256_fmadd_pd(a.c2, _mm256_set1_pd(xi[2]), sum);
+  return _mm256_fmadd_pd(c.c2, _mm256_set1_pd(U2), sum);
+}
+
+[[gnu::always_inline]] inline void neighbour_share_vector_3d(const double* aj, const double* ckj, const double* xi,
+                                                             const double* U, double vj, double* t, double* force) {
+  const Columns3 a = columns_of_rows(_mm256_loadu_pd(aj), _mm256_loadu_pd(aj + 3), third_row(aj));
+  const Columns3 c = columns_of_packed(_mm256_loadu_pd(ckj), _mm256_loadu_pd(ckj + 2));
+  const __m256d sum = bond_product_lanes_3d(a, c, xi, U[0], U[1], U[2]);
+  _mm256_storeu_pd(t, sum);
+  _mm256_storeu_pd(force, _mm256_fmadd_pd(_mm256_set1_pd(vj), sum, _mm256_loadu_pd(force)));
+}
+
+[[gnu::always_inline]] inline void pair_force_sum_vector_3d(const double* ai, const double* aj, const double* cki,
+                                                            const double* ckj, const double* xi, const double* U0,
+                                                            const double* U, double* both) {
+  const Columns3 a = columns_of_rows(_mm256_add_pd(_mm256_loadu_pd(ai), _mm256_loadu_pd(aj)),
+                                     _mm256_add_pd(_mm256_loadu_pd(ai + 3), _mm256_loadu_pd(aj + 3)),
+                                     _mm256_add_pd(third_row(ai), third_row(aj)));
+  const Columns3 c = columns_of_packed(_mm256_add_pd(_mm256_loadu_pd(cki), _mm256_loadu_pd(ckj)),
+                                       _mm256_add_pd(_mm256_loadu_pd(cki + 2), _mm256_loadu_pd(ckj + 2)));
+  _mm256_storeu_pd(both, bond_product_lanes_3d(a, c, xi, U0[0] + U[0], U0[1] + U[1], U0[2] + U[2]));
+}
+
+// Three doubles (a rotation, a bond vector) in lanes 0-2, masked: the last point's values are read
+// without touching memory past them.
+[[gnu::always_inline]] inline __m256d three_lanes(const double* v) {
+  return _mm256_maskload_pd(v, _mm256_set_epi64x(0, -1, -1, -1));
+}
+
+[[gnu::always_inline]] inline void neighbour_moment_vector_3d(const double* qj, double gj, const double* wi,
+                                                              const double* wj, const double* xi, const double* t,
+                                                              double vj, double* moment) {
+  const Columns3 q = columns_of_rows(_mm256_loadu_pd(qj), _mm256_loadu_pd(qj + 3), third_row(qj));
+  __m256d sum = _mm256_mul_pd(_mm256_set1_pd(gj), _mm256_sub_pd(three_lanes(wj), three_lanes(wi)));
+  sum = _mm256_fmadd_pd(q.c0, _mm256_set1_pd(xi[0]), sum);
+  sum = _mm256_fmadd_pd(q.c1, _mm256_set1_pd(xi[1]), sum);
+  sum = _mm256_fmadd_pd(q.c2, _mm256_set1_pd(xi[2]), sum);
+  __m256d out = _mm256_fmadd_pd(_mm256_set1_pd(vj), sum, _mm256_loadu_pd(moment));
+  // xi x t: lanes (xi_1, xi_2, xi_0) (t_2, t_0, t_1) less (xi_2, xi_0, xi_1) (t_1, t_2, t_0), the
+  // latter as the scalar's (-xi_c) t_b (the sign bit flipped, as the scalar negation does).
+  // xi from the bond's scalars (just computed: a vector load would wait for their stores).
+  const __m256d x = _mm256_setr_pd(xi[0], xi[1], xi[2], 0.0), tv = _mm256_loadu_pd(t);
+  const __m256d x120 = _mm256_permute4x64_pd(x, 0xC9), x201 = _mm256_permute4x64_pd(x, 0xD2);
+  const __m256d t201 = _mm256_permute4x64_pd(tv, 0xD2), t120 = _mm256_permute4x64_pd(tv, 0xC9);
+  const __m256d minus = _mm256_mul_pd(_mm256_xor_pd(x201, _mm256_set1_pd(-0.0)), t120);
+  out = _mm256_fmadd_pd(_mm256_set1_pd(0.5 * vj), _mm256_fmadd_pd(x120, t201, minus), out);
+  _mm256_storeu_pd(moment, out);
+}
+
+[[gnu::always_inline]] inline void pair_moment_sum_vector_3d(const double* qi, const double* qj, double g,
+                                                             const double* wi, const double* wj, const double* wi0,
+                                                             const double* wj0, const double* xi, double* both,
+                                                             double* change) {
+  const __m256d om = _mm256_sub_pd(three_lanes(wj), three_lanes(wi));
+  const __m256d om0 = _mm256_sub_pd(three_lanes(wj0), three_lanes(wi0));
+  const Columns3 q = columns_of_rows(_mm256_add_pd(_mm256_loadu_pd(qi), _mm256_loadu_pd(qj)),
+                                     _mm256_add_pd(_mm256_loadu_pd(qi + 3), _mm256_loadu_pd(qj + 3)),
+                                     _mm256_add_pd(third_row(qi), third_row(qj)));
+  __m256d sum = _mm256_mul_pd(_mm256_set1_pd(g), _mm256_add_pd(om0, om));
+  sum = _mm256_fmadd_pd(q.c0, _mm256_set1_pd(xi[0]), sum);
+  sum = _mm256_fmadd_pd(q.c1, _mm256_set1_pd(xi[1]), sum);
+  sum = _mm256_fmadd_pd(q.c2, _mm256_set1_pd(xi[2]), sum);
+  _mm256_storeu_pd(both, sum);
+  _mm256_storeu_pd(change, _mm256_sub_pd(om, om0));
+}
 #endif
 
-// The kernel's forms: the 2-D lanes where the instruction set has them, else the scalar loops.
+// The kernel's forms: the lanes where the instruction set has them, else the scalar loops. In 3-D,
+// t, force and both hold 4 doubles.
 template <int D>
 [[gnu::always_inline]] inline void add_neighbour_share(const double* aj, const double* ckj, const double* xi,
                                                        const double* U, double vj, double* t, double* force) {
 #ifdef MPPM_VECTOR_LANES
-  if constexpr (D == 2) {
+  if constexpr (D == 2)
     neighbour_share_vector_2d(aj, ckj, xi, U, vj, t, force);
-    return;
-  }
-#endif
+  else
+    neighbour_share_vector_3d(aj, ckj, xi, U, vj, t, force);
+#else
   neighbour_share_scalar<D>(aj, ckj, xi, U, vj, t, force);
+#endif
 }
 
 template <int D>
@@ -96,12 +238,40 @@ template <int D>
                                                   const double* ckj, const double* xi, const double* U0,
                                                   const double* U, double* both) {
 #ifdef MPPM_VECTOR_LANES
-  if constexpr (D == 2) {
+  if constexpr (D == 2)
     pair_force_sum_vector_2d(ai, aj, cki, ckj, xi, U0, U, both);
+  else
+    pair_force_sum_vector_3d(ai, aj, cki, ckj, xi, U0, U, both);
+#else
+  pair_force_sum_scalar<D>(ai, aj, cki, ckj, xi, U0, U, both);
+#endif
+}
+
+// The moment forms: the 3-D lanes where the instruction set has them, else the scalar loops (2-D: one
+// rotation component). In 3-D, moment, both and change hold 4 doubles.
+template <int D, int R>
+[[gnu::always_inline]] inline void add_neighbour_moment(const double* qj, double gj, const double* wi, const double* wj,
+                                                        const double* xi, const double* t, double vj, double* moment) {
+#ifdef MPPM_VECTOR_LANES
+  if constexpr (D == 3) {
+    neighbour_moment_vector_3d(qj, gj, wi, wj, xi, t, vj, moment);
     return;
   }
 #endif
-  pair_force_sum_scalar<D>(ai, aj, cki, ckj, xi, U0, U, both);
+  neighbour_moment_scalar<D, R>(qj, gj, wi, wj, xi, t, vj, moment);
+}
+
+template <int D, int R>
+[[gnu::always_inline]] inline void pair_moment_sum(const double* qi, const double* qj, double g, const double* wi,
+                                                   const double* wj, const double* wi0, const double* wj0,
+                                                   const double* xi, double* both, double* change) {
+#ifdef MPPM_VECTOR_LANES
+  if constexpr (D == 3) {
+    pair_moment_sum_vector_3d(qi, qj, g, wi, wj, wi0, wj0, xi, both, change);
+    return;
+  }
+#endif
+  pair_moment_sum_scalar<D, R>(qi, qj, g, wi, wj, wi0, wj0, xi, both, change);
 }
 
 }  // namespace mppm::solver::kernel

@@ -145,20 +145,14 @@ class BondWorkPolicy<D, Effects, true> {
     double U0[D];
     composite_state<D, R, polar>(ui0_, u_old_ + j * D, wi0_, wj0, xi, U0);
     const double* aj_both = a_sum_ + j * DD;
-    double pair_force[D];  // t0 + t
+    double pair_force[D == 3 ? 4 : D];  // t0 + t (a fourth double in 3-D: bond_products.hpp)
     pair_force_sum<D>(ai_both_, aj_both, cki_, ckj, xi, U0, U, pair_force);
     double dw = 0.0;
     for (int r = 0; r < D; ++r) dw = multiply_add(pair_force[r], U[r] - U0[r], dw);
     if constexpr (polar) {
-      const double* qj_both = q_sum_ + j * RD;
-      const double g = gi_ + g_all_[j];
-      for (int r = 0; r < R; ++r) {
-        const double om = wj[r] - wi[r], om0 = wj0[r] - wi0_[r];
-        double both = g * (om0 + om);
-        for (int col = 0; col < D; ++col)
-          both = multiply_add(qi_both_[r * D + col] + qj_both[r * D + col], xi[col], both);
-        dw = multiply_add(both, om - om0, dw);
-      }
+      double pair_moment[R == 3 ? 4 : R], change[R == 3 ? 4 : R];  // m0 + m and Om - Om0
+      pair_moment_sum<D, R>(qi_both_, q_sum_ + j * RD, gi_ + g_all_[j], wi, wj, wi0_, wj0, xi, pair_moment, change);
+      for (int r = 0; r < R; ++r) dw = multiply_add(pair_moment[r], change[r], dw);
     }
     // The pair's work W_ij, at this (lower-index) end; counted here and broken afterwards by
     // update_after_breakage, which finds it by its work (this step's force had the bond, and

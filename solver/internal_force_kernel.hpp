@@ -51,18 +51,6 @@ using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
 // expression templates are not reliably inlined in a loop this large (measured: 4x slower in 3-D).
 #define MPPM_INLINE inline __attribute__((always_inline))
 
-// xi x t (its z component in 2-D), added with a factor.
-template <int D>
-MPPM_INLINE void add_cross(const double* xi, const double* t, double factor, double* out) {
-  if constexpr (D == 2) {
-    out[0] = multiply_add(factor, multiply_add(xi[0], t[1], -xi[1] * t[0]), out[0]);
-  } else {
-    out[0] = multiply_add(factor, multiply_add(xi[1], t[2], -xi[2] * t[1]), out[0]);
-    out[1] = multiply_add(factor, multiply_add(xi[2], t[0], -xi[0] * t[2]), out[1]);
-    out[2] = multiply_add(factor, multiply_add(xi[0], t[1], -xi[1] * t[0]), out[2]);
-  }
-}
-
 // Twice the stabilization energy density of a point (docs/theory.md section 3), sum_j V_j [z_u . (G_s C:K_i^-1)
 // z_u + g_i |z_w|^2] with z_u = U - eps_i xi and z_w = (w_j - w_i) - kap_i xi. Gathered bond by bond
 // as the second moments uu = sum_j V_j U (x) U (upper triangle) and ww = sum_j V_j |w_j - w_i|^2, four
@@ -417,8 +405,8 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   if constexpr (polar)
     for (int k = 0; k < R; ++k) wi[k] = w[i * R + k];
   BondWorkPolicy<D, Effects> work(p, f, c, i, accumulate_work);
-  double force[D] = {};
-  double moment[R > 0 ? R : 1] = {};
+  double force[D == 3 ? 4 : D] = {};                 // a fourth double in 3-D: bond_products.hpp
+  double moment[R == 3 ? 4 : (R > 0 ? R : 1)] = {};  // a fourth double in 3-D: bond_products.hpp
   // With energies (the steps that report them), the stabilization energy from the same bonds.
   [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   // One bond; with BooksWork (from the damage policy's first_work_bond on) also its work.
@@ -435,18 +423,9 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     const double* ckj = ck_all + j * S;
     double U[D];
     composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-    double t[D];  // the neighbour's share A_j xi + C:K_j^-1 U
+    double t[D == 3 ? 4 : D];  // the neighbour's share A_j xi + C:K_j^-1 U
     add_neighbour_share<D>(aj, ckj, xi, U, vj, t, force);
-    if constexpr (polar) {
-      const double* qj = q_all + j * RD;
-      const double gj = g_all[j];
-      for (int r = 0; r < R; ++r) {
-        double sum = gj * (wj[r] - wi[r]);
-        for (int col = 0; col < D; ++col) sum = multiply_add(qj[r * D + col], xi[col], sum);
-        moment[r] = multiply_add(vj, sum, moment[r]);
-      }
-      add_cross<D>(xi, t, 0.5 * vj, moment);
-    }
+    if constexpr (polar) add_neighbour_moment<D, R>(q_all + j * RD, g_all[j], wi, wj, xi, t, vj, moment);
     if constexpr (BooksWork) work.add(b, j, xi, U, wi, wj, ckj);
     if constexpr (WithEnergy) stab_energy.add(U, wi, wj, vj);
   };
