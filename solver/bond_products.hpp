@@ -16,7 +16,8 @@
 // columns of A come from an in-register transpose of its rows and those of C from two loads of its
 // packed entries (00 01 02 11 and 02 11 12 22), and the moments' rows are lanes 0-2 too (in 2-D
 // the moment has one component, and stays scalar). The 3-D forms write 4 doubles to t, force,
-// moment and the pair force and moment (the fourth is not used).
+// moment and the pair force and moment (the fourth is not used): their arrays are lane_slots long
+// (vector_lanes.hpp).
 #pragma once
 
 #include "solver/multiply_add.hpp"
@@ -136,9 +137,7 @@ struct Columns3 {
   return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
           _mm256_permute2f128_pd(t0, t2, 0x31)};
 }
-[[gnu::always_inline]] inline __m256d third_row(const double* a) {
-  return _mm256_maskload_pd(a + 6, _mm256_set_epi64x(0, -1, -1, -1));
-}
+[[gnu::always_inline]] inline __m256d third_row(const double* a) { return load3(a + 6); }
 // The columns of a packed symmetric C from lo = (00 01 02 11) and hi = (02 11 12 22): lo itself,
 // (01 11 12) and (02 12 22).
 [[gnu::always_inline]] inline Columns3 columns_of_packed(__m256d lo, __m256d hi) {
@@ -174,38 +173,27 @@ struct Columns3 {
   _mm256_storeu_pd(both, bond_product_lanes_3d(a, c, xi, U0[0] + U[0], U0[1] + U[1], U0[2] + U[2]));
 }
 
-// Three doubles (a rotation, a bond vector) in lanes 0-2, masked: the last point's values are read
-// without touching memory past them.
-[[gnu::always_inline]] inline __m256d three_lanes(const double* v) {
-  return _mm256_maskload_pd(v, _mm256_set_epi64x(0, -1, -1, -1));
-}
-
 [[gnu::always_inline]] inline void neighbour_moment_vector_3d(const double* qj, double gj, const double* wi,
                                                               const double* wj, const double* xi, const double* t,
                                                               double vj, double* moment) {
   const Columns3 q = columns_of_rows(_mm256_loadu_pd(qj), _mm256_loadu_pd(qj + 3), third_row(qj));
-  __m256d sum = _mm256_mul_pd(_mm256_set1_pd(gj), _mm256_sub_pd(three_lanes(wj), three_lanes(wi)));
+  __m256d sum = _mm256_mul_pd(_mm256_set1_pd(gj), _mm256_sub_pd(load3(wj), load3(wi)));
   sum = _mm256_fmadd_pd(q.c0, _mm256_set1_pd(xi[0]), sum);
   sum = _mm256_fmadd_pd(q.c1, _mm256_set1_pd(xi[1]), sum);
   sum = _mm256_fmadd_pd(q.c2, _mm256_set1_pd(xi[2]), sum);
-  __m256d out = _mm256_fmadd_pd(_mm256_set1_pd(vj), sum, _mm256_loadu_pd(moment));
-  // xi x t: lanes (xi_1, xi_2, xi_0) (t_2, t_0, t_1) less (xi_2, xi_0, xi_1) (t_1, t_2, t_0), the
-  // latter as the scalar's (-xi_c) t_b (the sign bit flipped, as the scalar negation does).
-  // xi from the bond's scalars (just computed: a vector load would wait for their stores).
-  const __m256d x = _mm256_setr_pd(xi[0], xi[1], xi[2], 0.0), tv = _mm256_loadu_pd(t);
-  const __m256d x120 = _mm256_permute4x64_pd(x, 0xC9), x201 = _mm256_permute4x64_pd(x, 0xD2);
-  const __m256d t201 = _mm256_permute4x64_pd(tv, 0xD2), t120 = _mm256_permute4x64_pd(tv, 0xC9);
-  const __m256d minus = _mm256_mul_pd(_mm256_xor_pd(x201, _mm256_set1_pd(-0.0)), t120);
-  out = _mm256_fmadd_pd(_mm256_set1_pd(0.5 * vj), _mm256_fmadd_pd(x120, t201, minus), out);
-  _mm256_storeu_pd(moment, out);
+  const __m256d out = _mm256_fmadd_pd(_mm256_set1_pd(vj), sum, _mm256_loadu_pd(moment));
+  // xi from the bond's scalars (just computed: a vector load would wait for their stores). The
+  // scalar's (-xi_c) t_b and cross_lanes's -(xi_c t_b) are the same number.
+  const __m256d x = _mm256_setr_pd(xi[0], xi[1], xi[2], 0.0);
+  _mm256_storeu_pd(moment, _mm256_fmadd_pd(_mm256_set1_pd(0.5 * vj), cross_lanes(x, _mm256_loadu_pd(t)), out));
 }
 
 [[gnu::always_inline]] inline void pair_moment_sum_vector_3d(const double* qi, const double* qj, double g,
                                                              const double* wi, const double* wj, const double* wi0,
                                                              const double* wj0, const double* xi, double* both,
                                                              double* change) {
-  const __m256d om = _mm256_sub_pd(three_lanes(wj), three_lanes(wi));
-  const __m256d om0 = _mm256_sub_pd(three_lanes(wj0), three_lanes(wi0));
+  const __m256d om = _mm256_sub_pd(load3(wj), load3(wi));
+  const __m256d om0 = _mm256_sub_pd(load3(wj0), load3(wi0));
   const Columns3 q = columns_of_rows(_mm256_add_pd(_mm256_loadu_pd(qi), _mm256_loadu_pd(qj)),
                                      _mm256_add_pd(_mm256_loadu_pd(qi + 3), _mm256_loadu_pd(qj + 3)),
                                      _mm256_add_pd(third_row(qi), third_row(qj)));
@@ -218,8 +206,8 @@ struct Columns3 {
 }
 #endif
 
-// The kernel's forms: the lanes where the instruction set has them, else the scalar loops. In 3-D,
-// t, force and both hold 4 doubles.
+// The kernel's forms: the lanes where the instruction set has them, else the scalar loops. t, force
+// and both hold lane_slots<D> doubles.
 template <int D>
 [[gnu::always_inline]] inline void add_neighbour_share(const double* aj, const double* ckj, const double* xi,
                                                        const double* U, double vj, double* t, double* force) {
@@ -248,7 +236,7 @@ template <int D>
 }
 
 // The moment forms: the 3-D lanes where the instruction set has them, else the scalar loops (2-D: one
-// rotation component). In 3-D, moment, both and change hold 4 doubles.
+// rotation component). moment, both and change hold lane_slots<R> doubles.
 template <int D, int R>
 [[gnu::always_inline]] inline void add_neighbour_moment(const double* qj, double gj, const double* wi, const double* wj,
                                                         const double* xi, const double* t, double vj, double* moment) {

@@ -83,11 +83,6 @@ template <int D, class Effects, bool StoredXi>
 }
 
 #ifdef MPPM_VECTOR_LANES
-// Three doubles into the low lanes of a vector (lane 3 zero); masked, so the last point's values
-// are read without touching memory past them.
-[[gnu::always_inline]] inline __m256d load3(const double* v) {
-  return _mm256_maskload_pd(v, _mm256_set_epi64x(0, -1, -1, -1));
-}
 // Lane k of v in every lane.
 template <int K>
 [[gnu::always_inline]] inline __m256d lane(__m256d v) {
@@ -126,12 +121,7 @@ template <class Effects, bool StoredXi>
     if constexpr (polar) {
       wj = load3(w + j * 3);
       const __m256d wm = _mm256_mul_pd(half, _mm256_add_pd(wi, wj));
-      // (wm_1, wm_2, wm_0) (xi_2, xi_0, xi_1) - (wm_2, wm_0, wm_1) (xi_1, xi_2, xi_0)
-      const __m256d wm120 = _mm256_permute4x64_pd(wm, 0xC9), wm201 = _mm256_permute4x64_pd(wm, 0xD2);
-      const __m256d xi201 = _mm256_permute4x64_pd(xi, 0xD2), xi120 = _mm256_permute4x64_pd(xi, 0xC9);
-      // -(wm_2 xi_1) by the sign bit, as the scalar negation rounds it (0 - x would turn -0 into +0).
-      const __m256d minus = _mm256_xor_pd(_mm256_mul_pd(wm201, xi120), _mm256_set1_pd(-0.0));
-      U = _mm256_sub_pd(U, _mm256_fmadd_pd(wm120, xi201, minus));
+      U = _mm256_sub_pd(U, cross_lanes(wm, xi));
     }
     const __m256d vu = _mm256_mul_pd(vj, U);
     S0 = _mm256_fmadd_pd(lane<0>(vu), xi, S0);

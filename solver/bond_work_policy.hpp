@@ -145,12 +145,12 @@ class BondWorkPolicy<D, Effects, true> {
     double U0[D];
     composite_state<D, R, polar>(ui0_, u_old_ + j * D, wi0_, wj0, xi, U0);
     const double* aj_both = a_sum_ + j * DD;
-    double pair_force[D == 3 ? 4 : D];  // t0 + t (a fourth double in 3-D: bond_products.hpp)
+    double pair_force[lane_slots<D>];  // t0 + t
     pair_force_sum<D>(ai_both_, aj_both, cki_, ckj, xi, U0, U, pair_force);
     double dw = 0.0;
     for (int r = 0; r < D; ++r) dw = multiply_add(pair_force[r], U[r] - U0[r], dw);
     if constexpr (polar) {
-      double pair_moment[R == 3 ? 4 : R], change[R == 3 ? 4 : R];  // m0 + m and Om - Om0
+      double pair_moment[lane_slots<R>], change[lane_slots<R>];  // m0 + m and Om - Om0
       pair_moment_sum<D, R>(qi_both_, q_sum_ + j * RD, gi_ + g_all_[j], wi, wj, wi0_, wj0, xi, pair_moment, change);
       for (int r = 0; r < R; ++r) dw = multiply_add(pair_moment[r], change[r], dw);
     }

@@ -405,8 +405,8 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
   if constexpr (polar)
     for (int k = 0; k < R; ++k) wi[k] = w[i * R + k];
   BondWorkPolicy<D, Effects> work(p, f, c, i, accumulate_work);
-  double force[D == 3 ? 4 : D] = {};                 // a fourth double in 3-D: bond_products.hpp
-  double moment[R == 3 ? 4 : (R > 0 ? R : 1)] = {};  // a fourth double in 3-D: bond_products.hpp
+  double force[lane_slots<D>] = {};
+  double moment[R > 0 ? lane_slots<R> : 1] = {};
   // With energies (the steps that report them), the stabilization energy from the same bonds.
   [[maybe_unused]] StabilizationEnergySum<D, R, polar> stab_energy;
   // One bond; with BooksWork (from the damage policy's first_work_bond on) also its work.
@@ -423,7 +423,7 @@ MPPM_INLINE void pass2_point(PointData& p, BondFamilies& f, const CosseratConsta
     const double* ckj = ck_all + j * S;
     double U[D];
     composite_state<D, R, polar>(ui, u + j * D, wi, wj, xi, U);
-    double t[D == 3 ? 4 : D];  // the neighbour's share A_j xi + C:K_j^-1 U
+    double t[lane_slots<D>];  // the neighbour's share A_j xi + C:K_j^-1 U
     add_neighbour_share<D>(aj, ckj, xi, U, vj, t, force);
     if constexpr (polar) add_neighbour_moment<D, R>(q_all + j * RD, g_all[j], wi, wj, xi, t, vj, moment);
     if constexpr (BooksWork) work.add(b, j, xi, U, wi, wj, ckj);
