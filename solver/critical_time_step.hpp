@@ -1,12 +1,16 @@
 // The stable time step of the explicit scheme (docs/theory.md section 9): the largest eigenvalue of
 // M^-1 K of the actual discrete operator (stabilization included) by a Lanczos (Krylov-refined
 // power) iteration, plus the same for the translational block (w = 0) and the rotational block
-// (u = 0) to name the mode that limits the step and the parameter that drives it.
+// (u = 0) to name the mode that limits the step and the parameter that drives it, on the patch
+// where the highest mode lives when there is one (model_patch.hpp).
 #pragma once
+#include <array>
+#include <cstddef>
 #include <string>
 
 #include "common/scene.hpp"
 #include "solver/model.hpp"
+#include "solver/point_stability.hpp"
 
 namespace mppm::solver {
 
@@ -18,17 +22,29 @@ struct CriticalTimeStep {
   std::string driver;          // the parameter that drives the limiting mode, with its value
   int iterations = 0;          // operator applications of the coupled estimate
   int naming_iterations = 0;   // operator applications of the naming (0 when not named)
+  // Where the mode was named: the own points of the patch (model_patch.hpp; 0: the whole model)
+  // and its centre, the stiffest body point [m].
+  std::size_t naming_patch_points = 0;
+  std::array<double, 3> naming_patch_centre{0.0, 0.0, 0.0};
 };
 
 // Each of these leaves the model's displacement and rotation as they were.
-// The step and the limiting mode, both from the model.
+// The step and the limiting mode, both from the model (the mode named as name_limiting_mode does).
 CriticalTimeStep critical_time_step(Model& model);
 // The step only (the coupled estimate; translational, rotational, limiting_mode and driver unset).
 CriticalTimeStep coupled_critical_time_step(Model& model);
-// Names the mode of a coupled estimate from the model's own block estimates: translational,
-// rotational, limiting_mode and driver (with rotations about 1.4 times the coupled estimate's cost:
-// coarser estimates, critical_time_step.cpp).
+// Names the mode of a coupled estimate from block estimates: translational, rotational,
+// limiting_mode and driver. First on the patch around `centre` (the stiffest body point, from
+// stiffest_body_point; docs/theory.md section 9), taken when the patch's limiting block reaches the
+// whole model's coupled omega_max^2 within 2e-3 (the highest mode is that block's and lives there);
+// if a patch's estimate is above the whole model's by more than its convergence, the critical step
+// becomes the patch's (a patch's Ritz value is a lower bound of omega_max^2). Else on the whole
+// model, at about 1.4 times the coupled estimate's cost with rotations (coarser estimates).
+void name_limiting_mode(Model& model, CriticalTimeStep& critical, const StiffestPoint& centre);
+// The same, finding the stiffest point itself.
 void name_limiting_mode(Model& model, CriticalTimeStep& critical);
+// On the whole model, without a patch.
+void name_limiting_mode_on_whole_model(Model& model, CriticalTimeStep& critical);
 
 // time.step: auto -> safety * critical; a given step above the critical one is refused with an
 // InputError naming the limiting mode, its critical value and the parameter driving it. With the

@@ -122,6 +122,7 @@ Model complete_model(PointData points, const PointCloud& cloud, const ModelOptio
   Model m;
   m.constants = o.constants;
   m.effects = o.effects;
+  m.horizon = o.horizon;
   m.points = std::move(points);
   FamilyOptions fo;
   fo.horizon = o.horizon;
@@ -212,23 +213,18 @@ Model build_local_model(const PointCloud& cloud, const LocalPoints& local, const
   return complete_model(std::move(points), cloud, o, phases);
 }
 
-namespace {
-
-// A broken bond, or a plastic strain or wryness that is not zero, among the owned points.
-bool holds_history(const PointData& p, const BondFamilies& f) {
+bool Model::holds_history() const {
   const auto nonzero = [](const std::vector<double>& v) {
     return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
   };
   const auto broken = [](std::int32_t entry) { return entry < 0; };
-  const auto first = f.neighbor.begin();
-  const auto last = first + static_cast<std::ptrdiff_t>(f.offset[p.owned]);
-  return std::any_of(first, last, broken) || nonzero(p.plastic_strain) || nonzero(p.plastic_wryness);
+  const auto first = bonds.neighbor.begin();
+  const auto last = first + static_cast<std::ptrdiff_t>(bonds.offset[points.owned]);
+  return std::any_of(first, last, broken) || nonzero(points.plastic_strain) || nonzero(points.plastic_wryness);
 }
 
-}  // namespace
-
 InternalForceFunction Model::linear_operator_kernel() const {
-  double history = holds_history(points, bonds) ? 1.0 : 0.0;
+  double history = holds_history() ? 1.0 : 0.0;
   if (points.processes) history = points.processes->highest(history);
   return history > 0.0 ? kernel.forces : kernel.elastic_forces;
 }
@@ -251,7 +247,12 @@ void Model::advance_internal_forces(double dt, double end_time, bool with_energy
 
 double Model::damage_critical_step(double critical_step) const {
   if (!effects.damage) return critical_step;
-  double start = max_point_block_eigenvalue(points, bonds, constants);
+  return damage_critical_step(critical_step, max_point_block_eigenvalue(points, bonds, constants));
+}
+
+double Model::damage_critical_step(double critical_step, double largest_point_block) const {
+  if (!effects.damage) return critical_step;
+  double start = largest_point_block;
   if (points.processes) start = points.processes->highest(start);
   return start > 0.0 ? std::min(critical_step, 2.0 / std::sqrt(constants.damaged_frequency_ratio * start))
                      : critical_step;

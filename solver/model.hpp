@@ -46,6 +46,7 @@ struct ModelOptions {
 struct Model {
   CosseratConstants constants;
   EffectSet effects;
+  double horizon = 0.0;  // delta [m]
   PointData points;
   BondFamilies bonds;
   InternalForceFunctions kernel;
@@ -88,6 +89,8 @@ struct Model {
   // plastic strain; on every process), the same operator at fewer instructions per bond; else the
   // model's own (kernel.forces).
   InternalForceFunction linear_operator_kernel() const;
+  // A broken bond, or a plastic strain or wryness that is not zero, among this process's owned points.
+  bool holds_history() const;
   // The same at the end of a time step of length dt, with the history advanced from the start of
   // the step: the viscoplastic state by the return map (points.plastic_dissipation set), and with
   // damage the bond work, the bonds that reach the critical work broken (points.bonds_broken and
@@ -100,6 +103,8 @@ struct Model {
   // families left by breaks raise the highest frequency (point_stability.hpp), so it is
   // min(critical, 2 / sqrt(damaged_frequency_ratio x largest point block)); without damage, critical.
   double damage_critical_step(double critical_step) const;
+  // The same with this process's largest point block already known (stiffest_body_point).
+  double damage_critical_step(double critical_step, double largest_point_block) const;
   // Damage: points whose bonds broke stay stable at the time step dt (point_stability.hpp): a body
   // point whose block exceeds (2 / dt)^2 / damaged_frequency_ratio is detached. Call it once the
   // step is chosen; no-op without damage.

@@ -202,7 +202,7 @@ void point_stiffness_block(const PointData& p, const BondFamilies& f, const Coss
   }
 }
 
-double max_point_block_eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+StiffestPoint stiffest_body_point(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
   const auto n = static_cast<std::int64_t>(p.owned);
   std::vector<double> value(p.owned, 0.0);
 #pragma omp parallel for schedule(static)
@@ -210,8 +210,14 @@ double max_point_block_eigenvalue(const PointData& p, const BondFamilies& f, con
     const auto i = static_cast<std::size_t>(s);
     if (p.region[i] == 0) value[i] = point_block_eigenvalue(p, f, c, i);
   }
-  // The maximum does not depend on the order, so any thread count gives the same value.
-  return value.empty() ? 0.0 : *std::max_element(value.begin(), value.end());
+  // The first of the largest, whatever the thread count.
+  const auto at = std::max_element(value.begin(), value.end());
+  if (at == value.end()) return {};
+  return {static_cast<std::size_t>(at - value.begin()), *at};
+}
+
+double max_point_block_eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+  return stiffest_body_point(p, f, c).block_eigenvalue;
 }
 
 }  // namespace mppm::solver

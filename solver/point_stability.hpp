@@ -39,4 +39,11 @@ void point_stiffness_block(const PointData& points, const BondFamilies& bonds, c
 // The largest block value over the body points (region 0) that are not detached.
 double max_point_block_eigenvalue(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
 
+// The body point of the largest block value (of several, the first) and that value (0: none).
+struct StiffestPoint {
+  std::size_t index = 0;
+  double block_eigenvalue = 0.0;
+};
+StiffestPoint stiffest_body_point(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
+
 }  // namespace mppm::solver

@@ -32,6 +32,7 @@
 #include "solver/interruption.hpp"
 #include "solver/log_number.hpp"
 #include "solver/model.hpp"
+#include "solver/model_patch.hpp"
 #include "solver/plasticity/material_registry.hpp"
 #include "solver/run_writer.hpp"
 #include "solver/snapshot_fields.hpp"
@@ -534,9 +535,15 @@ void RunDriver::fit_time_step() {
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
                            log_number(plan_.critical.step) + " s): the discrete operator is not positive");
-  name_limiting_mode(model(), plan_.critical);
+  // The stiffest body point is the naming patch's centre (with rotations) and sets the damage
+  // run's step limit: found once for both.
+  const Model& m = model();
+  const bool patch = m.points.rotation_components > 0 && can_cut_patches(m);
+  const StiffestPoint stiffest =
+      patch || m.effects.damage ? stiffest_body_point(m.points, m.bonds, m.constants) : StiffestPoint{};
+  name_limiting_mode(model(), plan_.critical, patch ? stiffest : StiffestPoint{});
   start_up_.mark("mode naming");
-  plan_.damage_step = model().damage_critical_step(plan_.critical.step);
+  plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.block_eigenvalue);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
   scene_.time.step = plan_.dt;
@@ -654,6 +661,16 @@ void RunDriver::log_start() {
   writer().set_load_header(load_header, scene_.effects.pore_fluid);
 }
 
+// What naming the limiting mode cost, and where it was named.
+std::string naming_cost(const CriticalTimeStep& critical, int dimension) {
+  if (critical.naming_patch_points == 0) return std::to_string(critical.naming_iterations) + " more to name the mode";
+  std::string centre;
+  for (int a = 0; a < dimension; ++a) centre += (a ? ", " : "") + log_number(critical.naming_patch_centre[a]);
+  return "the mode named on the patch of " + std::to_string(critical.naming_patch_points) +
+         " points around the stiffest point (" + centre + ") m, where the highest mode lives, in " +
+         std::to_string(critical.naming_iterations) + " applications of its operator";
+}
+
 // The model, the critical and the chosen time step, the damage and viscoplastic settings, the
 // scene's warnings.
 void RunDriver::log_start_up_report() {
@@ -664,12 +681,11 @@ void RunDriver::log_start_up_report() {
                " (stored from both ends), pre-crack cuts " + std::to_string(totals_.precrack_cut_pairs) +
                " bonds, detached points " + std::to_string(totals_.detached_points));
   if (info_.partition) writer().log("distributed run, " + describe(*info_.partition));
-  writer().log("critical time step " + log_number(critical.step) + " s (translational " +
-               log_number(critical.translational) + " s" +
-               (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
-               "; " + std::to_string(critical.iterations) + " Lanczos iterations, " +
-               std::to_string(critical.naming_iterations) + " more to name the mode), limiting mode " +
-               critical.limiting_mode + ", driven by " + critical.driver);
+  writer().log(
+      "critical time step " + log_number(critical.step) + " s (translational " + log_number(critical.translational) +
+      " s" + (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
+      "; " + std::to_string(critical.iterations) + " Lanczos iterations, " + naming_cost(critical, m.dimension()) +
+      "), limiting mode " + critical.limiting_mode + ", driven by " + critical.driver);
   writer().log("time step " + log_number(dt) + " s (" +
                (scene_in_.time.step ? "given" : "auto, safety " + log_number(scene_.time.safety)) + "), " +
                std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads) +

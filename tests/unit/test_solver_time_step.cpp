@@ -82,10 +82,11 @@ TEST(SolverTimeStep, NamingBlockStepsAgreeWithTheCoupledStep) {
   for (const double a3 : {83.3, 83.3e3}) {
     const Scene s = shear_band_scene(a3);
     Model m = make_model(make_lattice(2, {16, 12, 1}, 2.5e-3, 0.01), s);
-    const CriticalTimeStep c = critical_time_step(m);
     CriticalTimeStep unnamed = coupled_critical_time_step(m);
-    EXPECT_EQ(unnamed.step, c.step);
     EXPECT_TRUE(unnamed.limiting_mode.empty());
+    CriticalTimeStep c = unnamed;
+    name_limiting_mode_on_whole_model(m, c);
+    EXPECT_EQ(unnamed.step, c.step);
     const double limiting = c.limiting_mode == "rotational" ? c.rotational : c.translational;
     std::printf("a3 %g N: critical %.6e s, translational %.6e s, rotational %.6e s (%s, %s; %d + %d iterations)\n", a3,
                 c.step, c.translational, c.rotational, c.limiting_mode.c_str(), c.driver.c_str(), c.iterations,
@@ -150,6 +151,81 @@ TEST(SolverTimeStep, ElasticResponseIsTheModelsOwnOperatorWhileNoHistoryIsHeld) 
     EXPECT_NE(broken, own) << d << "-D";
     EXPECT_EQ(forces(true), broken) << d << "-D";
   }
+}
+
+// The mode named on the patch around the stiffest point (docs/theory.md section 9) is the one the
+// whole model names: the same limiting mode and driver, and the limiting block's step within 1e-3
+// (the whole model's naming converges to about 1e-3; the patch's estimates as tightly as the
+// step's). The patch names it where the highest mode is one block's: the shear band's material
+// with a3 in kN (rotational, the bending modulus) and a 3-D block (translational); the lattices
+// are large enough for the patch (4 horizons around a corner, with its neighbours at most 5 % of
+// the model). With a3 in N the highest mode mixes both blocks (the coupled step 8 % below both
+// block steps), and the whole model names it.
+TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
+  struct Case {
+    Scene scene;
+    std::array<int, 3> n;
+    bool on_patch;
+  };
+  Scene block = make_scene(3, true, 1e-3, 2.05);
+  for (const Case& k : {Case{shear_band_scene(83.3e3), {64, 56, 1}, true},
+                        Case{shear_band_scene(83.3), {64, 56, 1}, false}, Case{block, {28, 27, 26}, true}}) {
+    const double dx = k.scene.geometry.spacing;
+    Model m = make_model(make_lattice(k.scene.dimension, k.n, dx, k.scene.thickness), k.scene);
+    const CriticalTimeStep named = critical_time_step(m);
+    CriticalTimeStep whole = coupled_critical_time_step(m);
+    name_limiting_mode_on_whole_model(m, whole);
+    std::printf(
+        "%d-D: critical %.6e s; patch of %zu points: %s (%s), translational %.6e s, rotational %.6e s, "
+        "%d applications; whole model: %s, %.6e s, %.6e s, %d applications\n",
+        k.scene.dimension, named.step, named.naming_patch_points, named.limiting_mode.c_str(), named.driver.c_str(),
+        named.translational, named.rotational, named.naming_iterations, whole.limiting_mode.c_str(),
+        whole.translational, whole.rotational, whole.naming_iterations);
+    EXPECT_EQ(named.naming_patch_points > 0, k.on_patch);
+    EXPECT_LT(named.naming_patch_points, m.points.owned / 2);
+    EXPECT_EQ(named.step, whole.step);
+    EXPECT_EQ(named.limiting_mode, whole.limiting_mode);
+    EXPECT_EQ(named.driver.substr(0, 40), whole.driver.substr(0, 40));  // a quoted fraction may differ
+    const bool rotational = whole.limiting_mode == "rotational";
+    EXPECT_NEAR(rotational ? named.rotational : named.translational,
+                rotational ? whole.rotational : whole.translational, 1e-3 * whole.step);
+    // No block step below the coupled one (a patch's block value is below the whole block's).
+    EXPECT_GE(named.translational, named.step * (1.0 - 1e-12));
+    EXPECT_GE(named.rotational, named.step * (1.0 - 1e-12));
+  }
+}
+
+// Where the highest mode spreads over the whole body (a periodic lattice: no surface, no corner, a
+// plane wave on top), no patch holds it: a patch's own points held in by fixed neighbours lose
+// more than 2e-3 of omega_max^2 at 4 and at 8 horizons, and the whole model names the mode.
+TEST(SolverTimeStep, BodyWideModeIsNamedOnTheWholeModel) {
+  const double dx = 1e-3;
+  const Scene s = make_scene(2, true, dx, 2.05);
+  const std::array<int, 3> n{170, 170, 1};  // a patch of 8 horizons with its neighbours: under 5 %
+  Model m = make_model(make_lattice(2, n, dx, s.thickness), s, {n[0] * dx, n[1] * dx, 0.0});
+  const CriticalTimeStep c = critical_time_step(m);
+  CriticalTimeStep whole = coupled_critical_time_step(m);
+  name_limiting_mode_on_whole_model(m, whole);
+  EXPECT_EQ(c.naming_patch_points, 0u);
+  EXPECT_EQ(c.limiting_mode, whole.limiting_mode);
+  EXPECT_EQ(c.translational, whole.translational);
+  EXPECT_EQ(c.naming_iterations, whole.naming_iterations);
+}
+
+// A patch's Ritz value is a lower bound of the whole model's omega_max^2. So a whole-model estimate
+// below it (a Lanczos run that stopped short of the top, here one made 2 % short by hand) gives way
+// to it: the critical step becomes the patch's, which is the converged step within 1e-6.
+TEST(SolverTimeStep, PatchAboveTheWholeEstimateLowersTheStep) {
+  Model m = make_model(make_lattice(3, {28, 27, 26}, 1e-3, 1.0), make_scene(3, true, 1e-3, 2.05));
+  const CriticalTimeStep converged = coupled_critical_time_step(m);
+  CriticalTimeStep short_of_the_top = converged;
+  short_of_the_top.step *= 1.01;
+  name_limiting_mode(m, short_of_the_top);
+  EXPECT_GT(short_of_the_top.naming_patch_points, 0u);
+  EXPECT_NEAR(short_of_the_top.step, converged.step, 1e-6 * converged.step);
+  CriticalTimeStep as_converged = converged;
+  name_limiting_mode(m, as_converged);
+  EXPECT_EQ(as_converged.step, converged.step);
 }
 
 // Runs a free body with random velocities at `factor` times the estimated critical step and
