@@ -35,6 +35,13 @@ def read(path):
         raise InputError(f"{path}: {e.strerror}")
 
 
+def phase_seconds(r):
+    """The start-up's two estimates, from runs that recorded them (empty for older CSV files)."""
+    if not r.get("step_estimate_seconds"):
+        return ""
+    return f"{r['step_estimate_seconds']}, {r['mode_naming_seconds']}"
+
+
 def start_up_steps(r):
     return float(r["start_up_seconds"]) / (float(r["wall_seconds"]) / float(r["steps"]))
 
@@ -46,9 +53,10 @@ def plate_lines(plate):
     first = next(iter(plate.values()))
     lines = ["", f"The crack-branching plate ({first['points']} points, {first['bonds']} bonds, {first['effects']}), "
              f"{first['steps']} steps; each row is the fastest whole run of its repeats.", "",
-             "| threads | whole run [s] | start-up [s] | loop [s] | start-up in steps |", "|---|---|---|---|---|"]
+             "| threads | whole run [s] | start-up [s] | of it: the step's estimate, the mode's naming [s] | loop [s] "
+             "| start-up in steps |", "|---|---|---|---|---|---|"]
     for t, r in sorted(plate.items()):
-        lines.append(f"| {t} | {r['run_seconds']} | {r['start_up_seconds']} | {r['wall_seconds']} | "
+        lines.append(f"| {t} | {r['run_seconds']} | {r['start_up_seconds']} | {phase_seconds(r)} | {r['wall_seconds']} | "
                      f"{start_up_steps(r):.0f} |")
     if 1 in plate and 2 in plate:
         efficiency = float(plate[1]["run_seconds"]) / (2.0 * float(plate[2]["run_seconds"]))
@@ -92,16 +100,17 @@ def main(argv):
              "The same 60^3 simple-cubic lattice in both codes (dx = 1 mm, horizon 2.05 dx, 216 000 points, "
              f"{mppm[0]['bonds']} bonds from both ends), 100 steps; threads are MPI ranks for LAMMPS. The loop "
              "time is the time integration only (LAMMPS's Loop time); each row is the fastest of its repeats.", "",
-             "| code, model | threads | loop [s] | bond updates/s | start-up [s] | start-up in steps |",
-             "|---|---|---|---|---|---|"]
+             "| code, model | threads | loop [s] | bond updates/s | start-up [s] | of it: the step's estimate, "
+             "the mode's naming [s] | start-up in steps |",
+             "|---|---|---|---|---|---|---|"]
     for r in mppm:
         per_step = float(r["wall_seconds"]) / float(r["steps"])
         lines.append(f"| mppm, {r['effects']} | {r['threads']} | {r['wall_seconds']} | "
-                     f"{float(r['bond_updates_per_second']):.3g} | {r['start_up_seconds']} | "
+                     f"{float(r['bond_updates_per_second']):.3g} | {r['start_up_seconds']} | {phase_seconds(r)} | "
                      f"{float(r['start_up_seconds']) / per_step:.0f} |")
     for r in lammps:
         lines.append(f"| LAMMPS, {r['effects']} | {r['threads']} | {r['wall_seconds']} | "
-                     f"{float(r['bond_updates_per_second']):.3g} | | |")
+                     f"{float(r['bond_updates_per_second']):.3g} | | | |")
     lines += ["", "| target | threads | ratio | met |", "|---|---|---|---|"]
     for effects, case, target in TARGETS:
         for r in (x for x in mppm if x["effects"] == effects):
