@@ -340,6 +340,7 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, std::si
   ModelPatch patch = cut_patch(model, centre, radius);
   if (static_cast<double>(patch.model.points.owned) > patch_largest_share * static_cast<double>(model.points.owned))
     return PatchNaming::too_large;
+  const double whole = 4.0 / (critical.step * critical.step);
   CriticalTimeStep named = critical;
   OperatorEstimate coupled;
   // The patch costs a small fraction of the whole operator: its estimates converge as tightly
@@ -347,11 +348,12 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, std::si
   with_operator(patch.model, [&](Workspace& ws) {
     ws.support = &patch.inside;
     coupled = largest_eigenvalue(patch.model, Block::coupled, step_convergence, ws);
-    if (coupled.lambda >= (1.0 - patch_tolerance) * 4.0 / (critical.step * critical.step))
-      name_mode(patch.model, named, ws, step_convergence);
+    if (coupled.lambda >= (1.0 - patch_tolerance) * whole) name_mode(patch.model, named, ws, step_convergence);
   });
-  const double whole = 4.0 / (critical.step * critical.step);
-  if (coupled.lambda > (1.0 + patch_above_whole) * whole) critical.step = named.step = 2.0 / std::sqrt(coupled.lambda);
+  if (coupled.lambda > (1.0 + patch_above_whole) * whole) {
+    critical.step = named.step = 2.0 / std::sqrt(coupled.lambda);
+    critical.step_from_patch = named.step_from_patch = true;
+  }
   if (coupled.lambda < (1.0 - patch_tolerance) * whole) return PatchNaming::too_small;
   const double limiting = named.limiting_mode == "rotational" ? named.rotational : named.translational;
   if (4.0 / (limiting * limiting) < (1.0 - patch_tolerance) * whole) return PatchNaming::mixed;

@@ -26,6 +26,8 @@ struct CriticalTimeStep {
   // and its centre, the stiffest body point [m].
   std::size_t naming_patch_points = 0;
   std::array<double, 3> naming_patch_centre{0.0, 0.0, 0.0};
+  // The step is a patch's estimate: the whole model's Lanczos run stopped short of it.
+  bool step_from_patch = false;
 };
 
 // Each of these leaves the model's displacement and rotation as they were.

@@ -223,9 +223,11 @@ TEST(SolverTimeStep, PatchAboveTheWholeEstimateLowersTheStep) {
   name_limiting_mode(m, short_of_the_top);
   EXPECT_GT(short_of_the_top.naming_patch_points, 0u);
   EXPECT_NEAR(short_of_the_top.step, converged.step, 1e-6 * converged.step);
+  EXPECT_TRUE(short_of_the_top.step_from_patch);
   CriticalTimeStep as_converged = converged;
   name_limiting_mode(m, as_converged);
   EXPECT_EQ(as_converged.step, converged.step);
+  EXPECT_FALSE(as_converged.step_from_patch);
 }
 
 // Runs a free body with random velocities at `factor` times the estimated critical step and
