@@ -158,8 +158,8 @@ TEST(SolverTimeStep, ElasticResponseIsTheModelsOwnOperatorWhileNoHistoryIsHeld) 
 // (the whole model's naming converges to about 1e-3; the patch's estimates as tightly as the
 // step's). The patch names it where the highest mode is one block's: the shear band's material
 // with a3 in kN (rotational, the bending modulus) and a 3-D block (translational); the lattices
-// are large enough for the patch (4 horizons around a corner, with its neighbours at most 5 % of
-// the model). With a3 in N the highest mode mixes both blocks (the coupled step 8 % below both
+// are large enough for the patch (4 horizons around a corner, with its neighbours under a tenth
+// of the model, so that it is tried). With a3 in N the highest mode mixes both blocks (the coupled step 8 % below both
 // block steps), and the whole model names it.
 TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
   struct Case {
@@ -201,7 +201,7 @@ TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
 TEST(SolverTimeStep, BodyWideModeIsNamedOnTheWholeModel) {
   const double dx = 1e-3;
   const Scene s = make_scene(2, true, dx, 2.05);
-  const std::array<int, 3> n{170, 170, 1};  // a patch of 8 horizons with its neighbours: under 5 %
+  const std::array<int, 3> n{170, 170, 1};  // 8 horizons with the neighbours: under a tenth, so tried
   Model m = make_model(make_lattice(2, n, dx, s.thickness), s, {n[0] * dx, n[1] * dx, 0.0});
   const CriticalTimeStep c = critical_time_step(m);
   CriticalTimeStep whole = coupled_critical_time_step(m);
