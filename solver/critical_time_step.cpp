@@ -380,7 +380,7 @@ void name_limiting_mode(Model& model, CriticalTimeStep& critical, const Stiffest
 void name_limiting_mode(Model& model, CriticalTimeStep& critical) {
   StiffestPoint centre;
   if (model.points.rotation_components > 0 && can_cut_patches(model))
-    centre = stiffest_body_point(model.points, model.bonds, model.constants);
+    centre = stiffest_points(model.points, model.bonds, model.constants).any;
   name_limiting_mode(model, critical, centre);
 }
 

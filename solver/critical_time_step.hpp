@@ -23,7 +23,7 @@ struct CriticalTimeStep {
   int iterations = 0;          // operator applications of the coupled estimate
   int naming_iterations = 0;   // operator applications of the naming (0 when not named)
   // Where the mode was named: the own points of the patch (model_patch.hpp; 0: the whole model)
-  // and its centre, the stiffest body point [m].
+  // and its centre, the stiffest point [m].
   std::size_t naming_patch_points = 0;
   std::array<double, 3> naming_patch_centre{0.0, 0.0, 0.0};
   // The step is a patch's estimate: the whole model's Lanczos run stopped short of it.
@@ -36,8 +36,8 @@ CriticalTimeStep critical_time_step(Model& model);
 // The step only (the coupled estimate; translational, rotational, limiting_mode and driver unset).
 CriticalTimeStep coupled_critical_time_step(Model& model);
 // Names the mode of a coupled estimate from block estimates: translational, rotational,
-// limiting_mode and driver. First on the patch around `centre` (the stiffest body point, from
-// stiffest_body_point; docs/theory.md section 9), taken when the patch's limiting block reaches the
+// limiting_mode and driver. First on the patch around `centre` (the stiffest point, layers
+// included: stiffest_points(...).any; docs/theory.md section 9), taken when the patch's limiting block reaches the
 // whole model's coupled omega_max^2 within 2e-3 (the highest mode is that block's and lives there);
 // if a patch's estimate is above the whole model's by more than its convergence, the critical step
 // becomes the patch's (a patch's Ritz value is a lower bound of omega_max^2). Else on the whole

@@ -103,7 +103,7 @@ struct Model {
   // families left by breaks raise the highest frequency (point_stability.hpp), so it is
   // min(critical, 2 / sqrt(damaged_frequency_ratio x largest point block)); without damage, critical.
   double damage_critical_step(double critical_step) const;
-  // The same with this process's largest point block already known (stiffest_body_point).
+  // The same with this process's largest body point block already known (stiffest_points).
   double damage_critical_step(double critical_step, double largest_point_block) const;
   // Damage: points whose bonds broke stay stable at the time step dt (point_stability.hpp): a body
   // point whose block exceeds (2 / dt)^2 / damaged_frequency_ratio is detached. Call it once the

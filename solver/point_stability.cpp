@@ -202,22 +202,25 @@ void point_stiffness_block(const PointData& p, const BondFamilies& f, const Coss
   }
 }
 
-StiffestPoint stiffest_body_point(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+StiffestPoints stiffest_points(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
   const auto n = static_cast<std::int64_t>(p.owned);
   std::vector<double> value(p.owned, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
-    if (p.region[i] == 0) value[i] = point_block_eigenvalue(p, f, c, i);
+    value[i] = point_block_eigenvalue(p, f, c, i);
   }
   // The first of the largest, whatever the thread count.
-  const auto at = std::max_element(value.begin(), value.end());
-  if (at == value.end()) return {};
-  return {static_cast<std::size_t>(at - value.begin()), *at};
+  StiffestPoints out;
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    if (value[i] > out.any.block_eigenvalue) out.any = {i, value[i]};
+    if (p.region[i] == 0 && value[i] > out.body.block_eigenvalue) out.body = {i, value[i]};
+  }
+  return out;
 }
 
 double max_point_block_eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
-  return stiffest_body_point(p, f, c).block_eigenvalue;
+  return stiffest_points(p, f, c).body.block_eigenvalue;
 }
 
 }  // namespace mppm::solver

@@ -39,11 +39,17 @@ void point_stiffness_block(const PointData& points, const BondFamilies& bonds, c
 // The largest block value over the body points (region 0) that are not detached.
 double max_point_block_eigenvalue(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
 
-// The body point of the largest block value (of several, the first) and that value (0: none).
+// A point of the largest block value (of several, the first) and that value (0: none).
 struct StiffestPoint {
   std::size_t index = 0;
   double block_eigenvalue = 0.0;
 };
-StiffestPoint stiffest_body_point(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
+// Over the body points (the damage step limit: only they lose bonds) and over all points, the
+// fictitious layers' too (where the highest mode of the whole operator may live: the naming's
+// patch, critical_time_step.cpp), from one pass over the points.
+struct StiffestPoints {
+  StiffestPoint body, any;
+};
+StiffestPoints stiffest_points(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
 
 }  // namespace mppm::solver

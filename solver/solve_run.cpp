@@ -535,15 +535,15 @@ void RunDriver::fit_time_step() {
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
                            log_number(plan_.critical.step) + " s): the discrete operator is not positive");
-  // The stiffest body point is the naming patch's centre (with rotations) and sets the damage
-  // run's step limit: found once for both.
+  // The stiffest point is the naming patch's centre (with rotations), and the stiffest body point
+  // sets the damage run's step limit: both found in one pass over the point blocks.
   const Model& m = model();
   const bool patch = m.points.rotation_components > 0 && can_cut_patches(m);
-  const StiffestPoint stiffest =
-      patch || m.effects.damage ? stiffest_body_point(m.points, m.bonds, m.constants) : StiffestPoint{};
-  name_limiting_mode(model(), plan_.critical, patch ? stiffest : StiffestPoint{});
+  const StiffestPoints stiffest =
+      patch || m.effects.damage ? stiffest_points(m.points, m.bonds, m.constants) : StiffestPoints{};
+  name_limiting_mode(model(), plan_.critical, patch ? stiffest.any : StiffestPoint{});
   start_up_.mark("mode naming");
-  plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.block_eigenvalue);
+  plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.body.block_eigenvalue);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
   fit_step_to_end(scene_, scene_in_.time.step.has_value(), plan_);
   scene_.time.step = plan_.dt;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "solver/model_patch.hpp"
+#include "solver/point_stability.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 
 namespace mppm::solver {
@@ -95,6 +96,34 @@ TEST(ModelPatch, ForceOfAFieldOnThePatchIsTheWholeModels) {
     }
     EXPECT_EQ(static_cast<std::size_t>(compared), patch.points_inside);
   }
+}
+
+// The naming's centre is the stiffest point of all, the fictitious layers' included: the corner
+// of a layer, whose family is cut on two sides, is stiffer than any body point here (as on the 3-D
+// Kalthoff-Winkler specimen, where the highest mode lives there). The damage limit's largest block
+// is over the body points only, as before. Both are the first of the largest, checked against the
+// point blocks one by one.
+TEST(StiffestPoints, TheLayersCountForThePatchAndNotForTheDamageLimit) {
+  const double dx = 1e-3;
+  Scene s = make_scene(2, true, dx, 3.05);
+  PointCloud cloud = make_lattice(2, {24, 12, 1}, dx, s.thickness);
+  testing::add_end_layers(cloud, 24, 3, "displacement", "velocity");
+  Model m = make_model(cloud, s);
+  const StiffestPoints found = stiffest_points(m.points, m.bonds, m.constants);
+  StiffestPoint body, any;
+  for (std::size_t i = 0; i < m.points.owned; ++i) {
+    const double v = point_block_eigenvalue(m.points, m.bonds, m.constants, i);
+    if (v > any.block_eigenvalue) any = {i, v};
+    if (m.points.region[i] == 0 && v > body.block_eigenvalue) body = {i, v};
+  }
+  EXPECT_EQ(found.any.index, any.index);
+  EXPECT_EQ(found.any.block_eigenvalue, any.block_eigenvalue);
+  EXPECT_EQ(found.body.index, body.index);
+  EXPECT_EQ(found.body.block_eigenvalue, body.block_eigenvalue);
+  EXPECT_EQ(found.body.block_eigenvalue, max_point_block_eigenvalue(m.points, m.bonds, m.constants));
+  EXPECT_EQ(m.points.region[found.body.index], 0);
+  EXPECT_GT(m.points.region[found.any.index], 0);
+  EXPECT_GT(found.any.block_eigenvalue, found.body.block_eigenvalue);
 }
 
 // The patch is cut only where its operator is the whole model's at rest: not across processes,
