@@ -663,10 +663,10 @@ void RunDriver::log_start() {
 
 // What naming the limiting mode cost, and where it was named.
 std::string naming_cost(const CriticalTimeStep& critical, int dimension) {
-  if (critical.naming_patch_points == 0) return std::to_string(critical.naming_iterations) + " more to name the mode";
-  const std::string step_note = critical.step_from_patch ? "; the step is the patch's estimate, which the whole "
-                                                           "model's fell short of"
-                                                         : "";
+  const std::string step_note =
+      critical.step_from_patch ? "; the step is a patch's estimate, which the whole model's fell short of" : "";
+  if (critical.naming_patch_points == 0)
+    return std::to_string(critical.naming_iterations) + " more to name the mode" + step_note;
   std::string centre;
   for (int a = 0; a < dimension; ++a) centre += (a ? ", " : "") + log_number(critical.naming_patch_centre[a]);
   return "the mode named on the patch of " + std::to_string(critical.naming_patch_points) +

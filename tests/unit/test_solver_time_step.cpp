@@ -228,6 +228,19 @@ TEST(SolverTimeStep, PatchAboveTheWholeEstimateLowersTheStep) {
   name_limiting_mode(m, as_converged);
   EXPECT_EQ(as_converged.step, converged.step);
   EXPECT_FALSE(as_converged.step_from_patch);
+  // The same where the patch holds the highest mode but does not name it (a mixed mode: the whole
+  // model names it): the step is still the patch's. This patch holds the mode within 3.7e-4 of
+  // omega_max^2 (measured), so its step is the converged one or up to 2e-4 longer, never shorter
+  // (a lower bound of omega_max^2), and well below the 1 % too long one.
+  Model mixed = make_model(make_lattice(2, {64, 56, 1}, 2.5e-3, 0.01), shear_band_scene(83.3));
+  const CriticalTimeStep mixed_converged = coupled_critical_time_step(mixed);
+  CriticalTimeStep mixed_short = mixed_converged;
+  mixed_short.step *= 1.01;
+  name_limiting_mode(mixed, mixed_short);
+  EXPECT_EQ(mixed_short.naming_patch_points, 0u);
+  EXPECT_TRUE(mixed_short.step_from_patch);
+  EXPECT_GE(mixed_short.step, mixed_converged.step * (1.0 - 1e-8));
+  EXPECT_LE(mixed_short.step, mixed_converged.step * (1.0 + 1e-3));
 }
 
 // Runs a free body with random velocities at `factor` times the estimated critical step and
