@@ -165,6 +165,10 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence
   return r;
 }
 
+// The explicit scheme's step of a mode of frequency omega (omega^2 given), 2 / omega, and back.
+double step_of(double omega_squared) { return 2.0 / std::sqrt(omega_squared); }
+double omega_squared_of(double step) { return 4.0 / (step * step); }
+
 std::string number(double v) {
   std::ostringstream s;
   s.precision(4);
@@ -221,8 +225,8 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
   };
   // Without rotation dofs the translational block is the coupled operator.
   const double trans_lambda =
-      p.rotation_components > 0 ? estimate(Block::translational).lambda : 4.0 / (out.step * out.step);
-  out.translational = 2.0 / std::sqrt(trans_lambda);
+      p.rotation_components > 0 ? estimate(Block::translational).lambda : omega_squared_of(out.step);
+  out.translational = step_of(trans_lambda);
   CosseratConstants& c = model.constants;
   const bool fluid = !p.fluid_content_change.empty();
   const std::string density =
@@ -265,7 +269,7 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
   double rot_lambda = 0.0;
   if (p.rotation_components > 0) {
     const OperatorEstimate rot = estimate(Block::rotational);
-    out.rotational = 2.0 / std::sqrt(rot.lambda);
+    out.rotational = step_of(rot.lambda);
     rot_lambda = rot.lambda;
   }
   if (out.rotational > 0.0 && out.rotational < out.translational) {
@@ -306,7 +310,7 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
 // The coupled estimate sets the step (step_convergence).
 void estimate_coupled(Model& model, CriticalTimeStep& out, Workspace& ws) {
   const OperatorEstimate coupled = largest_eigenvalue(model, Block::coupled, step_convergence, ws);
-  out.step = 2.0 / std::sqrt(coupled.lambda);
+  out.step = step_of(coupled.lambda);
   out.iterations = coupled.iterations;
 }
 
@@ -340,7 +344,7 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, std::si
   ModelPatch patch = cut_patch(model, centre, radius);
   if (static_cast<double>(patch.model.points.owned) > patch_largest_share * static_cast<double>(model.points.owned))
     return PatchNaming::too_large;
-  const double whole = 4.0 / (critical.step * critical.step);
+  const double whole = omega_squared_of(critical.step);
   CriticalTimeStep named = critical;
   OperatorEstimate coupled;
   // The patch costs a small fraction of the whole operator: its estimates converge as tightly
@@ -351,12 +355,12 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, std::si
     if (coupled.lambda >= (1.0 - patch_tolerance) * whole) name_mode(patch.model, named, ws, step_convergence);
   });
   if (coupled.lambda > (1.0 + patch_above_whole) * whole) {
-    critical.step = named.step = 2.0 / std::sqrt(coupled.lambda);
+    critical.step = named.step = step_of(coupled.lambda);
     critical.step_from_patch = named.step_from_patch = true;
   }
   if (coupled.lambda < (1.0 - patch_tolerance) * whole) return PatchNaming::too_small;
   const double limiting = named.limiting_mode == "rotational" ? named.rotational : named.translational;
-  if (4.0 / (limiting * limiting) < (1.0 - patch_tolerance) * whole) return PatchNaming::mixed;
+  if (omega_squared_of(limiting) < (1.0 - patch_tolerance) * whole) return PatchNaming::mixed;
   named.naming_iterations += coupled.iterations;
   named.naming_patch_points = patch.points_inside;
   const auto D = static_cast<std::size_t>(model.points.dimension);

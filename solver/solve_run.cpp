@@ -541,7 +541,7 @@ void RunDriver::fit_time_step() {
   const bool patch = m.points.rotation_components > 0 && can_cut_patches(m);
   const StiffestPoints stiffest =
       patch || m.effects.damage ? stiffest_points(m.points, m.bonds, m.constants) : StiffestPoints{};
-  name_limiting_mode(model(), plan_.critical, patch ? stiffest.any : StiffestPoint{});
+  name_limiting_mode(model(), plan_.critical, stiffest.any);
   start_up_.mark("mode naming");
   plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.body.block_eigenvalue);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
