@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """results.md and figures/start_time.png of the crack-initiation case from its runs (nothing typed in).
 
-usage: report_case.py --out OUT --runs RUN... --results results.md --figures figures
+usage: report_case.py --out OUT --runs RUN... [--same-spacing RUN...] [--same-horizon RUN...]
+                      --results results.md --figures figures
 
 Per run (horizon, spacing, calibration): Freund's predicted times and the measured ones, all after the
 wave's arrival at the crack plane, with the relative differences; the windows before a reflection can
 reach the tip; the arrival check; the wall time. The figure shows the measured times against the
-horizon with Freund's prediction.
+horizon with Freund's prediction. The horizon study's two series (the same spacing at three horizon
+factors, the same horizon at three spacings) get a table each.
 """
 import argparse
 import math
@@ -126,15 +128,44 @@ def table(rows):
     return out
 
 
-def arrival_table(rows):
-    out = ["| dx [mm] | ramp [us] | computed arrival [us] | measured (centroid) [us] | difference [us] | 0.5 dx / c_p [us] |",
-           "|---|---|---|---|---|---|"]
-    seen = set()
+def study_table(rows):
+    """One series of the horizon study: each measure's time and its difference to Freund's."""
+    out = ["| horizon [mm] | dx [mm] | horizon factor | calibration | first break [us] (diff %) "
+           "| advance 2 dx [us] (diff %) | advance one horizon [us] (diff %) |", "|---|---|---|---|---|---|---|"]
     for r in rows:
-        if r["spacing_m"] in seen:
+        cells = [f"{r['horizon_m'] * 1e3:.4g}", f"{r['spacing_m'] * 1e3:.3g}", f"{r['horizon_factor']:g}", r["calibration"]]
+        cells += [f"{us(r[key])} ({percent(ir.difference(r[key], r[pred]))})" for _, key, pred in MEASURES]
+        out.append("| " + " | ".join(cells) + " |")
+    return out
+
+
+def study_section(out, same_spacing, same_horizon):
+    if not same_spacing and not same_horizon:
+        return []
+    order = lambda runs: sorted((ir.row(out, run) for run in runs),  # noqa: E731
+                                key=lambda r: (CALIBRATIONS.index(r["calibration"]), -r["horizon_m"], -r["spacing_m"]))
+    text = ["", "## The same spacing, and the same horizon", "",
+            "The series above keeps the horizon factor and refines the lattice with the horizon. Two more series "
+            "(README.md, \"The same spacing, and the same horizon\"): the horizon shrinks on one lattice, and the "
+            "lattice is refined within one horizon. The dissipation calibration is measured only for horizon factors "
+            "2.55-5.05, so these series use the other two.", ""]
+    if same_spacing:
+        text += ["### The same spacing: the horizon shrinks on one lattice", ""] + study_table(order(same_spacing)) + [""]
+    if same_horizon:
+        text += ["### The same horizon: the lattice refined within it", ""] + study_table(order(same_horizon)) + [""]
+    return text
+
+
+def arrival_table(rows):
+    out = ["| dx [mm] | horizon factor | ramp [us] | computed arrival [us] | measured (centroid) [us] | difference [us] "
+           "| 0.5 dx / c_p [us] |", "|---|---|---|---|---|---|---|"]
+    seen = set()
+    for r in sorted(rows, key=lambda r: (-r["spacing_m"], r["horizon_factor"])):
+        if (r["spacing_m"], r["horizon_factor"]) in seen:
             continue
-        seen.add(r["spacing_m"])
-        out.append(f"| {r['spacing_m'] * 1e3:.3g} | {r['ramp_s'] * 1e6:.4g} | {r['predicted_arrival_s'] * 1e6:.4g} | "
+        seen.add((r["spacing_m"], r["horizon_factor"]))
+        out.append(f"| {r['spacing_m'] * 1e3:.3g} | {r['horizon_factor']:g} | {r['ramp_s'] * 1e6:.4g} | "
+                   f"{r['predicted_arrival_s'] * 1e6:.4g} | "
                    f"{r['measured_arrival_s'] * 1e6:.4g} | {(r['measured_arrival_s'] - r['predicted_arrival_s']) * 1e6:+.3f} | "
                    f"{0.5 * r['spacing_m'] / r['wave_speed_m_per_s'] * 1e6:.3f} |")
     return out
@@ -144,6 +175,8 @@ def main(argv):
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", required=True)
     ap.add_argument("--runs", nargs="+", required=True)
+    ap.add_argument("--same-spacing", nargs="*", default=[])
+    ap.add_argument("--same-horizon", nargs="*", default=[])
     ap.add_argument("--results", required=True)
     ap.add_argument("--figures", required=True)
     args = ap.parse_args(argv)
@@ -172,11 +205,12 @@ def main(argv):
         "",
     ]
     text += table(rows)
+    text += study_section(args.out, args.same_spacing, args.same_horizon)
     text += ["", "## Arrival of the wave at the crack plane", "",
              "The centroid of the front in the mid-plane strain half-way between the tip and the right edge (its "
              "equal-area arrival against the uncracked strain 2 sigma0 / (lambda + 2 mu)) against the computed arrival; "
              "the front's half-value point lags behind the centroid by the lattice's dispersion.", ""]
-    text += arrival_table(rows)
+    text += arrival_table(rows + [ir.row(args.out, run) for run in args.same_spacing + args.same_horizon])
     text += ["", "## Start time against the horizon", "", "![start time against the horizon](figures/start_time.png)", "",
              "## Crack advance against time", "",
              "The advance is the broken crossing pairs ahead of the tip over the lattice's crossing pairs per unit "
