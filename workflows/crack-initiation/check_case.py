@@ -10,8 +10,8 @@ Every level: the start time orders with the critical bond work (continuum < latt
 continuum w_cr is 5 % below the lattice one at horizon factor 3.05, the dissipation one 40 % above).
 The coarsest level (and with --quick the only one): the first break of the lattice and continuum
 calibrations lies within delta / (c_R t_c) of Freund's t_c (README.md, "The band").
---set-up-only: the checks of every run only (the horizon study's runs, README.md, which have two
-calibrations and other horizon factors).
+--set-up-only: the checks of every run only (the horizon study's runs and the micro-polar ones,
+README.md: other horizon factors, two calibrations, another model).
 --convergence checks instead that the difference to Freund shrinks from each horizon to the next smaller
 one, for every calibration and measure, over the runs given: one series (the same factor, or the same
 spacing; it does not shrink in either: results.md). Exit 1 when a check fails.
