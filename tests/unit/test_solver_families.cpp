@@ -1,11 +1,13 @@
-// Families and bond storage (docs/theory.md section 1): the cell-list search finds exactly the points
-// within the horizon (tolerance 1e-9 dx), every bond is stored from both ends, and bonds across
-// a pre-crack are cut from both ends before the first step.
+// Families and bond storage (docs/theory.md section 1): the search (by cells, or on a lattice by its
+// sites) finds exactly the points within the horizon (tolerance 1e-9 dx), every bond is stored from
+// both ends, and bonds across a pre-crack are cut from both ends before the first step.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 
 #include "common/precrack_crossing.hpp"
+#include "solver/lattice_sites.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 
 namespace mppm::solver {
@@ -64,6 +66,134 @@ TEST(SolverFamilies, CellListFindsExactlyThePointsWithinTheHorizonFromBothEnds) 
   const Model m = make_model(make_lattice(2, {23, 17, 1}, kDx), make_scene(2, true, kDx, 4.05));
   const std::size_t centre = 8 * 23 + 11;
   EXPECT_EQ(m.bonds.offset[centre + 1] - m.bonds.offset[centre], 48);
+}
+
+// Points of a d-dimensional lattice of spacing dx from an origin that does not round exactly
+// (0.1234 m), with a fifth of the sites left empty at random (holes, notches, a body's outline).
+std::vector<double> lattice_with_holes(int d, const std::array<int, 3>& n, double dx, unsigned seed) {
+  std::mt19937 random(seed);
+  std::bernoulli_distribution keep(0.8);
+  std::vector<double> x;
+  for (int k = 0; k < (d == 3 ? n[2] : 1); ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        if (!keep(random)) continue;
+        const int site[3] = {i, j, k};
+        for (int a = 0; a < d; ++a) x.push_back(0.1234 + (site[a] + 0.5) * dx);
+      }
+  return x;
+}
+
+PointData points_at(int d, const std::vector<double>& x) {
+  PointData p;
+  p.dimension = d;
+  p.position = x;
+  p.owned = x.size() / static_cast<std::size_t>(d);
+  return p;
+}
+
+// Each point's neighbours by the cell search of horizon_search.hpp, sorted: what build_families
+// stored before lattices were searched by their sites.
+std::vector<std::vector<std::int32_t>> cell_search_families(const PointData& p, double horizon, double dx) {
+  const PointPositions positions{p.dimension, p.position.data(), p.total()};
+  const double reach = bond_reach(horizon, dx);
+  const CellGrid grid = make_grid(positions, reach);
+  std::vector<std::vector<std::int32_t>> out(p.owned);
+  for (std::size_t i = 0; i < p.owned; ++i) {
+    for_each_in_horizon(positions, &grid, {0.0, 0.0, 0.0}, i, reach * reach,
+                        [&](std::size_t j, const double*) { out[i].push_back(static_cast<std::int32_t>(j)); });
+    std::sort(out[i].begin(), out[i].end());
+  }
+  return out;
+}
+
+std::vector<std::vector<std::int32_t>> stored_families(const BondFamilies& f) {
+  std::vector<std::vector<std::int32_t>> out(f.offset.size() - 1);
+  for (std::size_t i = 0; i + 1 < f.offset.size(); ++i)
+    out[i].assign(&f.neighbor[f.offset[i]], &f.neighbor[f.offset[i + 1]]);
+  return out;
+}
+
+// On a lattice the families come from the sites (lattice_sites.hpp), and they are the cell search's,
+// entry for entry: factor 2.0 and 3.0 put lattice points exactly on the horizon's sphere (kept by the
+// 1e-9 dx tolerance in both), 2.05 to 4.05 are the factors the cases use.
+TEST(SolverFamilies, LatticeSitesGiveTheCellSearchFamiliesEntryForEntry) {
+  for (int d : {2, 3})
+    for (double factor : {2.0, 2.05, 3.0, 3.05, 4.05}) {
+      const std::array<int, 3> n = d == 2 ? std::array<int, 3>{29, 21, 1} : std::array<int, 3>{13, 11, 9};
+      const PointData p = points_at(d, lattice_with_holes(d, n, kDx, 7u + static_cast<unsigned>(factor * 100)));
+      const double reach = bond_reach(factor * kDx, kDx);
+      ASSERT_TRUE(lattice_sites({d, p.position.data(), p.total()}, kDx, reach).has_value()) << d << " " << factor;
+      FamilyOptions o;
+      o.horizon = factor * kDx;
+      o.spacing = kDx;
+      const BondFamilies f = build_families(p, o);
+      const auto expected = cell_search_families(p, factor * kDx, kDx);
+      EXPECT_EQ(stored_families(f), expected) << "d=" << d << " factor=" << factor;
+      std::size_t bonds = 0;
+      for (const auto& family : expected) bonds += family.size();
+      EXPECT_GT(bonds, p.owned * (d == 2 ? 8u : 20u)) << "the holes left families to compare";
+    }
+}
+
+// Points off their sites by up to half the site tolerance, and a horizon of 2.995 dx: pairs three
+// sites apart (offset (3, 0)) come within it, or not, by their jitter, so the candidates must reach
+// past the horizon by the tolerance (a candidate set cut at the horizon misses them).
+TEST(SolverFamilies, JitteredLatticeKeepsThePairsItsJitterBringsWithinTheHorizon) {
+  for (int d : {2, 3}) {
+    const std::array<int, 3> n = d == 2 ? std::array<int, 3>{25, 19, 1} : std::array<int, 3>{11, 10, 9};
+    std::vector<double> x = lattice_with_holes(d, n, kDx, 11u);
+    std::mt19937 random(13u);
+    std::uniform_real_distribution<double> jitter(-0.005 * kDx, 0.005 * kDx);
+    for (double& c : x) c += jitter(random);
+    const PointData p = points_at(d, x);
+    const double horizon = 2.995 * kDx;
+    ASSERT_TRUE(lattice_sites({d, p.position.data(), p.total()}, kDx, bond_reach(horizon, kDx)).has_value());
+    FamilyOptions o;
+    o.horizon = horizon;
+    o.spacing = kDx;
+    const auto expected = cell_search_families(p, horizon, kDx);
+    EXPECT_EQ(stored_families(build_families(p, o)), expected) << "d=" << d;
+    // Some pairs three sites apart are bonded, and some are not.
+    std::size_t three_apart = 0;
+    for (std::size_t i = 0; i < p.owned; ++i)
+      for (const std::int32_t j : expected[i]) {
+        double r2 = 0.0;
+        for (int a = 0; a < d; ++a) r2 += std::pow(x[static_cast<std::size_t>(j) * d + a] - x[i * d + a], 2);
+        three_apart += std::sqrt(r2) > 2.9 * kDx;
+      }
+    EXPECT_GT(three_apart, 0u) << "d=" << d;
+  }
+}
+
+// Anything that is not one lattice is searched by cells: a jittered lattice, two points on a site,
+// a lattice of another spacing, a sparse body (two blocks far apart).
+TEST(SolverFamilies, OnlyALatticeIsSearchedBySites) {
+  const double reach = bond_reach(3.05 * kDx, kDx);
+  std::vector<double> x = lattice_with_holes(2, {15, 12, 1}, kDx, 3u);
+  EXPECT_TRUE(lattice_sites({2, x.data(), x.size() / 2}, kDx, reach).has_value());
+  EXPECT_FALSE(lattice_sites({2, x.data(), x.size() / 2}, 0.7 * kDx, reach).has_value());
+  std::vector<double> jittered = x;
+  std::mt19937 random(5u);
+  std::uniform_real_distribution<double> jitter(-0.05 * kDx, 0.05 * kDx);
+  for (double& c : jittered) c += jitter(random);
+  EXPECT_FALSE(lattice_sites({2, jittered.data(), jittered.size() / 2}, kDx, reach).has_value());
+  std::vector<double> doubled = x;
+  doubled.push_back(x[0]);
+  doubled.push_back(x[1]);
+  EXPECT_FALSE(lattice_sites({2, doubled.data(), doubled.size() / 2}, kDx, reach).has_value());
+  std::vector<double> sparse = x;
+  for (std::size_t k = 0; k < x.size(); k += 2) {
+    sparse.push_back(x[k] + 400 * kDx);
+    sparse.push_back(x[k + 1] + 400 * kDx);
+  }
+  EXPECT_FALSE(lattice_sites({2, sparse.data(), sparse.size() / 2}, kDx, reach).has_value());
+  // The cell search gives a jittered cloud its families as before.
+  const PointData p = points_at(2, jittered);
+  FamilyOptions o;
+  o.horizon = 3.05 * kDx;
+  o.spacing = kDx;
+  EXPECT_EQ(stored_families(build_families(p, o)), cell_search_families(p, 3.05 * kDx, kDx));
 }
 
 TEST(SolverFamilies, PrecrackCutsBondsCrossingItFromBothEnds) {
