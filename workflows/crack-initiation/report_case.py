@@ -148,16 +148,15 @@ def ordered_rows(out, runs):
 def study_section(out, same_spacing, same_horizon):
     if not same_spacing and not same_horizon:
         return []
-    order = lambda runs: ordered_rows(out, runs)  # noqa: E731
     text = ["", "## The same spacing, and the same horizon", "",
             "The series above keeps the horizon factor and refines the lattice with the horizon. Two more series "
             "(README.md, \"The same spacing, and the same horizon\"): the horizon shrinks on one lattice, and the "
             "lattice is refined within one horizon. The dissipation calibration is measured only for horizon factors "
             "2.55-5.05, so these series use the other two.", ""]
     if same_spacing:
-        text += ["### The same spacing: the horizon shrinks on one lattice", ""] + study_table(order(same_spacing)) + [""]
+        text += ["### The same spacing: the horizon shrinks on one lattice", ""] + study_table(ordered_rows(out, same_spacing)) + [""]
     if same_horizon:
-        text += ["### The same horizon: the lattice refined within it", ""] + study_table(order(same_horizon)) + [""]
+        text += ["### The same horizon: the lattice refined within it", ""] + study_table(ordered_rows(out, same_horizon)) + [""]
     return text
 
 
