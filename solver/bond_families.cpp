@@ -1,15 +1,13 @@
-// Family search (horizon_search.hpp; on a regular lattice by its sites, lattice_sites.hpp); two
-// passes (count, fill) over points in parallel, each point writing only its own bond range.
+// Family search (neighbour_search.hpp: on a lattice by its sites, else by cells); two passes (count,
+// fill) over points in parallel, each point writing only its own bond range.
 #include "solver/bond_families.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <optional>
 #include <stdexcept>
 
-#include "solver/horizon_search.hpp"
-#include "solver/lattice_sites.hpp"
+#include "solver/neighbour_search.hpp"
 #include "solver/parallel_policy.hpp"
 
 namespace mppm::solver {
@@ -22,20 +20,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
     if (o.period[a] > 0.0 && o.period[a] <= 2.0 * o.horizon)
       throw std::invalid_argument("build_families: a period must exceed twice the horizon");
   const double reach = bond_reach(o.horizon, o.spacing);
-  const double reach2 = reach * reach;
-  const PointPositions positions{D, p.position.data(), p.total()};
-  // A lattice's families by its sites (the same bonds, found among a few dozen candidates instead
-  // of the 3^D cells around a point); any other cloud by cells.
-  const std::optional<LatticeSites> lattice = periodic ? std::nullopt : lattice_sites(positions, o.spacing, reach);
-  CellGrid grid;
-  if (!periodic && !lattice) grid = make_grid(positions, reach);
-  const CellGrid* g = periodic ? nullptr : &grid;
-  auto for_each_bonded = [&](std::size_t i, auto&& visit) {
-    if (lattice)
-      for_each_on_lattice(positions, *lattice, i, reach2, visit);
-    else
-      for_each_in_horizon(positions, g, o.period, i, reach2, visit);
-  };
+  const NeighbourSearch search({D, p.position.data(), p.total()}, reach, o.spacing, o.period);
 
   BondFamilies f;
   f.dimension = D;
@@ -45,7 +30,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
 #pragma omp parallel for schedule(static) if (thread_point_loop(n * 8))
   for (std::int64_t s = 0; s < sn; ++s) {
     std::int64_t count = 0;
-    for_each_bonded(static_cast<std::size_t>(s), [&](std::size_t, const double*) { ++count; });
+    search.for_each(static_cast<std::size_t>(s), [&](std::size_t, const double*) { ++count; });
     f.offset[s + 1] = count;
   }
   std::partial_sum(f.offset.begin(), f.offset.end(), f.offset.begin());
@@ -58,7 +43,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
     const auto i = static_cast<std::size_t>(s);
     std::vector<std::pair<std::int32_t, std::array<double, 3>>> found;
     found.reserve(static_cast<std::size_t>(f.offset[i + 1] - f.offset[i]));
-    for_each_bonded(i, [&](std::size_t j, const double* xi) {
+    search.for_each(i, [&](std::size_t j, const double* xi) {
       found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
     });
     // By global id: a distributed run's process then sums each point's bonds in the order of the

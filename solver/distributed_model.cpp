@@ -35,8 +35,8 @@ DistributedModel build_distributed_model(const PointCloud& cloud, const ModelOpt
   DistributedModel d;
   const std::vector<double> x = cloud_positions(cloud);
   const PointPositions positions{cloud.dimension, x.data(), cloud.size()};
-  d.part = partition_cloud(positions, reach, group.size(), return_map_weights(positions, options));
-  d.local = local_points(positions, d.part, group.rank(), reach);
+  d.part = partition_cloud(positions, reach, options.spacing, group.size(), return_map_weights(positions, options));
+  d.local = local_points(positions, d.part, group.rank(), reach, options.spacing);
   d.halo = std::make_unique<HaloExchange>(d.local, d.part);
   d.model = build_local_model(cloud, d.local, *d.halo, group, options);
   return d;

@@ -6,14 +6,13 @@
 namespace mppm::solver {
 
 std::vector<std::size_t> halo_points(const PointPositions& points, std::span<const std::int32_t> part_of,
-                                     std::int32_t part, double reach) {
+                                     std::int32_t part, double reach, double spacing) {
   if (part_of.size() != points.count) throw std::invalid_argument("halo_points: one part per point expected");
-  const CellGrid grid = make_grid(points, reach);
-  const std::array<double, 3> no_period{0.0, 0.0, 0.0};
+  const NeighbourSearch search(points, reach, spacing);
   std::vector<char> ghost(points.count, 0);
   for (std::size_t i = 0; i < points.count; ++i) {
     if (part_of[i] != part) continue;
-    for_each_in_horizon(points, &grid, no_period, i, reach * reach, [&](std::size_t j, const double*) {
+    search.for_each(i, [&](std::size_t j, const double*) {
       if (part_of[j] != part) ghost[j] = 1;
     });
   }

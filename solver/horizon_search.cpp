@@ -38,16 +38,4 @@ CellGrid make_grid(const PointPositions& points, double size) {
   return g;
 }
 
-std::vector<std::int64_t> bond_counts(const PointPositions& points, double reach) {
-  const CellGrid grid = make_grid(points, reach);
-  const std::array<double, 3> no_period{0.0, 0.0, 0.0};
-  std::vector<std::int64_t> count(points.count, 0);
-  const auto n = static_cast<std::int64_t>(points.count);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s)
-    for_each_in_horizon(points, &grid, no_period, static_cast<std::size_t>(s), reach * reach,
-                        [&](std::size_t, const double*) { ++count[static_cast<std::size_t>(s)]; });
-  return count;
-}
-
 }  // namespace mppm::solver

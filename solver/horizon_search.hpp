@@ -1,7 +1,7 @@
 // Which points lie within the horizon of a point: a uniform cell grid of the horizon's size over
 // the points' positions, searched in the 3^D cells around a point. One test decides it everywhere
-// (the families, and the ghosts a process needs from the others: halo_points.hpp), so that both
-// find the same points to the last bit.
+// (here and on a lattice's sites, lattice_sites.hpp; neighbour_search.hpp chooses), so that the
+// families and the ghosts a process needs from the others find the same points to the last bit.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -83,9 +83,5 @@ void for_each_in_horizon(const PointPositions& points, const CellGrid* grid, con
           consider(static_cast<std::size_t>(grid->points[k]));
       }
 }
-
-// The number of points within `reach` of each point (its bonds before any cut): the weights of
-// the partition (coordinate_bisection.hpp).
-std::vector<std::int64_t> bond_counts(const PointPositions& points, double reach);
 
 }  // namespace mppm::solver

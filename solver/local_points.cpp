@@ -6,15 +6,16 @@
 
 #include "solver/coordinate_bisection.hpp"
 #include "solver/halo_points.hpp"
+#include "solver/neighbour_search.hpp"
 
 namespace mppm::solver {
 
-std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts,
+std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, double spacing, int parts,
                                           std::span<const std::int64_t> extra_weight) {
   std::vector<std::int64_t> id(points.count);
   std::iota(id.begin(), id.end(), std::int64_t{0});
   const std::span<const double> x(points.position, points.count * static_cast<std::size_t>(points.dimension));
-  std::vector<std::int64_t> weight = bond_counts(points, reach);
+  std::vector<std::int64_t> weight = bond_counts(points, reach, spacing);
   if (!extra_weight.empty()) {
     if (extra_weight.size() != points.count)
       throw std::invalid_argument("partition_cloud: one extra weight per point expected");
@@ -24,13 +25,13 @@ std::vector<std::int32_t> partition_cloud(const PointPositions& points, double r
 }
 
 LocalPoints local_points(const PointPositions& points, std::span<const std::int32_t> part_of, std::int32_t part,
-                         double reach) {
+                         double reach, double spacing) {
   if (part_of.size() != points.count) throw std::invalid_argument("local_points: one part per point expected");
   LocalPoints local;
   for (std::size_t i = 0; i < points.count; ++i)
     if (part_of[i] == part) local.global_id.push_back(static_cast<std::int64_t>(i));
   local.owned = local.global_id.size();
-  for (const std::size_t j : halo_points(points, part_of, part, reach))
+  for (const std::size_t j : halo_points(points, part_of, part, reach, spacing))
     local.global_id.push_back(static_cast<std::int64_t>(j));
   return local;
 }

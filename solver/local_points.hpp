@@ -15,9 +15,10 @@
 namespace mppm::solver {
 
 // The part (process) of every point among `parts`: coordinate bisection weighted by each
-// point's bonds within `reach` (bond_reach), plus its `extra_weight` when given (one per point: the
-// return map's cost), ties by the index in the points file (coordinate_bisection.hpp).
-std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, int parts,
+// point's bonds within `reach` (bond_reach; `spacing` the lattice's, neighbour_search.hpp), plus its
+// `extra_weight` when given (one per point: the return map's cost), ties by the index in the points
+// file (coordinate_bisection.hpp).
+std::vector<std::int32_t> partition_cloud(const PointPositions& points, double reach, double spacing, int parts,
                                           std::span<const std::int64_t> extra_weight = {});
 
 struct LocalPoints {
@@ -25,9 +26,10 @@ struct LocalPoints {
   std::size_t owned = 0;
 };
 
-// The local points of `part` among all the points' parts, with the ghosts within `reach` (bond_reach).
+// The local points of `part` among all the points' parts, with the ghosts within `reach` (bond_reach;
+// `spacing` the lattice's, neighbour_search.hpp).
 LocalPoints local_points(const PointPositions& points, std::span<const std::int32_t> part_of, std::int32_t part,
-                         double reach);
+                         double reach, double spacing);
 
 // The cloud of the local points, in their local order; its pre-cracks and boundary descriptions are
 // the whole cloud's.

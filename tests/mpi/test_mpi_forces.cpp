@@ -73,8 +73,8 @@ LocalPart local_part(const PointCloud& cloud, const ModelOptions& o, const Proce
   const double reach = bond_reach(o.horizon, o.spacing);
   const std::vector<double> x = cloud_positions(cloud);
   const PointPositions positions{D, x.data(), cloud.size()};
-  const std::vector<std::int32_t> part = partition_cloud(positions, reach, group.size());
-  const LocalPoints local = local_points(positions, part, group.rank(), reach);
+  const std::vector<std::int32_t> part = partition_cloud(positions, reach, o.spacing, group.size());
+  const LocalPoints local = local_points(positions, part, group.rank(), reach, o.spacing);
   LocalPart l{std::make_unique<HaloExchange>(local, part), make_local_point_data(cloud, local, o.effects), {}};
   PointData& p = l.p;
   p.ghost_source = l.halo.get();

@@ -99,7 +99,7 @@ TEST(MpiReductions, EveryProcessComputesThePartitionAndItsGhostsCoverTheLattice)
   ExactSum owned;
   for (const std::int32_t p : part) owned += p == group.rank() ? 1.0 : 0.0;
   EXPECT_EQ(group.sum(owned), static_cast<double>(part.size()));
-  const auto halo = halo_points({D, position.data(), part.size()}, part, group.rank(), 3.05);
+  const auto halo = halo_points({D, position.data(), part.size()}, part, group.rank(), 3.05, 1.0);
   for (const std::size_t j : halo) EXPECT_NE(part[j], group.rank());
   if (group.size() > 1) {
     EXPECT_FALSE(halo.empty());

@@ -360,8 +360,8 @@ void expect_shatter_equals_whole(int dimension, std::array<int, 3> n, double spe
   if (scattered)
     for (std::size_t i = 0; i < part.size(); ++i) part[i] = static_cast<std::int32_t>(i % group.size());
   else
-    part = partition_cloud(positions, reach, group.size());
-  const LocalPoints local = local_points(positions, part, group.rank(), reach);
+    part = partition_cloud(positions, reach, o.spacing, group.size());
+  const LocalPoints local = local_points(positions, part, group.rank(), reach, o.spacing);
   const HaloExchange halo(local, part);
   Model model = build_local_model(cloud, local, halo, group, o);
   const ShatterHistory got = shatter(model, group, speed, steps);

@@ -127,11 +127,11 @@ TEST(CoordinateBisection, CutsAcrossTheLongestSide) {
 TEST(PartitionCloud, ExtraWeightsMoveTheCut) {
   const Lattice l = make_lattice(2, 40, 10);
   const double reach = bond_reach(kHorizon, 1.0);
-  const auto even = partition_cloud(l.positions(), reach, 2);
+  const auto even = partition_cloud(l.positions(), reach, 1.0, 2);
   std::vector<std::int64_t> extra(l.size(), 0);
   for (std::size_t i = 0; i < l.size(); ++i)
     if (l.position[i * 2] < 10.0) extra[i] = 30;
-  const auto weighted = partition_cloud(l.positions(), reach, 2, extra);
+  const auto weighted = partition_cloud(l.positions(), reach, 1.0, 2, extra);
   auto first_column_of_part_1 = [&](const std::vector<std::int32_t>& part) {
     double x = 40.0;
     for (std::size_t i = 0; i < l.size(); ++i)
@@ -150,7 +150,7 @@ TEST(PartitionCloud, ExtraWeightsMoveTheCut) {
     prefix += column[static_cast<std::size_t>(balance++)];
   EXPECT_NEAR(first_column_of_part_1(weighted), balance, 1.0);
   EXPECT_LT(first_column_of_part_1(weighted), 20.0);
-  EXPECT_THROW(partition_cloud(l.positions(), reach, 2, std::vector<std::int64_t>(3, 1)), std::invalid_argument);
+  EXPECT_THROW(partition_cloud(l.positions(), reach, 1.0, 2, std::vector<std::int64_t>(3, 1)), std::invalid_argument);
 }
 
 // Points on the cut's coordinate are ordered by global id: ids decide, not memory order.
@@ -194,7 +194,7 @@ TEST(HaloPoints, EqualABruteForceSearchIn2DAnd3D) {
     for (int parts : {2, 5}) {
       const auto part = coordinate_bisection(l.partition_points(), parts);
       for (std::int32_t p = 0; p < parts; ++p) {
-        const auto halo = halo_points(l.positions(), part, p, reach);
+        const auto halo = halo_points(l.positions(), part, p, reach, 1.0);
         EXPECT_EQ(halo, brute_force_halo(l, part, p, reach)) << l.dimension << "-D, part " << p << " of " << parts;
         EXPECT_FALSE(halo.empty());
       }
@@ -212,7 +212,7 @@ TEST(HaloPoints, ReachBeyondTheNextPartWhenPartsAreThinnerThanTheHorizon) {
   for (std::size_t i = 0; i < l.size(); ++i) ASSERT_EQ(part[i], static_cast<int>(l.position[i * 2]) / 2);
   const double reach = bond_reach(kHorizon, 1.0);
   const std::int32_t middle = 10;
-  const auto halo = halo_points(l.positions(), part, middle, reach);
+  const auto halo = halo_points(l.positions(), part, middle, reach, 1.0);
   EXPECT_EQ(halo, brute_force_halo(l, part, middle, reach));
   std::set<std::int32_t> from;
   for (const std::size_t j : halo) from.insert(part[j]);
@@ -239,7 +239,8 @@ TEST(HaloPoints, AreTheNeighboursThePartsFamiliesName) {
       for (std::int64_t b = families.offset[i]; b < families.offset[i + 1]; ++b)
         if (part[families.neighbor_of(b)] != p) named.insert(families.neighbor_of(b));
     }
-    const auto halo = halo_points(l.positions(), part, p, bond_reach(options.horizon, options.spacing));
+    const auto halo =
+        halo_points(l.positions(), part, p, bond_reach(options.horizon, options.spacing), options.spacing);
     EXPECT_EQ(std::vector<std::size_t>(named.begin(), named.end()), halo) << "part " << p;
   }
 }
