@@ -47,16 +47,18 @@ std::optional<LatticeSites> lattice_sites(const PointPositions& points, double s
     l.low[a] = x[a];
     for (std::size_t i = 1; i < n; ++i) l.low[a] = std::min(l.low[a], x[i * D + a]);
   }
-  // Every point on a site, and the box of the sites.
+  // Every point on a site, and the box of the sites (a site index beyond 2^50, or a coordinate
+  // that is not a number, is no lattice of ours: the tests are written to fail on NaN).
   std::array<std::int64_t, 3> top{0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto k = l.site_of(&x[i * D]);
+  for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < D; ++a) {
-      if (std::abs(x[i * D + a] - l.low[a] - static_cast<double>(k[a]) * spacing) > site_tolerance * spacing)
+      const double q = (x[i * D + a] - l.low[a]) / spacing;
+      if (!(q <= 0x1.0p50)) return std::nullopt;
+      const auto k = std::llround(q);
+      if (!(std::abs(x[i * D + a] - l.low[a] - static_cast<double>(k) * spacing) <= site_tolerance * spacing))
         return std::nullopt;
-      top[a] = std::max(top[a], k[a]);
+      top[a] = std::max<std::int64_t>(top[a], k);
     }
-  }
   std::int64_t total = 1;
   for (int a = 0; a < D; ++a) {
     l.sites[a] = top[a] + 1;

@@ -167,7 +167,8 @@ TEST(SolverFamilies, JitteredLatticeKeepsThePairsItsJitterBringsWithinTheHorizon
 }
 
 // Anything that is not one lattice is searched by cells: a jittered lattice, two points on a site,
-// a lattice of another spacing, a sparse body (two blocks far apart).
+// a lattice of another spacing, a sparse body (two blocks far apart), a coordinate that is not a
+// number (the points reader refuses it; the site map must not take it for a site).
 TEST(SolverFamilies, OnlyALatticeIsSearchedBySites) {
   const double reach = bond_reach(3.05 * kDx, kDx);
   std::vector<double> x = lattice_with_holes(2, {15, 12, 1}, kDx, 3u);
@@ -188,6 +189,9 @@ TEST(SolverFamilies, OnlyALatticeIsSearchedBySites) {
     sparse.push_back(x[k + 1] + 400 * kDx);
   }
   EXPECT_FALSE(lattice_sites({2, sparse.data(), sparse.size() / 2}, kDx, reach).has_value());
+  std::vector<double> not_a_number = x;
+  not_a_number[7] = std::nan("");
+  EXPECT_FALSE(lattice_sites({2, not_a_number.data(), not_a_number.size() / 2}, kDx, reach).has_value());
   // The cell search gives a jittered cloud its families as before.
   const PointData p = points_at(2, jittered);
   FamilyOptions o;
