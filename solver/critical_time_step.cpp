@@ -371,8 +371,10 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, std::si
 
 }  // namespace
 
+bool names_mode_on_patch(const Model& model) { return model.points.rotation_components > 0 && can_cut_patches(model); }
+
 void name_limiting_mode(Model& model, CriticalTimeStep& critical, const StiffestPoint& centre) {
-  if (model.points.rotation_components > 0 && can_cut_patches(model) && centre.block_eigenvalue > 0.0)
+  if (names_mode_on_patch(model) && centre.block_eigenvalue > 0.0)
     for (const double radius : patch_radii) {
       const PatchNaming tried = name_mode_on_patch(model, critical, centre.index, radius * model.horizon);
       if (tried == PatchNaming::named) return;
@@ -383,8 +385,7 @@ void name_limiting_mode(Model& model, CriticalTimeStep& critical, const Stiffest
 
 void name_limiting_mode(Model& model, CriticalTimeStep& critical) {
   StiffestPoint centre;
-  if (model.points.rotation_components > 0 && can_cut_patches(model))
-    centre = stiffest_points(model.points, model.bonds, model.constants).any;
+  if (names_mode_on_patch(model)) centre = stiffest_points(model.points, model.bonds, model.constants).any;
   name_limiting_mode(model, critical, centre);
 }
 

@@ -43,6 +43,9 @@ CriticalTimeStep coupled_critical_time_step(Model& model);
 // becomes the patch's (a patch's Ritz value is a lower bound of omega_max^2). Else on the whole
 // model, at about 1.4 times the coupled estimate's cost with rotations (coarser estimates).
 void name_limiting_mode(Model& model, CriticalTimeStep& critical, const StiffestPoint& centre);
+// Whether the mode is tried on a patch first (then name_limiting_mode needs the stiffest point):
+// with micro-rotations, on a model that can be cut into patches (model_patch.hpp).
+bool names_mode_on_patch(const Model& model);
 // The same, finding the stiffest point itself.
 void name_limiting_mode(Model& model, CriticalTimeStep& critical);
 // On the whole model, without a patch.

@@ -202,14 +202,25 @@ void point_stiffness_block(const PointData& p, const BondFamilies& f, const Coss
   }
 }
 
-StiffestPoints stiffest_points(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+namespace {
+
+// Every owned point's block value (0 for the layers' points when `body_only`).
+std::vector<double> block_values(const PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                                 bool body_only) {
   const auto n = static_cast<std::int64_t>(p.owned);
   std::vector<double> value(p.owned, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
-    value[i] = point_block_eigenvalue(p, f, c, i);
+    if (!body_only || p.region[i] == 0) value[i] = point_block_eigenvalue(p, f, c, i);
   }
+  return value;
+}
+
+}  // namespace
+
+StiffestPoints stiffest_points(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+  const std::vector<double> value = block_values(p, f, c, false);
   // The first of the largest, whatever the thread count.
   StiffestPoints out;
   for (std::size_t i = 0; i < p.owned; ++i) {
@@ -220,7 +231,9 @@ StiffestPoints stiffest_points(const PointData& p, const BondFamilies& f, const 
 }
 
 double max_point_block_eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
-  return stiffest_points(p, f, c).body.block_eigenvalue;
+  const std::vector<double> value = block_values(p, f, c, true);
+  // The maximum does not depend on the order, so any thread count gives the same value.
+  return value.empty() ? 0.0 : *std::max_element(value.begin(), value.end());
 }
 
 }  // namespace mppm::solver

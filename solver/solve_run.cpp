@@ -32,7 +32,6 @@
 #include "solver/interruption.hpp"
 #include "solver/log_number.hpp"
 #include "solver/model.hpp"
-#include "solver/model_patch.hpp"
 #include "solver/plasticity/material_registry.hpp"
 #include "solver/run_writer.hpp"
 #include "solver/snapshot_fields.hpp"
@@ -538,9 +537,8 @@ void RunDriver::fit_time_step() {
   // The stiffest point is the naming patch's centre (with rotations), and the stiffest body point
   // sets the damage run's step limit: both found in one pass over the point blocks.
   const Model& m = model();
-  const bool patch = m.points.rotation_components > 0 && can_cut_patches(m);
   const StiffestPoints stiffest =
-      patch || m.effects.damage ? stiffest_points(m.points, m.bonds, m.constants) : StiffestPoints{};
+      names_mode_on_patch(m) || m.effects.damage ? stiffest_points(m.points, m.bonds, m.constants) : StiffestPoints{};
   name_limiting_mode(model(), plan_.critical, stiffest.any);
   start_up_.mark("mode naming");
   plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.body.block_eigenvalue);
