@@ -21,6 +21,7 @@
 //    "start_up_seconds": {"read_scene": s, "read_points": s, ...}, "start_up_total_seconds": s,
 //    "threads": n, "effects": ["micropolar", ...],
 //    "dimension": d, "time_step_s": dt, "critical_time_step_s": dt_c,
+//    "critical_step_estimate": "patch" | "whole_model",
 //    "limiting_mode": "translational" | "rotational",
 //    "snapshots": [{"file": "snapshots/snapshot_000000.snap", "step": 0, "time_s": 0.0}, ...],
 //    "detached_points": N}

@@ -77,7 +77,7 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> kBlockKeys{
     {"output", {"interval", "load_interval", "fields", "checkpoint_interval"}},
     {"numerics",
      {"stabilization", "damping", "energy_check_tolerance", "energy_check_start_step", "detach_energy_rise",
-      "overload_factor", "damaged_frequency_ratio", "flow_integration"}},
+      "overload_factor", "damaged_frequency_ratio", "flow_integration", "step_estimate"}},
 };
 
 // "boundary_conditions[2]" -> "boundary_conditions[]"
@@ -1187,6 +1187,10 @@ class SceneReader {
     if (n["flow_integration"].IsDefined()) {
       num.flow_integration =
           enum_value(n["flow_integration"], "numerics.flow_integration", kFlowIntegrationNames, "flow integration");
+    }
+    if (n["step_estimate"].IsDefined()) {
+      num.step_estimate =
+          enum_value(n["step_estimate"], "numerics.step_estimate", kStepEstimateNames, "critical step estimate");
     }
   }
 };

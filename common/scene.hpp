@@ -139,9 +139,18 @@ inline constexpr std::array<EnumName<FlowIntegration>, 2> kFlowIntegrationNames{
     {FlowIntegration::automatic, "auto"},
     {FlowIntegration::explicit_substeps, "explicit"},
 }};
+// Where the critical time step is estimated (docs/theory.md section 9): on patches around the
+// stiffest points, the whole model's estimate when a patch cannot hold the highest mode; or always
+// on the whole model.
+enum class StepEstimate { patch, whole_model };
+inline constexpr std::array<EnumName<StepEstimate>, 2> kStepEstimateNames{{
+    {StepEstimate::patch, "patch"},
+    {StepEstimate::whole_model, "whole_model"},
+}};
 inline const char* to_string(ConeMatch match) { return enum_name(kConeMatchNames, match); }
 inline const char* to_string(CompressedBonds bonds) { return enum_name(kCompressedBondsNames, bonds); }
 inline const char* to_string(FlowIntegration f) { return enum_name(kFlowIntegrationNames, f); }
+inline const char* to_string(StepEstimate e) { return enum_name(kStepEstimateNames, e); }
 
 struct DamageParameters {
   double critical_energy_release_rate = 0.0;  // G_cr [J/m^2]
@@ -248,6 +257,7 @@ struct Numerics {
                                          // rise detaches the point
   double damaged_frequency_ratio = 3.5;  // allowed omega_max^2 / largest point block of a damaged lattice
   FlowIntegration flow_integration = FlowIntegration::automatic;  // pore fluid: solver/pore_fluid.cpp
+  StepEstimate step_estimate = StepEstimate::patch;               // solver/critical_time_step.cpp
 };
 
 struct Scene {

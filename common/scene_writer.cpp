@@ -237,6 +237,7 @@ void emit_numerics(YAML::Emitter& out, const Scene& scene) {
   out << YAML::Key << "overload_factor" << YAML::Value << Num{scene.numerics.overload_factor};
   out << YAML::Key << "damaged_frequency_ratio" << YAML::Value << Num{scene.numerics.damaged_frequency_ratio};
   out << YAML::Key << "flow_integration" << YAML::Value << to_string(scene.numerics.flow_integration);
+  out << YAML::Key << "step_estimate" << YAML::Value << to_string(scene.numerics.step_estimate);
   out << YAML::EndMap;
 }
 

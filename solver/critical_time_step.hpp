@@ -1,8 +1,9 @@
 // The stable time step of the explicit scheme (docs/theory.md section 9): the largest eigenvalue of
 // M^-1 K of the actual discrete operator (stabilization included) by a Lanczos (Krylov-refined
-// power) iteration, plus the same for the translational block (w = 0) and the rotational block
-// (u = 0) to name the mode that limits the step and the parameter that drives it, on the patch
-// where the highest mode lives when there is one (model_patch.hpp).
+// power) iteration, on the patches around the stiffest points when the highest mode lives there
+// (model_patch.hpp), else on the whole model; plus the same for the translational block (w = 0)
+// and the rotational block (u = 0) to name the mode that limits the step and the parameter that
+// drives it.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -10,6 +11,7 @@
 
 #include "common/scene.hpp"
 #include "solver/model.hpp"
+#include "solver/model_patch.hpp"
 #include "solver/point_stability.hpp"
 
 namespace mppm::solver {
@@ -28,13 +30,25 @@ struct CriticalTimeStep {
   std::array<double, 3> naming_patch_centre{0.0, 0.0, 0.0};
   // The step is a patch's estimate: the whole model's Lanczos run stopped short of it.
   bool step_from_patch = false;
+  // Where the step was estimated: on the patch of this many own points (0: the whole model), and
+  // otherwise why not on a patch (empty for a whole-model estimate nobody asked a patch of).
+  std::size_t step_patch_points = 0;
+  std::string whole_model_reason;
 };
 
-// Each of these leaves the model's displacement and rotation as they were.
+// Each of these leaves the model's displacement and rotation as they were. Each is collective in a
+// distributed run, and gives every process the same bits.
 // The step and the limiting mode, both from the model (the mode named as name_limiting_mode does).
-CriticalTimeStep critical_time_step(Model& model);
-// The step only (the coupled estimate; translational, rotational, limiting_mode and driver unset).
+CriticalTimeStep critical_time_step(Model& model, StepEstimate where = StepEstimate::patch);
+// The step only (translational, rotational, limiting_mode and driver unset), on the whole model.
 CriticalTimeStep coupled_critical_time_step(Model& model);
+// The step only, where `where` says: with StepEstimate::patch on the patches of 4 horizons around
+// the stiffest point of all and the stiffest body point (`own`: this process's, stiffest_points),
+// each checked against its patch of 3 horizons. When both patches hold their highest mode (the
+// estimate rises by at most 1e-3 from 3 to 4 horizons), omega_max^2 is the larger 4-horizon
+// estimate raised by that rise; else the step is the whole model's, with the reason in
+// whole_model_reason.
+CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const StiffestPoints& own);
 // Names the mode of a coupled estimate from block estimates: translational, rotational,
 // limiting_mode and driver. First on the patch around `centre` (the stiffest point, layers
 // included: stiffest_points(...).any; docs/theory.md section 9), taken when the patch's limiting block reaches the
@@ -42,9 +56,9 @@ CriticalTimeStep coupled_critical_time_step(Model& model);
 // if a patch's estimate is above the whole model's by more than its convergence, the critical step
 // becomes the patch's (a patch's Ritz value is a lower bound of omega_max^2). Else on the whole
 // model, at about 1.4 times the coupled estimate's cost with rotations (coarser estimates).
-void name_limiting_mode(Model& model, CriticalTimeStep& critical, const StiffestPoint& centre);
+void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre);
 // Whether the mode is tried on a patch first (then name_limiting_mode needs the stiffest point):
-// with micro-rotations, on a model that can be cut into patches (model_patch.hpp).
+// with micro-rotations, on a model that can be cut into patches (model_patch.hpp). Collective.
 bool names_mode_on_patch(const Model& model);
 // The same, finding the stiffest point itself.
 void name_limiting_mode(Model& model, CriticalTimeStep& critical);

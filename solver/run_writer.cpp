@@ -198,6 +198,7 @@ void RunWriter::flush(const RunInfo& info) {
   j += "  \"time_step_s\": " + format_number(info.time_step) + ",\n";
   j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
   j += "  \"largest_time_step_s\": " + format_number(info.largest_time_step) + ",\n";
+  j += "  \"critical_step_estimate\": " + json_quote(info.critical_step_estimate) + ",\n";
   j += "  \"limiting_mode\": " + json_quote(info.limiting_mode) + ",\n";
   if (info.flow) {
     j += "  \"fluid_time_step_s\": " + format_number(info.flow->fluid_step) + ",\n";

@@ -40,6 +40,8 @@ struct RunInfo {
   int dimension = 2;
   double time_step = 0.0, critical_time_step = 0.0;
   double largest_time_step = 0.0;  // the bound the step must respect (lower with damage)
+  // Where the critical step was estimated: "patch" or "whole_model" (docs/theory.md section 9).
+  std::string critical_step_estimate;
   std::string limiting_mode;
   std::uint64_t detached_points = 0;
   // Pore fluid: the fluid step limit and the flow schedule (written only with the effect).

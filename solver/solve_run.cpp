@@ -529,17 +529,20 @@ std::uint64_t RunDriver::total_detached_points() const {
 // The critical step of the model, the step the run takes (fit_step_to_end) and the breakage's
 // view of it; the resolved scene records the step.
 void RunDriver::fit_time_step() {
-  plan_.critical = coupled_critical_time_step(model());
+  // The stiffest points centre the step's and the naming's patches, and the stiffest body point
+  // sets the damage run's step limit: all found in one pass over the point blocks.
+  Model& m = model();
+  const bool patch_step = scene_.numerics.step_estimate == StepEstimate::patch && can_cut_patches(m);
+  const StiffestPoints stiffest = patch_step || names_mode_on_patch(m) || m.effects.damage
+                                      ? stiffest_points(m.points, m.bonds, m.constants)
+                                      : StiffestPoints{};
+  start_up_.mark("stiffest points");
+  plan_.critical = estimate_critical_step(m, scene_.numerics.step_estimate, stiffest);
   start_up_.mark("critical time step");
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
                            log_number(plan_.critical.step) + " s): the discrete operator is not positive");
-  // The stiffest point is the naming patch's centre (with rotations), and the stiffest body point
-  // sets the damage run's step limit: both found in one pass over the point blocks.
-  const Model& m = model();
-  const StiffestPoints stiffest =
-      names_mode_on_patch(m) || m.effects.damage ? stiffest_points(m.points, m.bonds, m.constants) : StiffestPoints{};
-  name_limiting_mode(model(), plan_.critical, stiffest.any);
+  name_limiting_mode(m, plan_.critical, patch_centre(m, stiffest.any));
   start_up_.mark("mode naming");
   plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.body.block_eigenvalue);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);
@@ -603,6 +606,8 @@ void RunDriver::fill_run_info() {
   info_.time_step = plan_.dt;
   info_.critical_time_step = plan_.critical.step;
   info_.largest_time_step = plan_.damage_step;
+  info_.critical_step_estimate =
+      plan_.critical.step_patch_points > 0 || plan_.critical.step_from_patch ? "patch" : "whole_model";
   info_.limiting_mode = plan_.critical.limiting_mode;
   info_.detached_points = totals_.detached_points;
   if (model().fluid) info_.flow = plan_.flow;
@@ -659,6 +664,16 @@ void RunDriver::log_start() {
   writer().set_load_header(load_header, scene_.effects.pore_fluid);
 }
 
+// Where the step was estimated, and what that cost.
+std::string step_estimate_cost(const CriticalTimeStep& critical) {
+  if (critical.step_patch_points > 0)
+    return "estimated on the patch of " + std::to_string(critical.step_patch_points) +
+           " points within 4 horizons of the stiffest point, which holds the highest mode, in " +
+           std::to_string(critical.iterations) + " applications of the patches' operators";
+  return std::to_string(critical.iterations) + " Lanczos iterations on the whole model" +
+         (critical.whole_model_reason.empty() ? std::string() : " (" + critical.whole_model_reason + ")");
+}
+
 // What naming the limiting mode cost, and where it was named.
 std::string naming_cost(const CriticalTimeStep& critical, int dimension) {
   const std::string step_note =
@@ -682,11 +697,11 @@ void RunDriver::log_start_up_report() {
                " (stored from both ends), pre-crack cuts " + std::to_string(totals_.precrack_cut_pairs) +
                " bonds, detached points " + std::to_string(totals_.detached_points));
   if (info_.partition) writer().log("distributed run, " + describe(*info_.partition));
-  writer().log(
-      "critical time step " + log_number(critical.step) + " s (translational " + log_number(critical.translational) +
-      " s" + (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
-      "; " + std::to_string(critical.iterations) + " Lanczos iterations, " + naming_cost(critical, m.dimension()) +
-      "), limiting mode " + critical.limiting_mode + ", driven by " + critical.driver);
+  writer().log("critical time step " + log_number(critical.step) + " s (translational " +
+               log_number(critical.translational) + " s" +
+               (critical.rotational > 0.0 ? ", rotational " + log_number(critical.rotational) + " s" : std::string()) +
+               "; " + step_estimate_cost(critical) + ", " + naming_cost(critical, m.dimension()) + "), limiting mode " +
+               critical.limiting_mode + ", driven by " + critical.driver);
   writer().log("time step " + log_number(dt) + " s (" +
                (scene_in_.time.step ? "given" : "auto, safety " + log_number(scene_.time.safety)) + "), " +
                std::to_string(plan_.steps) + " steps, threads " + std::to_string(info_.threads) +

@@ -173,6 +173,41 @@ void expect_distributed_run_equals_whole(const Case& k) {
       << name << ", process " << group.rank() << " of " << group.size();
 }
 
+// The critical step and its naming on patches (docs/theory.md section 9) on bodies large enough
+// for them: each process contributes its points of the patch, and every process assembles the
+// same patch in the order of the global ids, so the estimates are the one-process bits.
+TEST(MpiRun, StepAndModeOnPatchesAreTheOneProcessBits) {
+  const ProcessGroup group = ProcessGroup::world();
+  struct PatchCase {
+    int dimension;
+    std::array<int, 3> n;
+    bool micropolar, layers;
+    double factor;
+  };
+  for (const PatchCase& k : {PatchCase{2, {90, 40, 1}, true, true, 3.05}, PatchCase{2, {90, 40, 1}, false, false, 3.05},
+                             PatchCase{3, {28, 27, 26}, true, false, 2.05}}) {
+    const std::string name = std::to_string(k.dimension) + "-D " + (k.micropolar ? "micro-polar" : "non-polar");
+    const double dx = 1e-3;
+    const Scene scene = verification::make_scene(k.dimension, k.micropolar, dx, k.factor);
+    PointCloud cloud = verification::make_lattice(k.dimension, k.n, dx, scene.thickness);
+    if (k.layers) solver::testing::add_end_layers(cloud, k.n[0], 3, "displacement", "velocity");
+    Model whole = verification::make_model(cloud, scene);
+    const CriticalTimeStep expected = critical_time_step(whole);
+    DistributedModel distributed = build_distributed_model(cloud, model_options(scene), group);
+    const CriticalTimeStep got = critical_time_step(distributed.model);
+    EXPECT_GT(expected.step_patch_points, 0u) << name << ": " << expected.whole_model_reason;
+    EXPECT_EQ(got.step_patch_points, expected.step_patch_points) << name;
+    EXPECT_EQ(bits(got.step), bits(expected.step)) << name << ": critical step";
+    EXPECT_EQ(got.iterations, expected.iterations) << name;
+    EXPECT_EQ(got.naming_patch_points, expected.naming_patch_points) << name;
+    EXPECT_EQ(bits(got.translational), bits(expected.translational)) << name;
+    EXPECT_EQ(bits(got.rotational), bits(expected.rotational)) << name;
+    EXPECT_EQ(got.limiting_mode, expected.limiting_mode) << name;
+    EXPECT_EQ(got.driver, expected.driver) << name;
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(bits(got.naming_patch_centre[a]), bits(expected.naming_patch_centre[a]));
+  }
+}
+
 TEST(MpiRun, MicropolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({2, {24, 16, 1}, true}); }
 
 TEST(MpiRun, NonPolarPlateVibratesAsOnOneProcess) { expect_distributed_run_equals_whole({2, {24, 16, 1}, false}); }

@@ -297,19 +297,21 @@ TEST(Scene, NumericsThresholdsDefaultEchoAndValidate) {
   EXPECT_EQ(s.numerics.damaged_frequency_ratio, 3.5);
   const std::string yaml = resolved_scene_yaml(s);
   for (const char* line : {"energy_check_start_step: 50", "detach_energy_rise: 0.5", "overload_factor: 1.5",
-                           "damaged_frequency_ratio: 3.5", "flow_integration: auto"}) {
+                           "damaged_frequency_ratio: 3.5", "flow_integration: auto", "step_estimate: patch"}) {
     EXPECT_NE(yaml.find(line), std::string::npos) << line << "\n" << yaml;
   }
-  const Scene t = parse_scene(
-      kExample, kPath,
-      {"numerics.energy_check_start_step=200", "numerics.detach_energy_rise=0.25", "numerics.overload_factor=3",
-       "numerics.damaged_frequency_ratio=2", "numerics.flow_integration=explicit"});
+  const Scene t = parse_scene(kExample, kPath,
+                              {"numerics.energy_check_start_step=200", "numerics.detach_energy_rise=0.25",
+                               "numerics.overload_factor=3", "numerics.damaged_frequency_ratio=2",
+                               "numerics.flow_integration=explicit", "numerics.step_estimate=whole_model"});
   const Scene back = parse_scene(resolved_scene_yaml(t), kPath);
   EXPECT_EQ(back.numerics.energy_check_start_step, 200);
   EXPECT_EQ(back.numerics.detach_energy_rise, 0.25);
   EXPECT_EQ(back.numerics.overload_factor, 3.0);
   EXPECT_EQ(back.numerics.damaged_frequency_ratio, 2.0);
   EXPECT_EQ(back.numerics.flow_integration, FlowIntegration::explicit_substeps);
+  EXPECT_EQ(s.numerics.step_estimate, StepEstimate::patch);
+  EXPECT_EQ(back.numerics.step_estimate, StepEstimate::whole_model);
   const std::pair<const char*, const char*> bad[] = {
       {"numerics.energy_check_start_step=-1", "numerics.energy_check_start_step: must be >= 0"},
       {"numerics.energy_check_start_step=2.5", "numerics.energy_check_start_step: \"2.5\" is not an integer"},
@@ -318,7 +320,8 @@ TEST(Scene, NumericsThresholdsDefaultEchoAndValidate) {
       {"numerics.overload_factor=0", "numerics.overload_factor: 0 must be > 0"},
       {"numerics.damaged_frequency_ratio=0.5", "numerics.damaged_frequency_ratio: 0.5 must be >= 1"},
       {"numerics.damaged_frequency_ratio=1 mm", "numerics.damaged_frequency_ratio: \"1 mm\" is a length"},
-      {"numerics.flow_integration=implicit", "numerics.flow_integration: unknown flow integration 'implicit'"}};
+      {"numerics.flow_integration=implicit", "numerics.flow_integration: unknown flow integration 'implicit'"},
+      {"numerics.step_estimate=local", "numerics.step_estimate: unknown critical step estimate 'local'"}};
   for (const auto& [set, expected] : bad) {
     const auto e = error_of(kExample, {set});
     EXPECT_NE(e.find(expected), std::string::npos) << set << ": " << e;

@@ -126,8 +126,9 @@ TEST(StiffestPoints, TheLayersCountForThePatchAndNotForTheDamageLimit) {
   EXPECT_GT(found.any.block_eigenvalue, found.body.block_eigenvalue);
 }
 
-// The patch is cut only where its operator is the whole model's at rest: not across processes,
-// not with the pore fluid, not once the model holds history (a broken bond).
+// The patch is cut only where its operator is the whole model's at rest: not with the pore fluid,
+// not once the model holds history (a broken bond). (A distributed run's patch is cut across its
+// processes: tests/mpi.)
 TEST(ModelPatch, IsCutOnlyWhereItsOperatorIsTheWholeModels) {
   Scene s = make_scene(2, true, 1e-3, 3.05);
   s.effects.damage = true;
@@ -141,10 +142,6 @@ TEST(ModelPatch, IsCutOnlyWhereItsOperatorIsTheWholeModels) {
   EXPECT_TRUE(can_cut_patches(wet));
   wet.effects.pore_fluid = true;
   EXPECT_FALSE(can_cut_patches(wet));
-  Model distributed = make_model(make_lattice(2, {10, 9, 1}, 1e-3, s.thickness), make_scene(2, true, 1e-3, 3.05));
-  const ProcessGroup one = ProcessGroup::single();
-  distributed.points.processes = &one;
-  EXPECT_FALSE(can_cut_patches(distributed));
 }
 
 }  // namespace

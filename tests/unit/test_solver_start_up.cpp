@@ -122,10 +122,10 @@ TEST(SolverStartUp, NewRunAndRestartReportTheirPhasesInOrder) {
             0);
   const std::string info = contents(dir + "/" + run_layout::run_info);
   const std::vector<std::string> new_run{
-      "read_scene",    "read_points",        "memory_estimate", "boundary_conditions",
-      "point_data",    "bond_families",      "pre_crack_cuts",  "damage_set_up",
-      "shape_tensors", "critical_time_step", "mode_naming",     "damage_step_limit",
-      "run_directory", "reference_snapshot", "initial_forces",  "initial_snapshot"};
+      "read_scene",         "read_points",     "memory_estimate",   "boundary_conditions", "point_data",
+      "bond_families",      "pre_crack_cuts",  "damage_set_up",     "shape_tensors",       "stiffest_points",
+      "critical_time_step", "mode_naming",     "damage_step_limit", "run_directory",       "reference_snapshot",
+      "initial_forces",     "initial_snapshot"};
   EXPECT_EQ(names(start_up_phases(info)), new_run);
   check_start_up(info);
   const std::string line = last_start_up_line(contents(dir + "/" + run_layout::log));
@@ -138,10 +138,10 @@ TEST(SolverStartUp, NewRunAndRestartReportTheirPhasesInOrder) {
   ASSERT_EQ(run({"--restart", dir, "--quiet"}), 0);
   const std::string restarted = contents(dir + "/" + run_layout::run_info);
   const std::vector<std::string> restart{
-      "read_checkpoint",     "read_points",        "checkpoint_identity", "read_scene",        "memory_estimate",
-      "boundary_conditions", "point_data",         "bond_families",       "pre_crack_cuts",    "damage_set_up",
-      "shape_tensors",       "critical_time_step", "mode_naming",         "damage_step_limit", "run_directory",
-      "initial_forces",      "restore_state"};
+      "read_checkpoint",     "read_points",     "checkpoint_identity", "read_scene",     "memory_estimate",
+      "boundary_conditions", "point_data",      "bond_families",       "pre_crack_cuts", "damage_set_up",
+      "shape_tensors",       "stiffest_points", "critical_time_step",  "mode_naming",    "damage_step_limit",
+      "run_directory",       "initial_forces",  "restore_state"};
   EXPECT_EQ(names(start_up_phases(restarted)), restart);
   check_start_up(restarted);
   const std::string restart_line = last_start_up_line(contents(dir + "/" + run_layout::log));

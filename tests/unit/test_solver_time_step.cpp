@@ -11,6 +11,7 @@
 #include "common/input_error.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/explicit_dynamics.hpp"
+#include "solver/point_stability.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 
 namespace mppm::solver {
@@ -172,7 +173,8 @@ TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
                         Case{shear_band_scene(83.3), {64, 56, 1}, false}, Case{block, {28, 27, 26}, true}}) {
     const double dx = k.scene.geometry.spacing;
     Model m = make_model(make_lattice(k.scene.dimension, k.n, dx, k.scene.thickness), k.scene);
-    const CriticalTimeStep named = critical_time_step(m);
+    // The step on the whole model in both, so that the naming alone is compared.
+    const CriticalTimeStep named = critical_time_step(m, StepEstimate::whole_model);
     CriticalTimeStep whole = coupled_critical_time_step(m);
     name_limiting_mode_on_whole_model(m, whole);
     std::printf(
@@ -243,17 +245,106 @@ TEST(SolverTimeStep, PatchAboveTheWholeEstimateLowersTheStep) {
   EXPECT_LE(mixed_short.step, mixed_converged.step * (1.0 + 1e-3));
 }
 
+// The step on patches (docs/theory.md section 9): where the highest mode lives at the stiffest
+// points (surfaces, corners, layers), the step comes from the patches of 4 horizons around them,
+// raised by their rise from 3 horizons. Its stated margin against the whole model's estimate:
+// never longer (the raise covers the 4-horizon patch's shortfall, to the whole model's own Lanczos
+// convergence, 1e-6 here), and at most 5e-4 shorter (the raise is at most 1e-3 of omega_max^2,
+// the confinement limit, and omega_max^2 of a 4-horizon patch is at most the whole model's: by
+// Cauchy interlacing, a principal submatrix). The plates with layers hold their highest mode in a
+// layer's corner.
+TEST(SolverTimeStep, StepOnPatchesIsTheWholeModelsWithinItsMargin) {
+  struct Case {
+    const char* name;
+    Scene scene;
+    std::array<int, 3> n;
+    bool layers;
+  };
+  Scene plate = make_scene(2, true, 1e-3, 3.05);
+  Scene classical = make_scene(2, false, 1e-3, 3.05);
+  Scene block = make_scene(3, true, 1e-3, 2.05);
+  for (const Case& k : {Case{"micro-polar plate with layers", plate, {90, 40, 1}, true},
+                        Case{"non-polar plate with layers", classical, {90, 40, 1}, true},
+                        Case{"3-D micro-polar block", block, {28, 27, 26}, false}}) {
+    const double dx = k.scene.geometry.spacing;
+    PointCloud cloud = make_lattice(k.scene.dimension, k.n, dx, k.scene.thickness);
+    if (k.layers) testing::add_end_layers(cloud, k.n[0], 3, "displacement", "velocity");
+    Model m = make_model(cloud, k.scene);
+    const StiffestPoints stiffest = stiffest_points(m.points, m.bonds, m.constants);
+    const CriticalTimeStep on_patches = estimate_critical_step(m, StepEstimate::patch, stiffest);
+    const CriticalTimeStep whole = coupled_critical_time_step(m);
+    std::printf("%s: patches %.9e s (%zu points, %d applications), whole model %.9e s (%d iterations): %+.2e\n", k.name,
+                on_patches.step, on_patches.step_patch_points, on_patches.iterations, whole.step, whole.iterations,
+                on_patches.step / whole.step - 1.0);
+    EXPECT_GT(on_patches.step_patch_points, 0u) << k.name << ": " << on_patches.whole_model_reason;
+    EXPECT_TRUE(on_patches.whole_model_reason.empty()) << k.name;
+    EXPECT_LE(on_patches.step, whole.step * (1.0 + 1e-6)) << k.name;
+    EXPECT_GE(on_patches.step, whole.step * (1.0 - 5e-4)) << k.name;
+    if (k.layers) {
+      EXPECT_GT(m.points.region[stiffest.any.index], 0) << k.name;
+    }
+  }
+}
+
+// The step falls back to the whole model's estimate, and says why, where no patch can give it.
+TEST(SolverTimeStep, StepFallsBackToTheWholeModelAndSaysWhy) {
+  const double dx = 1e-3;
+  const Scene s = make_scene(2, true, dx, 2.05);
+  auto on_patches = [](Model& m) {
+    return estimate_critical_step(m, StepEstimate::patch, stiffest_points(m.points, m.bonds, m.constants));
+  };
+  auto expect_whole = [](const CriticalTimeStep& c, Model& m, const std::string& reason) {
+    EXPECT_EQ(c.step_patch_points, 0u) << reason;
+    EXPECT_NE(c.whole_model_reason.find(reason), std::string::npos) << c.whole_model_reason;
+    EXPECT_EQ(c.step, coupled_critical_time_step(m).step) << reason;  // the same bits
+  };
+  // A periodic lattice: its top mode is a plane wave over the whole body, which a patch held in
+  // by fixed neighbours cuts short (the rise from 3 to 4 horizons is far above 1e-3).
+  const std::array<int, 3> n{170, 170, 1};
+  Model periodic = make_model(make_lattice(2, n, dx, s.thickness), s, {n[0] * dx, n[1] * dx, 0.0});
+  expect_whole(on_patches(periodic), periodic, "reaches beyond its patch");
+  // The shear-band material on a lattice without layers: its highest modes mix translation and
+  // micro-rotation and decay slowly from the corner, rising by 1.8e-3 (a3 = 83.3 N) and 1.4e-3
+  // (a3 = 83.3 kN) from 3 to 4 horizons (measured).
+  for (const double a3 : {83.3, 83.3e3}) {
+    Model slow_decay = make_model(make_lattice(2, {64, 56, 1}, 2.5e-3, 0.01), shear_band_scene(a3));
+    expect_whole(on_patches(slow_decay), slow_decay, "reaches beyond its patch");
+  }
+  // A body so small that the patch would hold more than a tenth of it.
+  Model small = make_model(make_lattice(2, {20, 18, 1}, dx, s.thickness), s);
+  expect_whole(on_patches(small), small, "more than a tenth");
+  // Asked for.
+  Model asked = make_model(make_lattice(2, {64, 56, 1}, dx, s.thickness), s);
+  const StiffestPoints stiffest = stiffest_points(asked.points, asked.bonds, asked.constants);
+  expect_whole(estimate_critical_step(asked, StepEstimate::whole_model, stiffest), asked,
+               "numerics.step_estimate: whole_model");
+  EXPECT_GT(estimate_critical_step(asked, StepEstimate::patch, stiffest).step_patch_points, 0u);
+  // A model that holds history (here a broken bond): its operator is not the start-up's.
+  Scene damaged_scene = s;
+  damaged_scene.effects.damage = true;
+  damaged_scene.material.damage = DamageParameters{100.0, 0.0, DamageCalibration::lattice, std::nullopt};
+  Model damaged = make_model(make_lattice(2, {64, 56, 1}, dx, s.thickness), damaged_scene);
+  damaged.bonds.break_bond(0);
+  const CriticalTimeStep c = on_patches(damaged);
+  EXPECT_EQ(c.step_patch_points, 0u);
+  EXPECT_NE(c.whole_model_reason.find("holds history"), std::string::npos) << c.whole_model_reason;
+}
+
 // Runs a free body with random velocities at `factor` times the estimated critical step and
 // returns the growth of the total energy.
-double energy_growth(bool micropolar, double factor) {
-  Scene s = shear_band_scene(83.3);
+// `on_patches`: a 90 x 40 plate of 1 mm spacing whose step comes from the patches (checked)
+// instead of the 10 x 9 shear-band specimen.
+double energy_growth(bool micropolar, double factor, bool on_patches = false) {
+  Scene s = on_patches ? make_scene(2, micropolar, 1e-3, 3.05) : shear_band_scene(83.3);
   s.effects.micropolar = micropolar;
-  Model m = make_model(make_lattice(2, {10, 9, 1}, 2.5e-3, 0.01), s);
+  Model m = on_patches ? make_model(make_lattice(2, {90, 40, 1}, 1e-3, s.thickness), s)
+                       : make_model(make_lattice(2, {10, 9, 1}, 2.5e-3, 0.01), s);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> g(-1.0, 1.0);
   for (auto& v : m.points.velocity) v = 0.01 * g(rng);
   for (auto& w : m.points.spin) w = 1.0 * g(rng);
   const CriticalTimeStep c = critical_time_step(m);
+  EXPECT_EQ(c.step_patch_points > 0, on_patches) << c.whole_model_reason;
   BoundaryConditions none(m.points);
   ExplicitDynamics dynamics(m, none, factor * c.step);
   dynamics.initialize();
@@ -274,6 +365,14 @@ TEST(SolverTimeStep, EstimateIsTheStabilityLimitOfTheScheme) {
     // grows by orders of magnitude within a few hundred steps.
     EXPECT_LT(energy_growth(micropolar, 0.97), 2.0) << "micropolar=" << micropolar;
     EXPECT_GT(energy_growth(micropolar, 1.05), 1e6) << "micropolar=" << micropolar;
+  }
+}
+
+// The same where the step comes from the patches.
+TEST(SolverTimeStep, StepOnPatchesIsTheStabilityLimitOfTheScheme) {
+  for (bool micropolar : {true, false}) {
+    EXPECT_LT(energy_growth(micropolar, 0.97, true), 2.0) << "micropolar=" << micropolar;
+    EXPECT_GT(energy_growth(micropolar, 1.05, true), 1e6) << "micropolar=" << micropolar;
   }
 }
 
