@@ -472,6 +472,14 @@ void name_limiting_mode(Model& model, CriticalTimeStep& critical) {
 }
 
 void name_limiting_mode_on_whole_model(Model& model, CriticalTimeStep& critical) {
+  if (model.points.rotation_components == 0) {
+    // The translational block is the coupled operator: nothing is estimated, so the model's state
+    // is not lent out (with_operator's force evaluation afterwards would cost a step for nothing).
+    std::vector<double> unused_u, unused_w;
+    Workspace ws{unused_u, unused_w, nullptr};
+    name_mode(model, critical, ws, naming_convergence);
+    return;
+  }
   with_operator(model, [&](Workspace& ws) { name_mode(model, critical, ws, naming_convergence); });
 }
 

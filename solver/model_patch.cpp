@@ -38,8 +38,12 @@ std::vector<std::int64_t> own_piece(const Model& model, const std::array<double,
   const std::size_t symmetric = D * (D + 1) / 2;
   const bool periodic = !f.xi.empty();
   auto bits = [](double v) { return std::bit_cast<std::int64_t>(v); };
+  // A point farther than the radius and a bond's reach from the centre has no neighbour within the
+  // radius (on a periodic lattice a bond may wrap around, so there every point is looked at).
+  const double reach = periodic ? std::numeric_limits<double>::infinity() : radius + 1.01 * model.horizon;
   std::vector<std::int64_t> out;
   for (std::size_t i = 0; i < p.owned; ++i) {
+    if (!within(p, i, centre, reach)) continue;
     const bool inside = within(p, i, centre, radius);
     bool member = inside;
     for (std::int64_t b = f.offset[i]; !member && b < f.offset[i + 1]; ++b)
