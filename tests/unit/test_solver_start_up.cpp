@@ -132,6 +132,14 @@ TEST(SolverStartUp, NewRunAndRestartReportTheirPhasesInOrder) {
   EXPECT_EQ(line.rfind("start-up: read scene ", 0), 0u) << line;
   EXPECT_NE(line.find(", critical time step "), std::string::npos) << line;
   EXPECT_NE(line.find(" s (total "), std::string::npos) << line;
+  // Where the step was estimated, in run_info.json and in the log's critical-step line, which says
+  // why when it is the whole model (this block is too small for the patches).
+  const bool on_patch = info.find("\"critical_step_estimate\": \"patch\"") != std::string::npos;
+  EXPECT_TRUE(on_patch || info.find("\"critical_step_estimate\": \"whole_model\"") != std::string::npos) << info;
+  const std::string log = contents(dir + "/" + run_layout::log);
+  EXPECT_NE(log.find(on_patch ? "estimated on the patch of " : " Lanczos iterations on the whole model (the patch "),
+            std::string::npos)
+      << log;
 
   // Continued from the checkpoint at 35 us: the checkpoint is read first, no reference is written,
   // the state is restored instead of the first snapshot.
