@@ -319,7 +319,7 @@ void estimate_coupled(Model& model, CriticalTimeStep& out, Workspace& ws) {
 // horizons, 1.4e-5 at 3 and 2.6e-7 at 4 (825 points with their neighbours); on the crack-branching
 // plate by 8e-4, 6e-5, 1.7e-6 and 1e-8 at 2, 3, 4 and 6.
 constexpr double patch_radii[] = {4.0, 8.0};
-// The patch names the mode when its limiting block's omega^2 is the whole model's coupled one within
+// The patch names the mode when its limiting block's omega^2 is the critical step's coupled one within
 // this: the highest mode is then that block's and lives in the patch, and the other block, whose
 // omega^2 is at most the coupled one, could limit only in a tie within it. 2e-3 is 1e-3 in the
 // step, the accuracy of the whole model's naming (naming_convergence). Where the highest mode mixes

@@ -51,11 +51,12 @@ CriticalTimeStep coupled_critical_time_step(Model& model);
 CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const StiffestPoints& own);
 // Names the mode of a coupled estimate from block estimates: translational, rotational,
 // limiting_mode and driver. First on the patch around `centre` (the stiffest point, layers
-// included: stiffest_points(...).any; docs/theory.md section 9), taken when the patch's limiting block reaches the
-// whole model's coupled omega_max^2 within 2e-3 (the highest mode is that block's and lives there);
-// if a patch's estimate is above the whole model's by more than its convergence, the critical step
-// becomes the patch's (a patch's Ritz value is a lower bound of omega_max^2). Else on the whole
-// model, at about 1.4 times the coupled estimate's cost with rotations (coarser estimates).
+// included: patch_centre of stiffest_points(...).any; docs/theory.md section 9), taken when the
+// patch's limiting block reaches the critical step's coupled omega_max^2 (`critical`'s estimate)
+// within 2e-3 (the highest mode is that block's and lives there); if a patch's estimate is above
+// that one by more than its convergence, the critical step becomes the patch's (a patch's Ritz
+// value is a lower bound of omega_max^2). Else on the whole model, at about 1.4 times the coupled
+// estimate's cost with rotations (coarser estimates).
 void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre);
 // Whether the mode is tried on a patch first (then name_limiting_mode needs the stiffest point):
 // with micro-rotations, on a model that can be cut into patches (model_patch.hpp). Collective.
