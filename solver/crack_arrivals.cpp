@@ -15,7 +15,7 @@ namespace mppm::solver {
 
 void CrackArrivals::arrive(const PointData& p, std::size_t i, double time) {
   arrived_[i] = 1;
-  points_.push_back(p.global_id.empty() ? i : static_cast<std::uint64_t>(p.global_id[i]));
+  points_.push_back(static_cast<std::uint64_t>(p.global_index(i)));
   times_.push_back(time);
 }
 

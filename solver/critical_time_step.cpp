@@ -99,7 +99,7 @@ OperatorEstimate largest_eigenvalue(Model& model, Block block, const Convergence
   prev_w.assign(q_w.size(), 0.0);
   const auto outside = [&](std::size_t i) { return ws.support && !(*ws.support)[i]; };
   for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t id = p.global_id.empty() ? static_cast<std::int64_t>(i) : p.global_id[i];
+    const std::int64_t id = p.global_index(i);
     for (int c = 0; c < D; ++c) q_u[i * D + c] = use_u && !outside(i) ? start_value(id, c) : 0.0;
     for (int c = 0; c < R; ++c) q_w[i * R + c] = use_w && !outside(i) ? start_value(id, D + c) : 0.0;
   }
@@ -215,6 +215,37 @@ void with_operator(Model& model, Estimates&& estimates) {
 
 // The translational and rotational block steps, the limiting mode and the parameter that drives
 // it, for the model whose coupled step is in `out`.
+// The density that a translational step is credited over (the mixture's with the pore fluid).
+std::string density_text(const Model& model) {
+  const CosseratConstants& c = model.constants;
+  const bool fluid = !model.points.fluid_content_change.empty();
+  return (!fluid        ? " over the density rho = solid_fraction * density = "
+          : c.retention ? " over the mixture density rho = solid_fraction * density + porosity * S_r * fluid_density "
+                          "(S_r of the start) = "
+                        : " over the mixture density rho = solid_fraction * density + porosity * fluid_density = ") +
+         number(c.density) + " kg/m^3";
+}
+
+// The translational block's step from its omega_max^2, named as the limiting mode and credited to
+// lambda and mu (stiffened by the pore fluid held in the pores, if any); name_mode may credit it to
+// another modulus, or the rotational block, afterwards.
+void name_translational(const Model& model, CriticalTimeStep& out, double trans_lambda) {
+  const CosseratConstants& c = model.constants;
+  const std::string undrained = !model.points.fluid_content_change.empty()
+                                    ? ", stiffened by the pore fluid held in the pores: undrained lambda + b^2 M = " +
+                                          number(c.lambda + c.biot_coefficient * c.biot_coefficient * c.biot_modulus) +
+                                          " Pa with material.pore_fluid.biot_modulus M = " + number(c.biot_modulus) +
+                                          " Pa and biot_coefficient b = " + number(c.biot_coefficient)
+                                    : std::string();
+  out.translational = step_of(trans_lambda);
+  out.limiting_mode = "translational";
+  out.driver = "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
+               " Pa, with numerics.stabilization G_s = " + number(c.stabilization) + undrained + ")" +
+               density_text(model);
+}
+
+// Names the mode of a model with micro-rotations (without them the translational block is the
+// coupled operator: name_translational alone).
 void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Convergence& convergence) {
   PointData& p = model.points;
   out.naming_iterations = 0;
@@ -223,29 +254,9 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
     out.naming_iterations += e.iterations;
     return e;
   };
-  // Without rotation dofs the translational block is the coupled operator.
-  const double trans_lambda =
-      p.rotation_components > 0 ? estimate(Block::translational).lambda : omega_squared_of(out.step);
-  out.translational = step_of(trans_lambda);
+  const double trans_lambda = estimate(Block::translational).lambda;
+  name_translational(model, out, trans_lambda);
   CosseratConstants& c = model.constants;
-  const bool fluid = !p.fluid_content_change.empty();
-  const std::string density =
-      (!fluid        ? " over the density rho = solid_fraction * density = "
-       : c.retention ? " over the mixture density rho = solid_fraction * density + porosity * S_r * fluid_density "
-                       "(S_r of the start) = "
-                     : " over the mixture density rho = solid_fraction * density + porosity * fluid_density = ") +
-      number(c.density) + " kg/m^3";
-  const std::string undrained = fluid
-                                    ? ", stiffened by the pore fluid held in the pores: undrained lambda + b^2 M = " +
-                                          number(c.lambda + c.biot_coefficient * c.biot_coefficient * c.biot_modulus) +
-                                          " Pa with material.pore_fluid.biot_modulus M = " + number(c.biot_modulus) +
-                                          " Pa and biot_coefficient b = " + number(c.biot_coefficient)
-                                    : std::string();
-  const std::string trans_driver =
-      "material.lambda and material.mu (P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) +
-      " Pa, with numerics.stabilization G_s = " + number(c.stabilization) + undrained + ")" + density;
-  out.limiting_mode = "translational";
-  out.driver = trans_driver;
   // Which stiffness drives a block is told by the same estimate with a modulus switched off: the
   // operator is linear in the moduli, and each term of the energy is positive semi-definite, so
   // switching one off can only lower omega_max^2; the block is credited to the modulus without
@@ -266,13 +277,9 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
   };
   const std::string inertia = " over the micro-inertia I = 1/2 pi rho l^2 = " + number(c.micro_inertia) +
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
-  double rot_lambda = 0.0;
-  if (p.rotation_components > 0) {
-    const OperatorEstimate rot = estimate(Block::rotational);
-    out.rotational = step_of(rot.lambda);
-    rot_lambda = rot.lambda;
-  }
-  if (out.rotational > 0.0 && out.rotational < out.translational) {
+  const double rot_lambda = estimate(Block::rotational).lambda;
+  out.rotational = step_of(rot_lambda);
+  if (out.rotational < out.translational) {
     out.limiting_mode = "rotational";
     // Three stiffnesses act on a micro-rotation: the bending modulus B_w (couple stress and its
     // stabilization), mu_c on the skew strain -[w]_x, and, at the lattice scale, lambda and mu
@@ -297,13 +304,14 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
           "(the bending modulus B_w = " +
           number(c.bending_modulus) + " N alone gives " + number(bending) + " of omega_max^2)" + inertia;
     }
-  } else if (c.mu_c > 0.0 && p.rotation_components > 0 &&
+  } else if (c.mu_c > 0.0 &&
              fraction_left_without(Block::translational, trans_lambda, [&] { c.mu_c = 0.0; }) < credit) {
     // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
     // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
     out.driver = "material.mu_c = " + number(c.mu_c) +
                  " Pa (the couple modulus stiffens the shear waves: mu + mu_c = " + number(c.mu + c.mu_c) +
-                 " Pa against the P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) + " Pa)" + density;
+                 " Pa against the P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) + " Pa)" +
+                 density_text(model);
   }
 }
 
@@ -475,9 +483,8 @@ void name_limiting_mode_on_whole_model(Model& model, CriticalTimeStep& critical)
   if (model.points.rotation_components == 0) {
     // The translational block is the coupled operator: nothing is estimated, so the model's state
     // is not lent out (with_operator's force evaluation afterwards would cost a step for nothing).
-    std::vector<double> unused_u, unused_w;
-    Workspace ws{unused_u, unused_w, nullptr};
-    name_mode(model, critical, ws, naming_convergence);
+    critical.naming_iterations = 0;
+    name_translational(model, critical, omega_squared_of(critical.step));
     return;
   }
   with_operator(model, [&](Workspace& ws) { name_mode(model, critical, ws, naming_convergence); });

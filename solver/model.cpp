@@ -19,11 +19,6 @@ namespace mppm::solver {
 
 namespace {
 
-// The point's index in the points file.
-std::int64_t global_id(const PointData& p, std::size_t i) {
-  return p.global_id.empty() ? static_cast<std::int64_t>(i) : p.global_id[i];
-}
-
 // The bond entries whose segment touches a pre-crack element (empty without pre-cracks). The
 // crossing test is symmetric in its end points, so a bond is cut from both ends or from neither.
 std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const PointData& p, const BondFamilies& f,
@@ -44,7 +39,7 @@ std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const 
       // answer, so a bond is cut from both ends or from neither, on any process.
       const auto j = static_cast<std::size_t>(f.neighbor[k]);
       for (int c = 0; c < D; ++c) b[c] = p.position[j * D + c];
-      cut[k] = (global_id(p, j) > global_id(p, i) ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
+      cut[k] = (p.global_index(j) > p.global_index(i) ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
     }
   }
   return cut;

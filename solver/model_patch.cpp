@@ -14,10 +14,6 @@ namespace mppm::solver {
 
 namespace {
 
-std::int64_t global_id_of(const PointData& p, std::size_t i) {
-  return p.global_id.empty() ? static_cast<std::int64_t>(i) : p.global_id[i];
-}
-
 bool within(const PointData& p, std::size_t i, const std::array<double, 3>& centre, double radius) {
   const auto D = static_cast<std::size_t>(p.dimension);
   double r2 = 0.0;
@@ -49,7 +45,7 @@ std::vector<std::int64_t> own_piece(const Model& model, const std::array<double,
     for (std::int64_t b = f.offset[i]; !member && b < f.offset[i + 1]; ++b)
       member = within(p, f.neighbor_of(b), centre, radius);
     if (!member) continue;
-    out.insert(out.end(), {global_id_of(p, i), std::int64_t{inside}, std::int64_t{p.region[i]},
+    out.insert(out.end(), {p.global_index(i), std::int64_t{inside}, std::int64_t{p.region[i]},
                            std::int64_t{p.detached[i]}, f.offset[i + 1] - f.offset[i]});
     for (std::size_t a = 0; a < D; ++a) out.push_back(bits(p.position[i * D + a]));
     out.push_back(bits(p.volume[i]));
@@ -57,7 +53,7 @@ std::vector<std::int64_t> own_piece(const Model& model, const std::array<double,
     for (std::size_t k = 0; k < symmetric; ++k) out.push_back(bits(p.stabilization_ck[i * symmetric + k]));
     if (R > 0) out.push_back(bits(p.stabilization_rot[i]));
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      out.push_back(global_id_of(p, f.neighbor_of(b)));
+      out.push_back(p.global_index(f.neighbor_of(b)));
       if (periodic)
         for (std::size_t a = 0; a < D; ++a) out.push_back(bits(f.xi[static_cast<std::size_t>(b) * D + a]));
     }
@@ -172,9 +168,9 @@ PatchCentre patch_centre(const Model& model, const StiffestPoint& own) {
   if (!(c.block_eigenvalue > 0.0)) return c;
   constexpr std::int64_t none = std::numeric_limits<std::int64_t>::max();
   const bool mine = own.block_eigenvalue == c.block_eigenvalue;
-  const std::int64_t chosen = g.lowest(mine ? global_id_of(p, own.index) : none);
+  const std::int64_t chosen = g.lowest(mine ? p.global_index(own.index) : none);
   std::vector<std::int64_t> position;
-  if (mine && global_id_of(p, own.index) == chosen)
+  if (mine && p.global_index(own.index) == chosen)
     for (std::size_t a = 0; a < D; ++a) position.push_back(std::bit_cast<std::int64_t>(p.position[own.index * D + a]));
   for (const auto& from : g.gather(std::span<const std::int64_t>(position)))
     if (!from.empty())
@@ -187,13 +183,6 @@ ModelPatch cut_patch(const Model& model, const std::array<double, 3>& centre, do
   std::vector<std::int64_t> own = own_piece(model, centre, radius);
   if (!model.points.processes) return assemble_patch(model, {std::move(own)});
   return assemble_patch(model, model.points.processes->gather(std::span<const std::int64_t>(own)));
-}
-
-ModelPatch cut_patch(const Model& model, std::size_t centre, double radius) {
-  const auto D = static_cast<std::size_t>(model.points.dimension);
-  std::array<double, 3> at{0.0, 0.0, 0.0};
-  for (std::size_t a = 0; a < D; ++a) at[a] = model.points.position[centre * D + a];
-  return cut_patch(model, at, radius);
 }
 
 std::size_t model_points(const Model& model) {

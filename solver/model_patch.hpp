@@ -50,8 +50,6 @@ PatchCentre patch_centre(const Model& model, const StiffestPoint& own);
 
 // The patch of the points within `radius` of `centre`. Collective in a distributed run.
 ModelPatch cut_patch(const Model& model, const std::array<double, 3>& centre, double radius);
-// The same around owned point `centre` (one process).
-ModelPatch cut_patch(const Model& model, std::size_t centre, double radius);
 
 // The points of the model over all processes. Collective in a distributed run.
 std::size_t model_points(const Model& model);

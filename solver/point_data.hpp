@@ -31,6 +31,10 @@ struct PointData {
   // ghosts each in ascending order), and where the ghosts' values come from. A single process
   // leaves both empty: there the local index is the global id.
   std::vector<std::int64_t> global_id;
+  // Local point i's index in the points file, on one process or many.
+  std::int64_t global_index(std::size_t i) const {
+    return global_id.empty() ? static_cast<std::int64_t>(i) : global_id[i];
+  }
   const GhostExchange* ghost_source = nullptr;
   // The processes whose points make up the model, for the global sums (null: this one alone).
   const ProcessGroup* processes = nullptr;

@@ -49,7 +49,9 @@ TEST(ModelPatch, ForceOfAFieldOnThePatchIsTheWholeModels) {
       if (r2 < nearest) nearest = r2, centre = i;
     }
     const double radius = 2.0 * 3.05 * dx;
-    ModelPatch patch = cut_patch(m, centre, radius);
+    std::array<double, 3> at{0.0, 0.0, 0.0};
+    for (std::size_t a = 0; a < D; ++a) at[a] = m.points.position[centre * D + a];
+    ModelPatch patch = cut_patch(m, at, radius);
     ASSERT_GT(patch.points_inside, 10u);
     ASSERT_LT(patch.points_inside, patch.model.points.owned);  // neighbours beside the patch's own
     ASSERT_LT(patch.model.points.owned, m.points.owned);
@@ -137,7 +139,7 @@ TEST(ModelPatch, IsCutOnlyWhereItsOperatorIsTheWholeModels) {
   EXPECT_TRUE(can_cut_patches(m));
   m.bonds.break_bond(0);
   EXPECT_FALSE(can_cut_patches(m));
-  EXPECT_THROW(cut_patch(m, 0, 1e-3), std::logic_error);
+  EXPECT_THROW(cut_patch(m, {0.0, 0.0, 0.0}, 1e-3), std::logic_error);
   Model wet = make_model(make_lattice(2, {10, 9, 1}, 1e-3, s.thickness), make_scene(2, true, 1e-3, 3.05));
   EXPECT_TRUE(can_cut_patches(wet));
   wet.effects.pore_fluid = true;
