@@ -64,12 +64,45 @@ void add_elastic(const CosseratConstants& c, double volume, const std::array<Mat
 
 // (t + r) d d^T + s |d|^2 1: e : law(e) = a^T [this] a for e = a (x) d under the isotropic law
 // t tr(e) 1 + s e + r e^T (isotropic_cosserat_law).
+// (Inlined: returned through memory, its matrix stalled the caller on store forwarding.)
 template <int D>
-Mat<D> rank_one_energy(const Vec<D>& d, double d2, double trace_modulus, double symmetric_modulus,
+[[gnu::always_inline]] inline Mat<D> rank_one_energy(const Vec<D>& d, double d2, double trace_modulus, double symmetric_modulus,
                        double transpose_modulus) {
   Mat<D> m = (trace_modulus + transpose_modulus) * (d * d.transpose());
   m.diagonal().array() += symmetric_modulus * d2;
   return m;
+}
+
+// The blocks of L^T S L (S symmetric, L = [1, C], C = 1/2 theta x xi as a map of theta) that hold
+// the rotations: S C and its transpose, and C^T S C. In 3-D they are written out, since C has a
+// zero diagonal and Eigen's fixed-size products took most of the block's time there.
+template <int D, int N>
+[[gnu::always_inline]] inline void add_rotation_blocks(const Mat<D>& S, const double* xi, Eigen::Matrix<double, N, N>& H) {
+  if constexpr (D == 2) {
+    const Eigen::Matrix<double, 2, 1> c_map = 0.5 * cross_map<2>(xi);
+    const Eigen::Matrix<double, 2, 1> sc = S * c_map;
+    H.template topRightCorner<2, 1>() += sc;
+    H.template bottomLeftCorner<1, 2>() += sc.transpose();
+    H(2, 2) += c_map.dot(sc);
+  } else {
+    const double h0 = 0.5 * xi[0], h1 = 0.5 * xi[1], h2 = 0.5 * xi[2];
+    double sc[3][3];  // S C, C = -[h]_x (cross_map)
+    for (int a = 0; a < 3; ++a) {
+      sc[a][0] = h1 * S(a, 2) - h2 * S(a, 1);
+      sc[a][1] = h2 * S(a, 0) - h0 * S(a, 2);
+      sc[a][2] = h0 * S(a, 1) - h1 * S(a, 0);
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 3; ++j) {
+        H(a, 3 + j) += sc[a][j];
+        H(3 + j, a) += sc[a][j];
+      }
+    for (int j = 0; j < 3; ++j) {
+      H(3, 3 + j) += h1 * sc[2][j] - h2 * sc[1][j];
+      H(4, 3 + j) += h2 * sc[0][j] - h0 * sc[2][j];
+      H(5, 3 + j) += h0 * sc[1][j] - h1 * sc[0][j];
+    }
+  }
 }
 
 template <int D, bool Polar>
@@ -129,15 +162,12 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     const auto k = static_cast<std::size_t>(f.neighbor[b]);
     if (p.detached[k]) continue;  // (a ghost's terms are its owner's: share_shape_terms)
     const double vk = p.volume[k];
-    double xi_ik[D];
-    bond_vector<D>(f, p.position.data(), i, b, xi_ik);
-    const Vec<D> xi_ki = -Eigen::Map<const Vec<D>>(xi_ik);
+    Vec<D> xi_ik;
+    bond_vector<D>(f, p.position.data(), i, b, xi_ik.data());
+    const Vec<D> xi_ki = -xi_ik;
     const Mat<D> kinv_k = unpack_symmetric<D>(&p.shape_inverse[k * S]);
     const Vec<D> d = kinv_k * xi_ki;
-    // U_ki = L q
-    Eigen::Matrix<double, D, N> L = Eigen::Matrix<double, D, N>::Zero();
-    L.template leftCols<D>().setIdentity();
-    if constexpr (Polar) L.template rightCols<R>() = 0.5 * cross_map<D>(xi_ik);
+    // U_ki = L q with L = [1, C], C = 1/2 theta x xi_ik as a map of theta.
     // eps_k = V_i (L q) (x) d and kap_k = V_i theta (x) d are of rank one, and for e = a (x) d the
     // isotropic law's e : s(e) (trace, symmetric and transpose moduli t, s, r) is
     // a^T [(t + r) d d^T + s |d|^2 1] a: the elastic part in closed form, without a stress per probe.
@@ -147,8 +177,11 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     const Mat<D> ck_k = unpack_symmetric<D>(&p.stabilization_ck[k * S]);
     const double w = vk * vi * (1.0 - r);
     const Mat<D> strain_block = vk_vi2 * rank_one_energy<D>(d, d2, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c) + w * ck_k;
-    H += L.transpose() * strain_block * L;
+    // L^T S L for the symmetric S, by its blocks [S, S C; (S C)^T, C^T S C]: the identity's products
+    // are not formed (they were most of this function's cost).
+    H.template topLeftCorner<D, D>() += strain_block;
     if constexpr (Polar) {
+      add_rotation_blocks<D>(strain_block, xi_ik.data(), H);
       auto rotations = H.template bottomRightCorner<R, R>();
       if constexpr (D == 2)
         rotations(0, 0) += vk_vi2 * c.bending_modulus * d2;
