@@ -24,6 +24,8 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_fluid_boundaries.cpp
   unit/test_solver_retention_curve.cpp
   unit/test_solver_unsaturated.cpp
+  unit/test_huge_page_allocation.cpp
+  ${PROJECT_SOURCE_DIR}/solver/huge_page_allocation.cpp
 )
 set(MPPM_TEST_LIBS mppm_solver mppm_verification_problems)  # tests/verification/problems
 mppm_add_gtest(test_solver_verification verification
