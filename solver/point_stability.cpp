@@ -66,8 +66,8 @@ void add_elastic(const CosseratConstants& c, double volume, const std::array<Mat
 // t tr(e) 1 + s e + r e^T (isotropic_cosserat_law).
 // (Inlined: returned through memory, its matrix stalled the caller on store forwarding.)
 template <int D>
-[[gnu::always_inline]] inline Mat<D> rank_one_energy(const Vec<D>& d, double d2, double trace_modulus, double symmetric_modulus,
-                       double transpose_modulus) {
+[[gnu::always_inline]] inline Mat<D> rank_one_energy(const Vec<D>& d, double d2, double trace_modulus,
+                                                     double symmetric_modulus, double transpose_modulus) {
   Mat<D> m = (trace_modulus + transpose_modulus) * (d * d.transpose());
   m.diagonal().array() += symmetric_modulus * d2;
   return m;
@@ -77,7 +77,8 @@ template <int D>
 // the rotations: S C and its transpose, and C^T S C. In 3-D they are written out, since C has a
 // zero diagonal and Eigen's fixed-size products took most of the block's time there.
 template <int D, int N>
-[[gnu::always_inline]] inline void add_rotation_blocks(const Mat<D>& S, const double* xi, Eigen::Matrix<double, N, N>& H) {
+[[gnu::always_inline]] inline void add_rotation_blocks(const Mat<D>& S, const double* xi,
+                                                       Eigen::Matrix<double, N, N>& H) {
   if constexpr (D == 2) {
     const Eigen::Matrix<double, 2, 1> c_map = 0.5 * cross_map<2>(xi);
     const Eigen::Matrix<double, 2, 1> sc = S * c_map;
