@@ -74,8 +74,8 @@ PointData make_point_data(PointCloud&& cloud, const EffectSet& effects) {
 namespace {
 
 // Runs the fills side by side on the threads: the arrays' first writes (page faults and zeroing,
-// some hundred MB in a large 3-D model) were the whole of this phase. An allocation failure is
-// rethrown here, after the parallel loop, as std::bad_alloc.
+// some hundred MB in a large 3-D model) were the whole of this phase. An exception (an allocation
+// that fails) cannot leave an OpenMP loop: it is kept and rethrown here, after the loop.
 void run_fills(const std::vector<std::function<void()>>& fills) {
   const auto count = static_cast<std::int64_t>(fills.size());
   std::vector<std::exception_ptr> failure(fills.size());

@@ -74,8 +74,9 @@ template <int D>
 }
 
 // The blocks of L^T S L (S symmetric, L = [1, C], C = 1/2 theta x xi as a map of theta) that hold
-// the rotations: S C and its transpose, and C^T S C. In 3-D they are written out, since C has a
-// zero diagonal and Eigen's fixed-size products took most of the block's time there.
+// the rotations: S C and its transpose, and C^T S C. In 3-D they are written out: C has a zero
+// diagonal, and with Eigen's fixed-size products of L the point blocks of the 3-D benchmark block
+// took a third longer (0.63 s against 0.47 s).
 template <int D, int N>
 [[gnu::always_inline]] inline void add_rotation_blocks(const Mat<D>& S, const double* xi,
                                                        Eigen::Matrix<double, N, N>& H) {
@@ -179,7 +180,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     const double w = vk * vi * (1.0 - r);
     const Mat<D> strain_block = vk_vi2 * rank_one_energy<D>(d, d2, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c) + w * ck_k;
     // L^T S L for the symmetric S, by its blocks [S, S C; (S C)^T, C^T S C]: the identity's products
-    // are not formed (they were most of this function's cost).
+    // are not formed.
     H.template topLeftCorner<D, D>() += strain_block;
     if constexpr (Polar) {
       add_rotation_blocks<D>(strain_block, xi_ik.data(), H);
