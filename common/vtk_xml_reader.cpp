@@ -257,17 +257,25 @@ T load(const unsigned char* bytes, bool swap) {
   return value;
 }
 
-double load_number(std::string_view type, const unsigned char* p, bool swap) {
-  if (type == "Int8") return load<std::int8_t>(p, swap);
-  if (type == "UInt8") return load<std::uint8_t>(p, swap);
-  if (type == "Int16") return load<std::int16_t>(p, swap);
-  if (type == "UInt16") return load<std::uint16_t>(p, swap);
-  if (type == "Int32") return load<std::int32_t>(p, swap);
-  if (type == "UInt32") return load<std::uint32_t>(p, swap);
-  if (type == "Int64") return static_cast<double>(load<std::int64_t>(p, swap));
-  if (type == "UInt64") return static_cast<double>(load<std::uint64_t>(p, swap));
-  if (type == "Float32") return load<float>(p, swap);
-  return load<double>(p, swap);  // Float64 (type_size() has vetted the name)
+// The values of one type at `p`, as doubles, into `out` (its size is their count).
+template <typename T>
+void load_all(const unsigned char* p, bool swap, std::vector<double>& out) {
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<double>(load<T>(p + i * sizeof(T), swap));
+}
+
+// The type is matched once per array: matched per value, its names' comparisons were most of
+// reading a large points file.
+void load_numbers(std::string_view type, const unsigned char* p, bool swap, std::vector<double>& out) {
+  if (type == "Int8") return load_all<std::int8_t>(p, swap, out);
+  if (type == "UInt8") return load_all<std::uint8_t>(p, swap, out);
+  if (type == "Int16") return load_all<std::int16_t>(p, swap, out);
+  if (type == "UInt16") return load_all<std::uint16_t>(p, swap, out);
+  if (type == "Int32") return load_all<std::int32_t>(p, swap, out);
+  if (type == "UInt32") return load_all<std::uint32_t>(p, swap, out);
+  if (type == "Int64") return load_all<std::int64_t>(p, swap, out);
+  if (type == "UInt64") return load_all<std::uint64_t>(p, swap, out);
+  if (type == "Float32") return load_all<float>(p, swap, out);
+  load_all<double>(p, swap, out);  // Float64 (type_size() has vetted the name)
 }
 
 // More values than this per array is not a points file but a corrupted size (and the products
@@ -513,11 +521,8 @@ class ArrayDecoder {
                         std::to_string(values) + ")");
       return;
     }
-    const auto size = static_cast<std::size_t>(type_size(array.type));
     array.numbers.resize(static_cast<std::size_t>(values));
-    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
-    for (std::size_t i = 0; i < array.numbers.size(); ++i)
-      array.numbers[i] = load_number(array.type, p + i * size, format_.swap_bytes);
+    load_numbers(array.type, reinterpret_cast<const unsigned char*>(bytes.data()), format_.swap_bytes, array.numbers);
   }
 
   const std::string& s_;
