@@ -347,19 +347,25 @@ enum class PatchNaming {
   too_large,  // over patch_largest_share of the model
 };
 
-// Names the mode on a patch around `centre` of the given radius (into `critical` if named).
-PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, const PatchCentre& centre, double radius) {
-  ModelPatch patch = cut_patch(model, centre.position, radius);
+// Names the mode on a patch around `centre` of the given radius (into `critical` if named): the
+// step's patch if it is that one (its coupled estimate known), else a patch cut here.
+PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, const PatchCentre& centre, double radius,
+                               std::optional<StepPatch>* kept) {
+  const bool reuse = kept && kept->has_value() && (*kept)->radius == radius && (*kept)->centre == centre.position;
+  std::optional<ModelPatch> cut;
+  if (!reuse) cut = cut_patch(model, centre.position, radius);
+  ModelPatch& patch = reuse ? (*kept)->patch : *cut;
   if (static_cast<double>(patch.model.points.owned) > patch_largest_share * static_cast<double>(model_points(model)))
     return PatchNaming::too_large;
   const double whole = omega_squared_of(critical.step);
   CriticalTimeStep named = critical;
   OperatorEstimate coupled;
+  if (reuse) coupled.lambda = (*kept)->coupled_lambda;  // its iterations were the step's
   // The patch costs a small fraction of the whole operator: its estimates converge as tightly
   // as the step's.
   with_operator(patch.model, [&](Workspace& ws) {
     ws.support = &patch.inside;
-    coupled = largest_eigenvalue(patch.model, Block::coupled, step_convergence, ws);
+    if (!reuse) coupled = largest_eigenvalue(patch.model, Block::coupled, step_convergence, ws);
     if (coupled.lambda >= (1.0 - patch_tolerance) * whole) name_mode(patch.model, named, ws, step_convergence);
   });
   if (coupled.lambda > (1.0 + patch_above_whole) * whole) {
@@ -408,10 +414,13 @@ OperatorEstimate patch_estimate(ModelPatch& patch) {
   return e;
 }
 
-PatchStep patch_step(Model& model, const PatchCentre& centre, const char* which) {
+// With `kept`, the outer patch and its estimate are left there (StepPatch).
+PatchStep patch_step(Model& model, const PatchCentre& centre, const char* which,
+                     std::optional<StepPatch>* kept = nullptr) {
   PatchStep out;
   const double points = static_cast<double>(model_points(model));
-  ModelPatch outer = cut_patch(model, centre.position, step_patch_radius * model.horizon);
+  const double radius = step_patch_radius * model.horizon;
+  ModelPatch outer = cut_patch(model, centre.position, radius);
   if (static_cast<double>(outer.model.points.owned) > patch_largest_share * points) {
     out.refusal = "the patch around the " + std::string(which) + " would hold " +
                   std::to_string(outer.model.points.owned) + " of the model's " + number(points) +
@@ -427,12 +436,15 @@ PatchStep patch_step(Model& model, const PatchCentre& centre, const char* which)
   if (!(rise <= step_confinement * o.lambda))
     out.refusal = "the highest mode around the " + std::string(which) + " reaches beyond its patch (omega_max^2 " +
                   number(rise / o.lambda) + " higher on 4 horizons than on 3, above " + number(step_confinement) + ")";
+  if (kept) kept->emplace(StepPatch{std::move(outer), centre.position, radius, o.lambda});
   return out;
 }
 
 }  // namespace
 
-CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const StiffestPoints& own) {
+CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const StiffestPoints& own,
+                                        std::optional<StepPatch>* kept) {
+  if (kept) kept->reset();
   auto whole_model = [&](std::string reason) {
     CriticalTimeStep out = coupled_critical_time_step(model);
     out.whole_model_reason = std::move(reason);
@@ -444,7 +456,7 @@ CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const 
   const PatchCentre any = patch_centre(model, own.any), body = patch_centre(model, own.body);
   if (!(any.block_eigenvalue > 0.0)) return whole_model("no point to centre a patch on");
   CriticalTimeStep out;
-  PatchStep best = patch_step(model, any, "stiffest point");
+  PatchStep best = patch_step(model, any, "stiffest point", kept);
   if (best.refusal.empty() && body.block_eigenvalue > 0.0 && body.position != any.position) {
     const PatchStep second = patch_step(model, body, "stiffest body point");
     out.iterations = second.iterations;
@@ -462,10 +474,11 @@ CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const 
 
 bool names_mode_on_patch(const Model& model) { return model.points.rotation_components > 0 && can_cut_patches(model); }
 
-void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre) {
+void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre,
+                        std::optional<StepPatch>* kept) {
   if (names_mode_on_patch(model) && centre.block_eigenvalue > 0.0)
     for (const double radius : patch_radii) {
-      const PatchNaming tried = name_mode_on_patch(model, critical, centre, radius * model.horizon);
+      const PatchNaming tried = name_mode_on_patch(model, critical, centre, radius * model.horizon, kept);
       if (tried == PatchNaming::named) return;
       if (tried != PatchNaming::too_small) break;
     }
@@ -499,8 +512,9 @@ CriticalTimeStep coupled_critical_time_step(Model& model) {
 CriticalTimeStep critical_time_step(Model& model, StepEstimate where) {
   const bool stiffest = where == StepEstimate::patch || names_mode_on_patch(model);
   const StiffestPoints own = stiffest ? stiffest_points(model.points, model.bonds, model.constants) : StiffestPoints{};
-  CriticalTimeStep out = estimate_critical_step(model, where, own);
-  name_limiting_mode(model, out, patch_centre(model, own.any));
+  std::optional<StepPatch> kept;
+  CriticalTimeStep out = estimate_critical_step(model, where, own, &kept);
+  name_limiting_mode(model, out, patch_centre(model, own.any), &kept);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "common/scene.hpp"
@@ -36,6 +37,16 @@ struct CriticalTimeStep {
   std::string whole_model_reason;
 };
 
+// The step's patch of 4 horizons around the stiffest point of all, with its coupled estimate: the
+// naming tries that patch first, and takes it from here rather than cutting and estimating it
+// again (the same bits: the same points, operator and start vector).
+struct StepPatch {
+  ModelPatch patch;
+  std::array<double, 3> centre{0.0, 0.0, 0.0};
+  double radius = 0.0;          // [m]
+  double coupled_lambda = 0.0;  // omega_max^2 of the patch's coupled operator
+};
+
 // Each of these leaves the model's displacement and rotation as they were. Each is collective in a
 // distributed run, and gives every process the same bits.
 // The step and the limiting mode, both from the model (the mode named as name_limiting_mode does).
@@ -47,8 +58,10 @@ CriticalTimeStep coupled_critical_time_step(Model& model);
 // each checked against its patch of 3 horizons. When both patches hold their highest mode (the
 // estimate rises by at most 1e-3 from 3 to 4 horizons), omega_max^2 is the larger 4-horizon
 // estimate raised by that rise; else the step is the whole model's, with the reason in
-// whole_model_reason.
-CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const StiffestPoints& own);
+// whole_model_reason. With `kept`, the patch around the stiffest point of all is left there for
+// name_limiting_mode (empty when no such patch was estimated).
+CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const StiffestPoints& own,
+                                        std::optional<StepPatch>* kept = nullptr);
 // Names the mode of a coupled estimate from block estimates: translational, rotational,
 // limiting_mode and driver. First on the patch around `centre` (the stiffest point, layers
 // included: patch_centre of stiffest_points(...).any; docs/theory.md section 9), taken when the
@@ -56,8 +69,10 @@ CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const 
 // within 2e-3 (the highest mode is that block's and lives there); if a patch's estimate is above
 // that one by more than its convergence, the critical step becomes the patch's (a patch's Ritz
 // value is a lower bound of omega_max^2). Else on the whole model, at about 1.4 times the coupled
-// estimate's cost with rotations (coarser estimates).
-void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre);
+// estimate's cost with rotations (coarser estimates). `kept`: the step's patch, if it was kept
+// (estimate_critical_step), which the first patch then is.
+void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre,
+                        std::optional<StepPatch>* kept = nullptr);
 // Whether the mode is tried on a patch first (then name_limiting_mode needs the stiffest point):
 // with micro-rotations, on a model that can be cut into patches (model_patch.hpp). Collective.
 bool names_mode_on_patch(const Model& model);

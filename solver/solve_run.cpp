@@ -537,12 +537,13 @@ void RunDriver::fit_time_step() {
                                       ? stiffest_points(m.points, m.bonds, m.constants)
                                       : StiffestPoints{};
   start_up_.mark("stiffest points");
-  plan_.critical = estimate_critical_step(m, scene_.numerics.step_estimate, stiffest);
+  std::optional<StepPatch> step_patch;  // the naming's first patch
+  plan_.critical = estimate_critical_step(m, scene_.numerics.step_estimate, stiffest, &step_patch);
   start_up_.mark("critical time step");
   if (!(plan_.critical.step > 0.0 && std::isfinite(plan_.critical.step)))
     throw NumericalFailure(options_.run_directory + ": the critical time step could not be estimated (" +
                            log_number(plan_.critical.step) + " s): the discrete operator is not positive");
-  name_limiting_mode(m, plan_.critical, patch_centre(m, stiffest.any));
+  name_limiting_mode(m, plan_.critical, patch_centre(m, stiffest.any), &step_patch);
   start_up_.mark("mode naming");
   plan_.damage_step = model().damage_critical_step(plan_.critical.step, stiffest.body.block_eigenvalue);
   plan_.dt = choose_time_step(scene_, plan_.critical, plan_.damage_step);

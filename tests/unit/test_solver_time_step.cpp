@@ -6,7 +6,9 @@
 
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <random>
+#include <tuple>
 
 #include "common/input_error.hpp"
 #include "solver/critical_time_step.hpp"
@@ -287,6 +289,37 @@ TEST(SolverTimeStep, StepOnPatchesIsTheWholeModelsWithinItsMargin) {
 }
 
 // The step falls back to the whole model's estimate, and says why, where no patch can give it.
+// The naming's first patch is the step's (4 horizons around the stiffest point of all): kept from
+// the step's estimate, it is neither cut nor estimated again, and names the same mode with the
+// same bits, in fewer applications (the step's coupled estimate is not repeated).
+TEST(SolverTimeStep, NamingOnTheStepsKeptPatchIsTheSameBits) {
+  Scene plate = make_scene(2, true, 1e-3, 3.05);
+  Scene block = make_scene(3, true, 1e-3, 2.05);
+  for (const auto& [name, scene, n, layers] :
+       {std::tuple{"micro-polar plate with layers", plate, std::array<int, 3>{90, 40, 1}, true},
+        std::tuple{"3-D micro-polar block", block, std::array<int, 3>{28, 27, 26}, false}}) {
+    PointCloud cloud = make_lattice(scene.dimension, n, scene.geometry.spacing, scene.thickness);
+    if (layers) testing::add_end_layers(cloud, n[0], 3, "displacement", "velocity");
+    Model m = make_model(cloud, scene);
+    const StiffestPoints stiffest = stiffest_points(m.points, m.bonds, m.constants);
+    const PatchCentre centre = patch_centre(m, stiffest.any);
+    std::optional<StepPatch> kept;
+    CriticalTimeStep reused = estimate_critical_step(m, StepEstimate::patch, stiffest, &kept);
+    ASSERT_TRUE(kept.has_value()) << name;
+    CriticalTimeStep cut = reused;
+    name_limiting_mode(m, reused, centre, &kept);
+    name_limiting_mode(m, cut, centre);
+    EXPECT_GT(reused.naming_patch_points, 0u) << name;
+    EXPECT_EQ(reused.step, cut.step) << name;
+    EXPECT_EQ(reused.translational, cut.translational) << name;
+    EXPECT_EQ(reused.rotational, cut.rotational) << name;
+    EXPECT_EQ(reused.limiting_mode, cut.limiting_mode) << name;
+    EXPECT_EQ(reused.driver, cut.driver) << name;
+    EXPECT_EQ(reused.naming_patch_points, cut.naming_patch_points) << name;
+    EXPECT_LT(reused.naming_iterations, cut.naming_iterations) << name;
+  }
+}
+
 TEST(SolverTimeStep, StepFallsBackToTheWholeModelAndSaysWhy) {
   const double dx = 1e-3;
   const Scene s = make_scene(2, true, dx, 2.05);
