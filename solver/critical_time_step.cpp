@@ -474,6 +474,10 @@ CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const 
 
 bool names_mode_on_patch(const Model& model) { return model.points.rotation_components > 0 && can_cut_patches(model); }
 
+bool patches_need_stiffest_points(const Model& model, StepEstimate where) {
+  return (where == StepEstimate::patch || model.points.rotation_components > 0) && can_cut_patches(model);
+}
+
 void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre,
                         std::optional<StepPatch>* kept) {
   if (names_mode_on_patch(model) && centre.block_eigenvalue > 0.0)
@@ -510,8 +514,9 @@ CriticalTimeStep coupled_critical_time_step(Model& model) {
 }
 
 CriticalTimeStep critical_time_step(Model& model, StepEstimate where) {
-  const bool stiffest = where == StepEstimate::patch || names_mode_on_patch(model);
-  const StiffestPoints own = stiffest ? stiffest_points(model.points, model.bonds, model.constants) : StiffestPoints{};
+  const StiffestPoints own = patches_need_stiffest_points(model, where)
+                                 ? stiffest_points(model.points, model.bonds, model.constants)
+                                 : StiffestPoints{};
   std::optional<StepPatch> kept;
   CriticalTimeStep out = estimate_critical_step(model, where, own, &kept);
   name_limiting_mode(model, out, patch_centre(model, own.any), &kept);

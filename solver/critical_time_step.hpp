@@ -76,6 +76,10 @@ void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCen
 // Whether the mode is tried on a patch first (then name_limiting_mode needs the stiffest point):
 // with micro-rotations, on a model that can be cut into patches (model_patch.hpp). Collective.
 bool names_mode_on_patch(const Model& model);
+// Whether the patches need the stiffest points (stiffest_points): the step's with
+// StepEstimate::patch, the naming's with micro-rotations, both only where the model can be cut
+// into patches. Collective.
+bool patches_need_stiffest_points(const Model& model, StepEstimate where);
 // The same, finding the stiffest point itself.
 void name_limiting_mode(Model& model, CriticalTimeStep& critical);
 // On the whole model, without a patch.

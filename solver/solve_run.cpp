@@ -532,8 +532,7 @@ void RunDriver::fit_time_step() {
   // The stiffest points centre the step's and the naming's patches, and the stiffest body point
   // sets the damage run's step limit: all found in one pass over the point blocks.
   Model& m = model();
-  const bool patch_step = scene_.numerics.step_estimate == StepEstimate::patch && can_cut_patches(m);
-  const StiffestPoints stiffest = patch_step || names_mode_on_patch(m) || m.effects.damage
+  const StiffestPoints stiffest = patches_need_stiffest_points(m, scene_.numerics.step_estimate) || m.effects.damage
                                       ? stiffest_points(m.points, m.bonds, m.constants)
                                       : StiffestPoints{};
   start_up_.mark("stiffest points");
