@@ -330,8 +330,7 @@ class ArrayDecoder {
         // Already this machine's doubles: unpacked straight into the array, without a buffer of
         // bytes and a conversion, each a first write to fresh memory (reading the 3-D benchmark
         // block's points: 0.098-0.119 s -> 0.082-0.102 s, 4 runs each taking turns).
-        array.numbers.resize(static_cast<std::size_t>(values));
-        appended_bytes(e, array, values, label, reinterpret_cast<unsigned char*>(array.numbers.data()));
+        appended_bytes(e, array, values, label, &array.numbers);
       } else {
         const std::string bytes = appended_bytes(e, array, values, label, nullptr);
         decode_binary(bytes, array, values, label);
@@ -429,11 +428,11 @@ class ArrayDecoder {
   }
 
   // The array's bytes from the appended block, decompressed, every header checked against the
-  // block's extent before use.
-  // The array's bytes from the appended block, uncompressed; into `direct` instead (which holds
-  // exactly the expected bytes of a numeric array) when given, and then the string is empty.
+  // block's extent before use (and before anything is allocated). With `direct` (a Float64 array
+  // in this machine's byte order) they go into its `values` doubles instead, and the string
+  // returned is empty.
   std::string appended_bytes(const XmlElement& e, const VtkArray& array, std::int64_t values, const std::string& label,
-                             unsigned char* direct) {
+                             std::vector<double>* direct) {
     if (!format_.appended)
       fail(path_, label + " is 'appended' but the file has no <AppendedData encoding=\"raw\"> block");
     const std::size_t begin = format_.appended->raw_begin;
@@ -463,7 +462,8 @@ class ArrayDecoder {
       check_size(size);
       need(at + h, size, "the data");
       if (direct) {
-        if (size > 0) std::memcpy(direct, s_.data() + begin + at + h, size);
+        direct->resize(static_cast<std::size_t>(values));
+        if (size > 0) std::memcpy(direct->data(), s_.data() + begin + at + h, size);
         return {};
       }
       return s_.substr(begin + at + h, size);
@@ -499,7 +499,9 @@ class ArrayDecoder {
                       std::to_string(compressed_total) + " compressed bytes)");
 
     std::string out(direct ? 0 : total, '\0');
-    unsigned char* const target = direct ? direct : reinterpret_cast<unsigned char*>(out.data());
+    if (direct) direct->resize(static_cast<std::size_t>(values));
+    unsigned char* const target =
+        reinterpret_cast<unsigned char*>(direct ? static_cast<void*>(direct->data()) : static_cast<void*>(out.data()));
     vtkNew<vtkZLibDataCompressor> zlib;
     vtkNew<ErrorCollector> errors;
     zlib->AddObserver(vtkCommand::ErrorEvent, errors);

@@ -149,8 +149,8 @@ TEST(VtkXmlReader, RefusesBase64EncodingsWithAMessageNamingTheFile) {
   }
 }
 
-TEST(VtkXmlReader, ArraySizesMustMatchThePointCount) {
-  // The piece claims one point more than the arrays hold: refused before any array is used.
+// The file of cloud_of(5) with its piece claiming `count` points.
+std::string with_point_count(const std::string& count) {
   const std::string ours = scratch() + "/count.vtp";
   write_point_cloud(cloud_of(5), ours);
   std::string text;
@@ -159,15 +159,28 @@ TEST(VtkXmlReader, ArraySizesMustMatchThePointCount) {
     text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
   const std::size_t at = text.find("NumberOfPoints=\"5\"");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, 18, "NumberOfPoints=\"6\"");
-  const std::string bad = scratch() + "/count_bad.vtp";
+  EXPECT_NE(at, std::string::npos);
+  if (at != std::string::npos) text.replace(at, 18, "NumberOfPoints=\"" + count + "\"");
+  const std::string bad = scratch() + "/count_" + count + ".vtp";
   std::ofstream(bad, std::ios::binary) << text;
+  return bad;
+}
+
+TEST(VtkXmlReader, ArraySizesMustMatchThePointCount) {
+  // The piece claims one point more than the arrays hold: refused before any array is used.
   try {
-    read_point_cloud(bad);
+    read_point_cloud(with_point_count("6"));
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("expected 6 values x 8 bytes = 48"), std::string::npos) << e.what();
+  }
+  // A count of 10^11 points (800 GB for one array of doubles): refused by the same check, before
+  // an array of that size is allocated (not std::bad_alloc).
+  try {
+    read_point_cloud(with_point_count("100000000000"));
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected 100000000000 values x 8 bytes"), std::string::npos) << e.what();
   }
 }
 
