@@ -38,28 +38,35 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   if (bonds > static_cast<std::size_t>(INT32_MAX) * 64) throw std::length_error("build_families: too many bonds");
   f.neighbor.resize(bonds);
   if (periodic) f.xi.resize(bonds * D);
-#pragma omp parallel for schedule(static) if (thread_bond_loop(bonds))
-  for (std::int64_t s = 0; s < sn; ++s) {
-    const auto i = static_cast<std::size_t>(s);
+#pragma omp parallel if (thread_bond_loop(bonds))
+  {
+    // One list per thread, reused from point to point.
     std::vector<std::pair<std::int32_t, std::array<double, 3>>> found;
-    found.reserve(static_cast<std::size_t>(f.offset[i + 1] - f.offset[i]));
-    search.for_each(i, [&](std::size_t j, const double* xi) {
-      found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
-    });
-    // By global id: a distributed run's process then sums each point's bonds in the order of the
-    // single process (its local indices put the ghosts after the owned points).
-    if (p.global_id.empty())
-      std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    else
-      std::sort(found.begin(), found.end(), [&](const auto& a, const auto& b) {
-        return p.global_id[static_cast<std::size_t>(a.first)] < p.global_id[static_cast<std::size_t>(b.first)];
+#pragma omp for schedule(static)
+    for (std::int64_t s = 0; s < sn; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      found.clear();
+      search.for_each(i, [&](std::size_t j, const double* xi) {
+        found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
       });
-    std::int64_t b = f.offset[i];
-    for (const auto& [j, xi] : found) {
-      f.neighbor[b] = j;
-      if (periodic)
-        for (int a = 0; a < D; ++a) f.xi[b * D + a] = xi[a];
-      ++b;
+      // By global id: a distributed run's process then sums each point's bonds in the order of the
+      // single process (its local indices put the ghosts after the owned points). On a lattice
+      // numbered site by site the search finds them in that order already.
+      if (p.global_id.empty()) {
+        const auto by_index = [](const auto& a, const auto& b) { return a.first < b.first; };
+        if (!std::is_sorted(found.begin(), found.end(), by_index)) std::sort(found.begin(), found.end(), by_index);
+      } else {
+        std::sort(found.begin(), found.end(), [&](const auto& a, const auto& b) {
+          return p.global_id[static_cast<std::size_t>(a.first)] < p.global_id[static_cast<std::size_t>(b.first)];
+        });
+      }
+      std::int64_t b = f.offset[i];
+      for (const auto& [j, xi] : found) {
+        f.neighbor[b] = j;
+        if (periodic)
+          for (int a = 0; a < D; ++a) f.xi[b * D + a] = xi[a];
+        ++b;
+      }
     }
   }
   if (p.ghost > 0) split_interior_and_border(f, p.owned);
