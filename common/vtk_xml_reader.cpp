@@ -501,7 +501,7 @@ class ArrayDecoder {
     std::string out(direct ? 0 : total, '\0');
     if (direct) direct->resize(static_cast<std::size_t>(values));
     unsigned char* const target =
-        reinterpret_cast<unsigned char*>(direct ? static_cast<void*>(direct->data()) : static_cast<void*>(out.data()));
+        direct ? reinterpret_cast<unsigned char*>(direct->data()) : reinterpret_cast<unsigned char*>(out.data());
     vtkNew<vtkZLibDataCompressor> zlib;
     vtkNew<ErrorCollector> errors;
     zlib->AddObserver(vtkCommand::ErrorEvent, errors);

@@ -5,8 +5,8 @@
 // 4 KiB page's first write is a page fault. On the 3-D benchmark block (216 000 points, 170 MB of
 // point state) the phase that fills the point state took 0.40 s of a 1.78 s start-up on the
 // virtual machine where mppm is built and tested, nearly all of it in these faults. A 2 MiB page
-// takes one fault for 512. Linux gives an allocation
-// huge pages when it asks (madvise MADV_HUGEPAGE; the system setting "madvise" or "always"), and
+// takes one fault for 512. Linux gives an allocation huge pages when it asks (madvise
+// MADV_HUGEPAGE; the system setting "madvise" or "always"), and
 // glibc's malloc asks only when the environment sets the tunable glibc.malloc.hugetlb=1, which a
 // user should not have to know. So allocations of at least 4 MiB are aligned to 2 MiB and advised
 // here; smaller ones are malloc's as before. Nothing else changes: the memory is still malloc's

@@ -63,14 +63,19 @@ void add_elastic(const CosseratConstants& c, double volume, const std::array<Mat
 }
 
 // (t + r) d d^T + s |d|^2 1: e : law(e) = a^T [this] a for e = a (x) d under the isotropic law
-// t tr(e) 1 + s e + r e^T (isotropic_cosserat_law).
-// (Inlined: returned through memory, its matrix stalled the caller on store forwarding.)
+// t tr(e) 1 + s e + r e^T (isotropic_cosserat_law). In plain doubles, the outer product as
+// ((t + r) d_a) d_b: the order of the Eigen expression it replaced, so the blocks kept their bits.
 template <int D>
-[[gnu::always_inline]] inline Mat<D> rank_one_energy(const Vec<D>& d, double d2, double trace_modulus,
-                                                     double symmetric_modulus, double transpose_modulus) {
-  Mat<D> m = (trace_modulus + transpose_modulus) * (d * d.transpose());
-  m.diagonal().array() += symmetric_modulus * d2;
-  return m;
+[[gnu::always_inline]] inline void rank_one_energy(const double* d, double d2, double trace_modulus,
+                                                   double symmetric_modulus, double transpose_modulus,
+                                                   double (&out)[D][D]) {
+  const double outer_modulus = trace_modulus + transpose_modulus;
+  const double diagonal = symmetric_modulus * d2;
+  for (int a = 0; a < D; ++a) {
+    const double scaled = outer_modulus * d[a];
+    for (int e = 0; e < D; ++e) out[a][e] = scaled * d[e];
+    out[a][a] += diagonal;
+  }
 }
 
 // The terms of a neighbour k whose family holds i (the second kind above): the share of H_i's
@@ -88,10 +93,9 @@ struct NeighbourTerms {
 };
 
 // In plain doubles, each product and sum in the order the Eigen expressions it replaces took
-// (K^-1 xi and the dot products summed from the first component, the outer product as
-// ((t + r) d_a) d_b), so that the blocks keep their bits. With Eigen's small temporaries, which
-// went through memory, the non-polar 3-D benchmark block's values took 0.14-0.15 s at 1 thread,
-// against 0.12-0.13 s now.
+// (K^-1 xi and the dot products summed from the first component), so that the blocks keep their
+// bits. With Eigen's small temporaries, which went through memory, the non-polar 3-D benchmark
+// block's values took 0.14-0.15 s at 1 thread, against 0.12-0.13 s now.
 template <int D>
 [[gnu::always_inline]] inline NeighbourTerms<D> neighbour_terms(const double* kinv_k, const double* ck_k,
                                                                 const double* xi_ik, double vi, double vk,
@@ -113,16 +117,10 @@ template <int D>
   n.vk_vi2 = vk * vi * vi;
   const double r = std::min(1.0, vi * xi_d);
   n.w = vk * vi * (1.0 - r);
-  const double outer_modulus = c.lambda + (c.mu - c.mu_c);
-  const double diagonal = (c.mu + c.mu_c) * d2;
-  for (int a = 0; a < D; ++a) {
-    const double scaled = outer_modulus * n.d[a];
-    for (int e = 0; e < D; ++e) {
-      double m = scaled * n.d[e];
-      if (e == a) m += diagonal;
-      n.strain[a][e] = n.vk_vi2 * m + n.w * ck_k[symmetric_index<D>(a, e)];
-    }
-  }
+  double m[D][D];
+  rank_one_energy<D>(n.d, d2, c.lambda, c.mu + c.mu_c, c.mu - c.mu_c, m);
+  for (int a = 0; a < D; ++a)
+    for (int e = 0; e < D; ++e) n.strain[a][e] = n.vk_vi2 * m[a][e] + n.w * ck_k[symmetric_index<D>(a, e)];
   return n;
 }
 
@@ -231,11 +229,14 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
       // products are not formed (S itself is the translation block's share above).
       add_rotation_blocks<D>(Eigen::Map<const Mat<D>>(&n.strain[0][0]), xi_ik, H);
       auto rotations = H.template bottomRightCorner<R, R>();
-      const Eigen::Map<const Vec<D>> d(n.d);
-      if constexpr (D == 2)
+      if constexpr (D == 2) {
         rotations(0, 0) += n.vk_vi2 * c.bending_modulus * n.d2;
-      else
-        rotations += n.vk_vi2 * rank_one_energy<D>(d, n.d2, c.a1, c.a2, c.a3);
+      } else {
+        double m[D][D];
+        rank_one_energy<D>(n.d, n.d2, c.a1, c.a2, c.a3, m);
+        for (int a = 0; a < D; ++a)
+          for (int e = 0; e < D; ++e) rotations(a, e) += n.vk_vi2 * m[a][e];
+      }
       rotations.diagonal().array() += n.w * p.stabilization_rot[k];
     }
   }

@@ -288,7 +288,6 @@ TEST(SolverTimeStep, StepOnPatchesIsTheWholeModelsWithinItsMargin) {
   }
 }
 
-// The step falls back to the whole model's estimate, and says why, where no patch can give it.
 // The naming's first patch is the step's (4 horizons around the stiffest point of all): kept from
 // the step's estimate, it is neither cut nor estimated again, and names the same mode with the
 // same bits, in fewer applications (the step's coupled estimate is not repeated).
@@ -320,6 +319,7 @@ TEST(SolverTimeStep, NamingOnTheStepsKeptPatchIsTheSameBits) {
   }
 }
 
+// The step falls back to the whole model's estimate, and says why, where no patch can give it.
 TEST(SolverTimeStep, StepFallsBackToTheWholeModelAndSaysWhy) {
   const double dx = 1e-3;
   const Scene s = make_scene(2, true, dx, 2.05);
