@@ -16,8 +16,10 @@
 // Sanitizer builds keep the sanitizer's own operator new, which checks new/delete pairing.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 
+#include <malloc.h>
 #include <sys/mman.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 
@@ -27,6 +29,32 @@ constexpr std::size_t huge_page_bytes = std::size_t{2} << 20;
 // Below two huge pages the aligned block would hold at most one of them.
 constexpr std::size_t large_allocation_bytes = 2 * huge_page_bytes;
 
+// Medium allocations (64 KiB up to the large ones: a small model's arrays, a reader's buffers)
+// share huge pages in malloc's arenas: the main heap and the threads' heaps. malloc is told to
+// serve them there (by default it maps each one above 128 KiB on its own, and a mapping freed and
+// made again is faulted in again, page by page), to keep what is freed, and to grow the main heap
+// by whole huge pages; and the arena around each one is advised. The advice must come before a
+// page is first written (a 2 MiB span with one 4 KiB page in it stays in 4 KiB pages), and malloc
+// writes its bookkeeping beside a block before handing it out: so the advice reaches ahead, over
+// the rest of the arena's 64 MiB (a thread's heap is a 64 MiB-aligned reservation of that size),
+// where the next allocations will come from. Only mapped memory takes the advice.
+constexpr std::size_t medium_allocation_bytes = std::size_t{64} << 10;
+constexpr std::uintptr_t arena_bytes = std::uintptr_t{64} << 20;
+
+const bool malloc_set = [] {
+  mallopt(M_MMAP_THRESHOLD, static_cast<int>(large_allocation_bytes));
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  mallopt(M_TOP_PAD, 32 << 20);
+  return true;
+}();
+
+void advise_arena_around(const void* block) noexcept {
+  const auto at = reinterpret_cast<std::uintptr_t>(block);
+  const std::uintptr_t from = at & ~(std::uintptr_t{huge_page_bytes} - 1);
+  const std::uintptr_t to = (at & ~(arena_bytes - 1)) + arena_bytes;
+  (void)madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);
+}
+
 void* allocate_once(std::size_t bytes) noexcept {
   if (bytes >= large_allocation_bytes) {
     void* block = nullptr;
@@ -35,7 +63,9 @@ void* allocate_once(std::size_t bytes) noexcept {
     (void)madvise(block, bytes, MADV_HUGEPAGE);
     return block;
   }
-  return std::malloc(bytes == 0 ? 1 : bytes);
+  void* block = std::malloc(bytes == 0 ? 1 : bytes);
+  if (block && bytes >= medium_allocation_bytes) advise_arena_around(block);
+  return block;
 }
 
 // operator new's contract: call the new-handler until the allocation succeeds or there is none.

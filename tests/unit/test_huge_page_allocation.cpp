@@ -1,5 +1,6 @@
 // The solver's global operator new (solver/huge_page_allocation.cpp): large allocations aligned to
-// and advised for 2 MiB pages, the rest as malloc gives them, and operator new's failure contract.
+// and advised for 2 MiB pages, medium ones in advised arenas, the contents as malloc gives them, and
+// operator new's failure contract.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -45,6 +47,24 @@ TEST(HugePageAllocation, LargeArraysAreAlignedAndAdvisedForHugePages) {
     GTEST_SKIP() << "this kernel has no transparent huge pages: the advice is refused, the memory is the same";
   // "hg": the mapping carries MADV_HUGEPAGE, whatever the system setting then grants.
   EXPECT_NE(vm_flags_at(state.data()).find(" hg"), std::string::npos) << vm_flags_at(state.data());
+}
+
+// A small model's arrays (here 256 KiB, a 16 000-point plate's) come from malloc's arenas, which
+// are advised: on the main thread and on another (a thread's own arena), and the next one too (the
+// advice reaches ahead of the allocation, since malloc writes beside a block before handing it out).
+TEST(HugePageAllocation, MediumArraysLieInAdvisedArenas) {
+  if (!replaced) GTEST_SKIP() << "sanitizer build: operator new is the sanitizer's";
+  if (!std::filesystem::exists("/sys/kernel/mm/transparent_hugepage"))
+    GTEST_SKIP() << "this kernel has no transparent huge pages: the advice is refused, the memory is the same";
+  const std::size_t values = std::size_t{32} << 10;
+  auto check = [&](const char* where) {
+    std::vector<double> first(values, 1.0), second(values, 2.0);
+    for (const auto* v : {&first, &second})
+      EXPECT_NE(vm_flags_at(v->data()).find(" hg"), std::string::npos) << where << ": " << vm_flags_at(v->data());
+  };
+  check("main thread");
+  std::thread other([&] { check("another thread"); });
+  other.join();
 }
 
 TEST(HugePageAllocation, SmallAllocationsAndTheirContentsAreUnchanged) {
