@@ -172,16 +172,18 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   constexpr int S = symmetric_components<D>;
   const Mat<D> kinv_i = unpack_symmetric<D>(&p.shape_inverse[i * S]);
   const Mat<D> ck_i = unpack_symmetric<D>(&p.stabilization_ck[i * S]);
-  Vec<D> s = Vec<D>::Zero();
+  // s_i = sum_j V_j xi_ij in plain doubles (an Eigen bond vector went through memory: shape_tensor.cpp).
+  double s_sum[D] = {};
   double family = 0.0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if (!f.acting(b)) continue;
     const double vj = p.volume[static_cast<std::size_t>(f.neighbor[b])];
-    Vec<D> xi;
-    bond_vector<D>(f, p.position.data(), i, b, xi.data());
-    s += vj * xi;
+    double xi[D];
+    bond_vector<D>(f, p.position.data(), i, b, xi);
+    for (int a = 0; a < D; ++a) s_sum[a] += vj * xi[a];
     family += vj;
   }
+  const Vec<D> s = Eigen::Map<const Vec<D>>(s_sum);
   const Vec<D> ci = kinv_i * s;
 
   // Point i. Probe p: a = e_p (p < D) or theta = e_(p-D).

@@ -25,17 +25,25 @@ void set_stabilization_tensor(PointData& p, const CosseratConstants& c, std::siz
 template <int D>
 bool update_point(PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
   using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
-  using Vec = Eigen::Matrix<double, D, 1>;
   const bool has_rot = !p.stabilization_rot.empty();
-  Mat K = Mat::Zero();
+  // K = sum_j V_j xi xi^T in plain doubles, each entry as (V_j xi_a) xi_b, the order of the Eigen
+  // expression it replaced (so K keeps its bits): a bond vector in an Eigen vector went through
+  // memory, and its reload stalled each bond (the 3-D benchmark block's shape tensors took 74 ms at
+  // 1 thread).
+  double k[D][D] = {};
   int count = 0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if (!f.acting(b)) continue;
-    Vec xi;
-    bond_vector<D>(f, p.position.data(), i, b, xi.data());
-    K += p.volume[f.neighbor[b]] * xi * xi.transpose();
+    double xi[D];
+    bond_vector<D>(f, p.position.data(), i, b, xi);
+    const double volume = p.volume[f.neighbor[b]];
+    for (int a = 0; a < D; ++a) {
+      const double scaled = volume * xi[a];
+      for (int e = 0; e < D; ++e) k[a][e] += scaled * xi[e];
+    }
     ++count;
   }
+  const Mat K = Eigen::Map<const Mat>(&k[0][0]);
   bool detach = count < D + 1;
   if (!detach) {
     const Eigen::SelfAdjointEigenSolver<Mat> eig(K, Eigen::EigenvaluesOnly);
