@@ -129,11 +129,12 @@ template <int D>
 // diagonal, and with Eigen's fixed-size products of L the point blocks of the 3-D benchmark block
 // took a third longer (0.63 s against 0.47 s).
 template <int D, int N>
-[[gnu::always_inline]] inline void add_rotation_blocks(const Mat<D>& S, const double* xi,
+[[gnu::always_inline]] inline void add_rotation_blocks(const double (&S)[D][D], const double* xi,
                                                        Eigen::Matrix<double, N, N>& H) {
   if constexpr (D == 2) {
+    const Mat<2> Sm = Eigen::Map<const Mat<2>>(&S[0][0]);
     const Eigen::Matrix<double, 2, 1> c_map = 0.5 * cross_map<2>(xi);
-    const Eigen::Matrix<double, 2, 1> sc = S * c_map;
+    const Eigen::Matrix<double, 2, 1> sc = Sm * c_map;
     H.template topRightCorner<2, 1>() += sc;
     H.template bottomLeftCorner<1, 2>() += sc.transpose();
     H(2, 2) += c_map.dot(sc);
@@ -141,9 +142,9 @@ template <int D, int N>
     const double h0 = 0.5 * xi[0], h1 = 0.5 * xi[1], h2 = 0.5 * xi[2];
     double sc[3][3];  // S C, C = -[h]_x (cross_map)
     for (int a = 0; a < 3; ++a) {
-      sc[a][0] = h1 * S(a, 2) - h2 * S(a, 1);
-      sc[a][1] = h2 * S(a, 0) - h0 * S(a, 2);
-      sc[a][2] = h0 * S(a, 1) - h1 * S(a, 0);
+      sc[a][0] = h1 * S[a][2] - h2 * S[a][1];
+      sc[a][1] = h2 * S[a][0] - h0 * S[a][2];
+      sc[a][2] = h0 * S[a][1] - h1 * S[a][0];
     }
     for (int a = 0; a < 3; ++a)
       for (int j = 0; j < 3; ++j) {
@@ -229,7 +230,7 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     if constexpr (Polar) {
       // L^T S L for the symmetric S, by its blocks [S, S C; (S C)^T, C^T S C]: the identity's
       // products are not formed (S itself is the translation block's share above).
-      add_rotation_blocks<D>(Eigen::Map<const Mat<D>>(&n.strain[0][0]), xi_ik, H);
+      add_rotation_blocks<D>(n.strain, xi_ik, H);
       auto rotations = H.template bottomRightCorner<R, R>();
       if constexpr (D == 2) {
         rotations(0, 0) += n.vk_vi2 * c.bending_modulus * n.d2;
