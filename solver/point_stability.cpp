@@ -125,19 +125,22 @@ template <int D>
 }
 
 // The blocks of L^T S L (S symmetric, L = [1, C], C = 1/2 theta x xi as a map of theta) that hold
-// the rotations: S C and its transpose, and C^T S C. In 3-D they are written out: C has a zero
-// diagonal, and with Eigen's fixed-size products of L the point blocks of the 3-D benchmark block
-// took a third longer (0.63 s against 0.47 s).
-template <int D, int N>
+// the rotations, added to `coupling` (S C, whose transpose is the other off-diagonal block) and
+// `rotation` (C^T S C). Written out in plain doubles: C has a zero diagonal in 3-D, and with Eigen's
+// fixed-size products of L the point blocks of the 3-D benchmark block took a third longer (0.63 s
+// against 0.47 s). In 2-D each sum is in the order Eigen's 2 x 2 products took (the first
+// component's product plus the second's), so that the blocks keep their bits.
+template <int D>
 [[gnu::always_inline]] inline void add_rotation_blocks(const double (&S)[D][D], const double* xi,
-                                                       Eigen::Matrix<double, N, N>& H) {
+                                                       double (&coupling)[D][rotation_components<D>],
+                                                       double (&rotation)[rotation_components<D>]
+                                                                         [rotation_components<D>]) {
   if constexpr (D == 2) {
-    const Mat<2> Sm = Eigen::Map<const Mat<2>>(&S[0][0]);
-    const Eigen::Matrix<double, 2, 1> c_map = 0.5 * cross_map<2>(xi);
-    const Eigen::Matrix<double, 2, 1> sc = Sm * c_map;
-    H.template topRightCorner<2, 1>() += sc;
-    H.template bottomLeftCorner<1, 2>() += sc.transpose();
-    H(2, 2) += c_map.dot(sc);
+    const double c0 = 0.5 * -xi[1], c1 = 0.5 * xi[0];  // C = 1/2 (-xi_y, xi_x) (cross_map)
+    const double sc0 = S[0][0] * c0 + S[0][1] * c1, sc1 = S[1][0] * c0 + S[1][1] * c1;
+    coupling[0][0] += sc0;
+    coupling[1][0] += sc1;
+    rotation[0][0] += c0 * sc0 + c1 * sc1;
   } else {
     const double h0 = 0.5 * xi[0], h1 = 0.5 * xi[1], h2 = 0.5 * xi[2];
     double sc[3][3];  // S C, C = -[h]_x (cross_map)
@@ -147,14 +150,11 @@ template <int D, int N>
       sc[a][2] = h0 * S[a][1] - h1 * S[a][0];
     }
     for (int a = 0; a < 3; ++a)
-      for (int j = 0; j < 3; ++j) {
-        H(a, 3 + j) += sc[a][j];
-        H(3 + j, a) += sc[a][j];
-      }
+      for (int j = 0; j < 3; ++j) coupling[a][j] += sc[a][j];
     for (int j = 0; j < 3; ++j) {
-      H(3, 3 + j) += h1 * sc[2][j] - h2 * sc[1][j];
-      H(4, 3 + j) += h2 * sc[0][j] - h0 * sc[2][j];
-      H(5, 3 + j) += h0 * sc[1][j] - h1 * sc[0][j];
+      rotation[0][j] += h1 * sc[2][j] - h2 * sc[1][j];
+      rotation[1][j] += h2 * sc[0][j] - h0 * sc[2][j];
+      rotation[2][j] += h0 * sc[1][j] - h1 * sc[0][j];
     }
   }
 }
@@ -213,10 +213,18 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     H.template bottomRightCorner<R, R>().diagonal().array() += vi * residual_i * p.stabilization_rot[i];
 
   // Every neighbour whose family holds i (the reverse bond acts exactly when this one does). The
-  // translation block is summed in locals, in the same order as into H.
+  // blocks are summed in locals, each in the same order as into H; the two off-diagonal blocks
+  // are transposes of each other (H is symmetric so far, and both get the same terms), so one sum
+  // serves both. (Summed in H, in memory, each term waited for the previous one's store.)
   double translation[D][D];
   for (int a = 0; a < D; ++a)
     for (int e = 0; e < D; ++e) translation[a][e] = H(a, e);
+  double coupling[D][RR] = {}, rotation[RR][RR] = {};
+  if constexpr (Polar)
+    for (int j = 0; j < R; ++j) {
+      for (int a = 0; a < D; ++a) coupling[a][j] = H(a, D + j);
+      for (int l = 0; l < R; ++l) rotation[j][l] = H(D + j, D + l);
+    }
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     if (!f.acting(b)) continue;
     const auto k = static_cast<std::size_t>(f.neighbor[b]);
@@ -230,21 +238,25 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
     if constexpr (Polar) {
       // L^T S L for the symmetric S, by its blocks [S, S C; (S C)^T, C^T S C]: the identity's
       // products are not formed (S itself is the translation block's share above).
-      add_rotation_blocks<D>(n.strain, xi_ik, H);
-      auto rotations = H.template bottomRightCorner<R, R>();
+      add_rotation_blocks<D>(n.strain, xi_ik, coupling, rotation);
       if constexpr (D == 2) {
-        rotations(0, 0) += n.vk_vi2 * c.bending_modulus * n.d2;
+        rotation[0][0] += n.vk_vi2 * c.bending_modulus * n.d2;
       } else {
         double m[D][D];
         rank_one_energy<D>(n.d, n.d2, c.a1, c.a2, c.a3, m);
         for (int a = 0; a < D; ++a)
-          for (int e = 0; e < D; ++e) rotations(a, e) += n.vk_vi2 * m[a][e];
+          for (int e = 0; e < D; ++e) rotation[a][e] += n.vk_vi2 * m[a][e];
       }
-      rotations.diagonal().array() += n.w * p.stabilization_rot[k];
+      for (int j = 0; j < R; ++j) rotation[j][j] += n.w * p.stabilization_rot[k];
     }
   }
   for (int a = 0; a < D; ++a)
     for (int e = 0; e < D; ++e) H(a, e) = translation[a][e];
+  if constexpr (Polar)
+    for (int j = 0; j < R; ++j) {
+      for (int a = 0; a < D; ++a) H(a, D + j) = H(D + j, a) = coupling[a][j];
+      for (int l = 0; l < R; ++l) H(D + j, D + l) = rotation[j][l];
+    }
   return H;
 }
 
