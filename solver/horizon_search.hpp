@@ -84,4 +84,30 @@ void for_each_in_horizon(const PointPositions& points, const CellGrid* grid, con
       }
 }
 
+// Whether some point j of `points`, gridded in `grid` (cells of at least sqrt(below2)), lies at a
+// squared distance |x - x_j|^2 below `below2` from x, which need not be one of them nor lie in the
+// grid's box (its cell is clamped to the box, and the grid's points within reach of it lie in the
+// 3^D cells around that one). The squared distance is summed over the axes in order.
+inline bool any_point_nearer(const PointPositions& points, const CellGrid& grid, const double* x, double below2) {
+  const int D = points.dimension;
+  const auto c = grid.cell_of(x);
+  std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  for (int a = 0; a < D; ++a) {
+    lo[a] = std::max<std::int64_t>(0, c[a] - 1);
+    hi[a] = std::min<std::int64_t>(grid.cells[a] - 1, c[a] + 1);
+  }
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::int64_t xc = lo[0]; xc <= hi[0]; ++xc) {
+        const std::int64_t cell = grid.linear({xc, y, z});
+        for (std::int64_t k = grid.start[cell]; k < grid.start[cell + 1]; ++k) {
+          const double* xj = &points.position[static_cast<std::size_t>(grid.points[k]) * D];
+          double r2 = 0.0;
+          for (int a = 0; a < D; ++a) r2 += (x[a] - xj[a]) * (x[a] - xj[a]);
+          if (r2 < below2) return true;
+        }
+      }
+  return false;
+}
+
 }  // namespace mppm::solver

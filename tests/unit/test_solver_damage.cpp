@@ -117,6 +117,70 @@ void check_shatter(int dimension, std::array<int, 3> n, double speed) {
   EXPECT_LT(std::abs(r.balance_error), 1e-9);
 }
 
+// The no-fail zone (bond_breakage.hpp): the points nearer than the depth to a boundary point, the
+// squared distance summed over the axes in order and compared strictly, as a search of every
+// boundary point for every point decides it.
+std::vector<std::uint8_t> no_fail_by_every_pair(const PointData& p, double depth, std::int32_t ignored) {
+  const int D = p.dimension;
+  std::vector<std::uint8_t> out(p.owned, 0);
+  for (std::size_t i = 0; i < p.owned; ++i)
+    for (std::size_t b = 0; b < p.owned && !out[i]; ++b) {
+      if (p.boundary_id[b] <= 0 || p.boundary_id[b] == ignored) continue;
+      double r2 = 0.0;
+      for (int a = 0; a < D; ++a)
+        r2 += (p.position[i * D + a] - p.position[b * D + a]) * (p.position[i * D + a] - p.position[b * D + a]);
+      out[i] = r2 < depth * depth ? 1 : 0;
+    }
+  return out;
+}
+
+PointData points_with_boundaries(int dimension, std::vector<double> position, std::vector<std::int32_t> id) {
+  PointData p;
+  p.dimension = dimension;
+  p.owned = id.size();
+  p.position = std::move(position);
+  p.boundary_id = std::move(id);
+  p.no_fail.assign(p.owned, 7);
+  return p;
+}
+
+TEST(SolverDamage, NoFailZoneHoldsThePointsNearerThanTheDepthToABoundaryPoint) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const int D : {2, 3}) {
+    // A random cloud (with a few points far outside the boundary points' box), boundary ids 1 and 2
+    // (2 ignored, as the pore fluid's own boundaries are), and depths from a hair to most of the box.
+    std::vector<double> x;
+    std::vector<std::int32_t> id;
+    for (int k = 0; k < 1500; ++k) {
+      for (int a = 0; a < D; ++a) x.push_back(k < 10 ? 5.0 * unit(rng) - 2.0 : unit(rng));
+      const double r = unit(rng);
+      id.push_back(k >= 10 && r < 0.05 ? 1 : (k >= 10 && r < 0.08 ? 2 : 0));
+    }
+    PointData p = points_with_boundaries(D, x, id);
+    for (const double depth : {1e-9, 0.01, 0.07, 0.3, 2.0}) {
+      mark_no_fail_zone(p, depth, {2});
+      EXPECT_EQ(p.no_fail, no_fail_by_every_pair(p, depth, 2)) << D << "-D, depth " << depth;
+    }
+    mark_no_fail_zone(p, 0.0, {2});
+    EXPECT_EQ(std::count(p.no_fail.begin(), p.no_fail.end(), 1), 0) << "no depth, no zone";
+  }
+  // On a lattice of unit spacing (exact squared distances) the points exactly at the depth from
+  // the boundary row stay out of the zone.
+  std::vector<double> x;
+  std::vector<std::int32_t> id;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) {
+      x.insert(x.end(), {static_cast<double>(i), static_cast<double>(j)});
+      id.push_back(j == 0 ? 1 : 0);
+    }
+  PointData lattice = points_with_boundaries(2, x, id);
+  mark_no_fail_zone(lattice, 2.0, {});
+  for (int j = 0; j < 8; ++j)
+    EXPECT_EQ(lattice.no_fail[static_cast<std::size_t>(j * 8 + 3)], j < 2 ? 1 : 0) << "row " << j;
+  EXPECT_EQ(lattice.no_fail, no_fail_by_every_pair(lattice, 2.0, 0));
+}
+
 TEST(SolverDamage, ShatteredBodyStaysFiniteAndConservesMomentum2d) { check_shatter(2, {24, 24, 1}, 10.0); }
 TEST(SolverDamage, ShatteredBodyStaysFiniteAndConservesMomentum3d) { check_shatter(3, {10, 10, 10}, 0.5); }
 
