@@ -131,10 +131,9 @@ template <int D>
 // against 0.47 s). In 2-D each sum is in the order Eigen's 2 x 2 products took (the first
 // component's product plus the second's), so that the blocks keep their bits.
 template <int D>
-[[gnu::always_inline]] inline void add_rotation_blocks(const double (&S)[D][D], const double* xi,
-                                                       double (&coupling)[D][rotation_components<D>],
-                                                       double (&rotation)[rotation_components<D>]
-                                                                         [rotation_components<D>]) {
+[[gnu::always_inline]] inline void add_rotation_blocks(
+    const double (&S)[D][D], const double* xi, double (&coupling)[D][rotation_components<D>],
+    double (&rotation)[rotation_components<D>][rotation_components<D>]) {
   if constexpr (D == 2) {
     const double c0 = 0.5 * -xi[1], c1 = 0.5 * xi[0];  // C = 1/2 (-xi_y, xi_x) (cross_map)
     const double sc0 = S[0][0] * c0 + S[0][1] * c1, sc1 = S[1][0] * c0 + S[1][1] * c1;
