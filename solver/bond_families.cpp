@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <stdexcept>
 
@@ -84,22 +85,46 @@ void split_interior_and_border(BondFamilies& f, std::size_t owned) {
   }
 }
 
+namespace {
+
+// A hash of the pair {i, j} (i < j), spread over 64 bits (the finalizer of splitmix64).
+std::uint64_t pair_hash(std::uint64_t i, std::uint64_t j) {
+  std::uint64_t x = i * 0x9E3779B97F4A7C15ull + j * 0xC2B2AE3D27D4EB4Full;
+  x ^= x >> 30;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 27;
+  x *= 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+}  // namespace
+
 void index_bond_pairs(BondFamilies& f, PointOrder order) {
   const auto n = static_cast<std::int64_t>(f.offset.size()) - 1;
   f.pair_offset.assign(static_cast<std::size_t>(n) + 1, 0);
-  bool asymmetric = false;
-#pragma omp parallel for schedule(static) reduction(|| : asymmetric) if (thread_bond_loop(f.bond_count()))
+  // Every bond between owned points stored at both ends: then the sum (mod 2^64) of its pair's
+  // hash, added from the lower end and subtracted from the upper, vanishes; a bond stored at one
+  // end only, or twice at one, leaves its hash in it (and bonds in error cancel only if their
+  // hashes do, at odds of 2^-64). (A bisection of the neighbour's list for every bond cost 4 ms of
+  // the crack-branching plate's start-up, 737 752 bonds at 1 thread.)
+  std::uint64_t unmatched = 0;
+  bool ghost_without_processes = false;
+#pragma omp parallel for schedule(static) reduction(+ : unmatched) reduction(|| : ghost_without_processes) \
+    if (thread_bond_loop(f.bond_count()))
   for (std::int64_t i = 0; i < n; ++i) {
+    const auto low = static_cast<std::uint64_t>(i);
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
-      const auto j = static_cast<std::int64_t>(f.neighbor_of(b));
-      const bool ghost = j >= n;
-      if (!ghost && mirror_bond(f, static_cast<std::size_t>(i), static_cast<std::size_t>(j), order) < 0)
-        asymmetric = true;
-      if (ghost && order.global_id.empty()) asymmetric = true;  // one process has no ghosts
+      const auto j = static_cast<std::uint64_t>(f.neighbor_of(b));
+      if (j >= static_cast<std::uint64_t>(n)) {
+        if (order.global_id.empty()) ghost_without_processes = true;  // one process has no ghosts
+        continue;
+      }
+      unmatched += j > low ? pair_hash(low, j) : -pair_hash(j, low);
     }
     f.pair_offset[i + 1] = f.offset[i + 1] - first_bond_above(f, static_cast<std::size_t>(i), order);
   }
-  if (asymmetric) throw std::logic_error("index_bond_pairs: a bond is not stored at both of its (owned) ends");
+  if (unmatched != 0 || ghost_without_processes)
+    throw std::logic_error("index_bond_pairs: a bond is not stored at both of its (owned) ends");
   std::partial_sum(f.pair_offset.begin(), f.pair_offset.end(), f.pair_offset.begin());
   f.work.assign(static_cast<std::size_t>(f.pair_offset[n]), 0.0);
 }

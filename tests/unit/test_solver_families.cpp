@@ -68,6 +68,31 @@ TEST(SolverFamilies, CellListFindsExactlyThePointsWithinTheHorizonFromBothEnds) 
   EXPECT_EQ(m.bonds.offset[centre + 1] - m.bonds.offset[centre], 48);
 }
 
+// The pair index of the damage effect requires every bond between owned points stored at both
+// ends: a family with a bond at one end only, or twice at one, is refused.
+TEST(SolverFamilies, PairIndexRefusesABondNotStoredAtBothEnds) {
+  const Model m = make_model(make_lattice(2, {9, 7, 1}, kDx), make_scene(2, true, kDx, 3.05));
+  BondFamilies symmetric = m.bonds;
+  EXPECT_NO_THROW(index_bond_pairs(symmetric));
+  EXPECT_EQ(symmetric.pair_offset.back(), symmetric.bond_count() / 2);
+  // Point 30's last bond dropped from its list (the neighbour keeps its end).
+  BondFamilies one_end;
+  one_end.dimension = 2;
+  one_end.offset.assign(1, 0);
+  for (std::size_t i = 0; i < m.points.owned; ++i) {
+    for (std::int64_t b = m.bonds.offset[i]; b < m.bonds.offset[i + 1]; ++b)
+      if (!(i == 30 && b + 1 == m.bonds.offset[i + 1])) one_end.neighbor.push_back(m.bonds.neighbor[b]);
+    one_end.offset.push_back(static_cast<std::int64_t>(one_end.neighbor.size()));
+  }
+  EXPECT_THROW(index_bond_pairs(one_end), std::logic_error);
+  // Point 30's first bond stored twice, and its mirror once.
+  BondFamilies twice = m.bonds;
+  const auto first = twice.neighbor.begin() + twice.offset[30];
+  twice.neighbor.insert(first, *first);
+  for (std::size_t i = 31; i < twice.offset.size(); ++i) ++twice.offset[i];
+  EXPECT_THROW(index_bond_pairs(twice), std::logic_error);
+}
+
 // Points of a d-dimensional lattice of spacing dx from an origin that does not round exactly
 // (0.1234 m), with a fifth of the sites left empty at random (holes, notches, a body's outline).
 std::vector<double> lattice_with_holes(int d, const std::array<int, 3>& n, double dx, unsigned seed) {
