@@ -244,19 +244,28 @@ void name_translational(const Model& model, CriticalTimeStep& out, double trans_
                density_text(model);
 }
 
+// Where a block's naming estimates run: a model (the whole one, or a patch) and the workspace lent
+// to it (with_operator).
+struct BlockOperator {
+  Model* model;
+  Workspace* ws;
+};
+
 // Names the mode of a model with micro-rotations (without them the translational block is the
-// coupled operator: name_translational alone).
-void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Convergence& convergence) {
-  PointData& p = model.points;
+// coupled operator: name_translational alone), each block estimated on its operator, or given
+// (`known`: the translational and the rotational omega^2).
+void name_mode(CriticalTimeStep& out, const Convergence& convergence, BlockOperator translational,
+               BlockOperator rotational, const std::optional<std::array<double, 2>>& known = std::nullopt) {
   out.naming_iterations = 0;
+  auto on = [&](Block b) { return b == Block::rotational ? rotational : translational; };
   auto estimate = [&](Block b, double enough = std::numeric_limits<double>::infinity()) {
-    const OperatorEstimate e = largest_eigenvalue(model, b, convergence, ws, enough);
+    const OperatorEstimate e = largest_eigenvalue(*on(b).model, b, convergence, *on(b).ws, enough);
     out.naming_iterations += e.iterations;
     return e;
   };
-  const double trans_lambda = estimate(Block::translational).lambda;
-  name_translational(model, out, trans_lambda);
-  CosseratConstants& c = model.constants;
+  const double trans_lambda = known ? (*known)[0] : estimate(Block::translational).lambda;
+  name_translational(*translational.model, out, trans_lambda);
+  const CosseratConstants& c = translational.model->constants;  // (the same on every operator)
   // Which stiffness drives a block is told by the same estimate with a modulus switched off: the
   // operator is linear in the moduli, and each term of the energy is positive semi-definite, so
   // switching one off can only lower omega_max^2; the block is credited to the modulus without
@@ -268,16 +277,17 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
   // constants afterwards (the same bits), not copied: a copy would cost 9 doubles per point.
   constexpr double credit = 0.5;
   auto fraction_left_without = [&](Block b, double block_lambda, auto&& switch_off) {
-    const CosseratConstants saved = c;
-    switch_off();
+    Model& m = *on(b).model;
+    const CosseratConstants saved = m.constants;
+    switch_off(m.constants, m.points);
     const OperatorEstimate e = estimate(b, credit * block_lambda);
-    c = saved;
-    update_stabilization_tensors(p, c);
+    m.constants = saved;
+    update_stabilization_tensors(m.points, m.constants);
     return e.lambda / block_lambda;
   };
   const std::string inertia = " over the micro-inertia I = 1/2 pi rho l^2 = " + number(c.micro_inertia) +
                               " kg/m (material.length_scale l = " + number(c.length_scale) + " m)";
-  const double rot_lambda = estimate(Block::rotational).lambda;
+  const double rot_lambda = known ? (*known)[1] : estimate(Block::rotational).lambda;
   out.rotational = step_of(rot_lambda);
   if (out.rotational < out.translational) {
     out.limiting_mode = "rotational";
@@ -288,14 +298,15 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
     // and the stabilization of U. First the bending modulus alone (lambda = mu = mu_c = 0, the
     // translational stabilization C:K^-1 off); if that is not it, the estimate without mu_c tells
     // mu_c from lambda and mu.
-    const double bending = fraction_left_without(Block::rotational, rot_lambda, [&] {
-      c.lambda = c.mu = c.mu_c = 0.0;
+    const double bending = fraction_left_without(Block::rotational, rot_lambda, [](CosseratConstants& k, PointData& p) {
+      k.lambda = k.mu = k.mu_c = 0.0;
       std::fill(p.stabilization_ck.begin(), p.stabilization_ck.end(), 0.0);
     });
     if (bending >= credit) {
       out.driver = std::string("material.couple_moduli (bending modulus B_w = ") + (c.dimension == 2 ? "a3" : "a2") +
                    " = " + number(c.bending_modulus) + " N)" + inertia;
-    } else if (c.mu_c > 0.0 && fraction_left_without(Block::rotational, rot_lambda, [&] { c.mu_c = 0.0; }) < credit) {
+    } else if (c.mu_c > 0.0 && fraction_left_without(Block::rotational, rot_lambda,
+                                                     [](CosseratConstants& k, PointData&) { k.mu_c = 0.0; }) < credit) {
       out.driver = "material.mu_c = " + number(c.mu_c) + " Pa" + inertia;
     } else {
       out.driver =
@@ -304,14 +315,14 @@ void name_mode(Model& model, CriticalTimeStep& out, Workspace& ws, const Converg
           "(the bending modulus B_w = " +
           number(c.bending_modulus) + " N alone gives " + number(bending) + " of omega_max^2)" + inertia;
     }
-  } else if (c.mu_c > 0.0 &&
-             fraction_left_without(Block::translational, trans_lambda, [&] { c.mu_c = 0.0; }) < credit) {
+  } else if (c.mu_c > 0.0 && fraction_left_without(Block::translational, trans_lambda,
+                                                   [](CosseratConstants& k, PointData&) { k.mu_c = 0.0; }) < credit) {
     // mu_c stiffens the translational waves too: sigma has (mu + mu_c) eps + (mu - mu_c) eps^T, so
     // the skew part of grad u (the shear waves' rotation) costs 2 mu_c.
     out.driver = "material.mu_c = " + number(c.mu_c) +
                  " Pa (the couple modulus stiffens the shear waves: mu + mu_c = " + number(c.mu + c.mu_c) +
                  " Pa against the P-wave modulus lambda + 2 mu = " + number(c.lambda + 2.0 * c.mu) + " Pa)" +
-                 density_text(model);
+                 density_text(*translational.model);
   }
 }
 
@@ -366,7 +377,8 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, const P
   with_operator(patch.model, [&](Workspace& ws) {
     ws.support = &patch.inside;
     if (!reuse) coupled = largest_eigenvalue(patch.model, Block::coupled, step_convergence, ws);
-    if (coupled.lambda >= (1.0 - patch_tolerance) * whole) name_mode(patch.model, named, ws, step_convergence);
+    if (coupled.lambda >= (1.0 - patch_tolerance) * whole)
+      name_mode(named, step_convergence, {&patch.model, &ws}, {&patch.model, &ws});
   });
   if (coupled.lambda > (1.0 + patch_above_whole) * whole) {
     critical.step = named.step = step_of(coupled.lambda);
@@ -404,12 +416,12 @@ struct PatchStep {
   std::string refusal;  // why the patch cannot give the step (empty: it can)
 };
 
-// The coupled estimate on a patch's own points.
-OperatorEstimate patch_estimate(ModelPatch& patch) {
+// A block's estimate (the coupled one by default) on a patch's own points.
+OperatorEstimate patch_estimate(ModelPatch& patch, Block block = Block::coupled) {
   OperatorEstimate e;
   with_operator(patch.model, [&](Workspace& ws) {
     ws.support = &patch.inside;
-    e = largest_eigenvalue(patch.model, Block::coupled, step_convergence, ws);
+    e = largest_eigenvalue(patch.model, block, step_convergence, ws);
   });
   return e;
 }
@@ -438,6 +450,60 @@ PatchStep patch_step(Model& model, const PatchCentre& centre, const char* which,
                   number(rise / o.lambda) + " higher on 4 horizons than on 3, above " + number(step_confinement) + ")";
   if (kept) kept->emplace(StepPatch{std::move(outer), centre.position, radius, o.lambda});
   return out;
+}
+
+// A block's omega^2 on the patches around its own stiffest point, as the step's on patches
+// (patch_step): the 4-horizon estimate raised by the rise from 3 horizons. None where the patch
+// would hold more than a tenth of the model or the rise exceeds step_confinement (the block's
+// highest mode reaches beyond the patch).
+struct BlockOnPatches {
+  ModelPatch outer;
+  double lambda = 0.0;
+  int iterations = 0;
+};
+std::optional<BlockOnPatches> block_on_patches(Model& model, Block block, const PatchCentre& centre) {
+  if (!(centre.block_eigenvalue > 0.0)) return std::nullopt;
+  ModelPatch outer = cut_patch(model, centre.position, step_patch_radius * model.horizon);
+  if (static_cast<double>(outer.model.points.owned) > patch_largest_share * static_cast<double>(model_points(model)))
+    return std::nullopt;
+  ModelPatch inner = cut_patch(model, centre.position, step_check_radius * model.horizon);
+  const OperatorEstimate o = patch_estimate(outer, block), i = patch_estimate(inner, block);
+  const double rise = std::max(0.0, o.lambda - i.lambda);
+  if (!(rise <= step_confinement * o.lambda)) return std::nullopt;
+  return BlockOnPatches{std::move(outer), o.lambda + rise, o.iterations + i.iterations};
+}
+
+// A highest mode that mixes both blocks (name_mode_on_patch: PatchNaming::mixed) named from each
+// block's omega^2 on the patches around that block's own stiffest point (docs/theory.md section
+// 9), the credit estimates on the limiting block's 4-horizon patch. A block's omega^2 is at most
+// the coupled one (a principal submatrix): the raise by the rise, which may pass it by up to
+// step_confinement, is capped there. False (nothing named) where a block's patches refuse. The
+// parts' stiffest points cost a pass over the point blocks, found only here: most modes are named
+// on the first patch.
+bool name_mixed_mode_on_block_patches(Model& model, CriticalTimeStep& critical) {
+  const StiffestParts parts = stiffest_parts(model.points, model.bonds, model.constants);
+  const PatchCentre translational = patch_centre(model, parts.translational);
+  const PatchCentre rotational = patch_centre(model, parts.rotational);
+  std::optional<BlockOnPatches> t = block_on_patches(model, Block::translational, translational);
+  if (!t) return false;
+  std::optional<BlockOnPatches> r = block_on_patches(model, Block::rotational, rotational);
+  if (!r) return false;
+  const double coupled = omega_squared_of(critical.step);
+  const std::array<double, 2> known{std::min(t->lambda, coupled), std::min(r->lambda, coupled)};
+  CriticalTimeStep named = critical;
+  with_operator(t->outer.model, [&](Workspace& on_translational) {
+    on_translational.support = &t->outer.inside;
+    with_operator(r->outer.model, [&](Workspace& on_rotational) {
+      on_rotational.support = &r->outer.inside;
+      name_mode(named, step_convergence, {&t->outer.model, &on_translational}, {&r->outer.model, &on_rotational},
+                known);
+    });
+  });
+  named.naming_iterations += t->iterations + r->iterations;
+  named.naming_patch_points = 0;
+  named.naming_block_patch_points = {t->outer.points_inside, r->outer.points_inside};
+  critical = named;
+  return true;
 }
 
 }  // namespace
@@ -484,6 +550,7 @@ void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCen
     for (const double radius : patch_radii) {
       const PatchNaming tried = name_mode_on_patch(model, critical, centre, radius * model.horizon, kept);
       if (tried == PatchNaming::named) return;
+      if (tried == PatchNaming::mixed && name_mixed_mode_on_block_patches(model, critical)) return;
       if (tried != PatchNaming::too_small) break;
     }
   name_limiting_mode_on_whole_model(model, critical);
@@ -504,7 +571,7 @@ void name_limiting_mode_on_whole_model(Model& model, CriticalTimeStep& critical)
     name_translational(model, critical, omega_squared_of(critical.step));
     return;
   }
-  with_operator(model, [&](Workspace& ws) { name_mode(model, critical, ws, naming_convergence); });
+  with_operator(model, [&](Workspace& ws) { name_mode(critical, naming_convergence, {&model, &ws}, {&model, &ws}); });
 }
 
 CriticalTimeStep coupled_critical_time_step(Model& model) {

@@ -29,6 +29,9 @@ struct CriticalTimeStep {
   // and its centre, the stiffest point [m].
   std::size_t naming_patch_points = 0;
   std::array<double, 3> naming_patch_centre{0.0, 0.0, 0.0};
+  // A highest mode mixing both blocks named on each block's own patches: their own points
+  // (translational, rotational; 0: not so named).
+  std::array<std::size_t, 2> naming_block_patch_points{0, 0};
   // The step is a patch's estimate: the whole model's Lanczos run stopped short of it.
   bool step_from_patch = false;
   // Where the step was estimated: on the patch of this many own points (0: the whole model), and
@@ -64,13 +67,15 @@ CriticalTimeStep estimate_critical_step(Model& model, StepEstimate where, const 
                                         std::optional<StepPatch>* kept = nullptr);
 // Names the mode of a coupled estimate from block estimates: translational, rotational,
 // limiting_mode and driver. First on the patch around `centre` (the stiffest point, layers
-// included: patch_centre of stiffest_points(...).any; docs/theory.md section 9), taken when the
-// patch's limiting block reaches the critical step's coupled omega_max^2 (`critical`'s estimate)
-// within 2e-3 (the highest mode is that block's and lives there); if a patch's estimate is above
-// that one by more than its convergence, the critical step becomes the patch's (a patch's Ritz
-// value is a lower bound of omega_max^2). Else on the whole model, at about 1.4 times the coupled
-// estimate's cost with rotations (coarser estimates). `kept`: the step's patch, if it was kept
-// (estimate_critical_step), which the first patch then is.
+// included: patch_centre of stiffest_points(...).any; docs/theory.md section 9),
+// taken when the patch's limiting block reaches the critical step's coupled omega_max^2
+// (`critical`'s estimate) within 2e-3 (the highest mode is that block's and lives there); if a
+// patch's estimate is above that one by more than its convergence, the critical step becomes the
+// patch's (a patch's Ritz value is a lower bound of omega_max^2). Where the patch holds a highest
+// mode that mixes both blocks, each block on the patches around its own stiffest point
+// (stiffest_parts; 4 horizons checked against 3, as the step's). Else on the whole model, at about 1.4 times the
+// coupled estimate's cost with rotations (coarser estimates). `kept`: the step's patch, if it was
+// kept (estimate_critical_step), which the first patch then is.
 void name_limiting_mode(Model& model, CriticalTimeStep& critical, const PatchCentre& centre,
                         std::optional<StepPatch>* kept = nullptr);
 // Whether the mode is tried on a patch first (then name_limiting_mode needs the stiffest point):

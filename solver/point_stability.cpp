@@ -259,18 +259,53 @@ Eigen::Matrix<double, D + (Polar ? rotation_components<D> : 0), D + (Polar ? rot
   return H;
 }
 
-template <int D, bool Polar>
-double eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
-  constexpr int R = Polar ? rotation_components<D> : 0;
-  constexpr int N = D + R;
-  if (p.detached[i]) return 0.0;
-  auto H = block<D, Polar>(p, f, c, i);
-  // M^-1/2 H M^-1/2 with M = rho V (translation), I V (rotation).
+// M^-1/2 H M^-1/2 with M = rho V (translation), I V (rotation).
+template <int N>
+void scale_by_mass(const PointData& p, const CosseratConstants& c, std::size_t i, int D,
+                   Eigen::Matrix<double, N, N>& H) {
   Eigen::Matrix<double, N, 1> scale;
   for (int q = 0; q < N; ++q) scale(q) = 1.0 / std::sqrt(p.volume[i] * (q < D ? c.density : c.micro_inertia));
   H = scale.asDiagonal() * H * scale.asDiagonal();
+}
+
+template <int N>
+double largest(const Eigen::Matrix<double, N, N>& H) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(H, Eigen::EigenvaluesOnly);
   return std::max(0.0, eig.eigenvalues()(N - 1));
+}
+
+// The same for a part (at most 3 x 3) from Eigen's closed form: a patch centre needs no more
+// accuracy.
+template <int N>
+double largest_in_closed_form(const Eigen::Matrix<double, N, N>& H) {
+  if constexpr (N == 1) {
+    return std::max(0.0, H(0, 0));
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig;
+    eig.computeDirect(H, Eigen::EigenvaluesOnly);
+    return std::max(0.0, eig.eigenvalues()(N - 1));
+  }
+}
+
+template <int D, bool Polar>
+double eigenvalue(const PointData& p, const BondFamilies& f, const CosseratConstants& c, std::size_t i) {
+  if (p.detached[i]) return 0.0;
+  auto H = block<D, Polar>(p, f, c, i);
+  scale_by_mass(p, c, i, D, H);
+  return largest(H);
+}
+
+// The values of a micro-polar block's translational and rotational parts.
+template <int D>
+std::array<double, 2> part_eigenvalues(const PointData& p, const BondFamilies& f, const CosseratConstants& c,
+                                       std::size_t i) {
+  constexpr int R = rotation_components<D>;
+  if (p.detached[i]) return {0.0, 0.0};
+  auto H = block<D, true>(p, f, c, i);
+  scale_by_mass(p, c, i, D, H);
+  const Eigen::Matrix<double, D, D> translational = H.template topLeftCorner<D, D>();
+  const Eigen::Matrix<double, R, R> rotational = H.template bottomRightCorner<R, R>();
+  return {largest_in_closed_form(translational), largest_in_closed_form(rotational)};
 }
 
 }  // namespace
@@ -316,16 +351,43 @@ std::vector<double> block_values(const PointData& p, const BondFamilies& f, cons
   return value;
 }
 
+// Every owned point's values of its block's translational and rotational parts.
+std::array<std::vector<double>, 2> part_values(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+  std::array<std::vector<double>, 2> value;
+  for (auto& v : value) v.assign(p.owned, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    const std::array<double, 2> v =
+        p.dimension == 2 ? part_eigenvalues<2>(p, f, c, i) : part_eigenvalues<3>(p, f, c, i);
+    for (int k = 0; k < 2; ++k) value[k][i] = v[k];
+  }
+  return value;
+}
+
+// The first of the largest of `value`, over the body points or all, whatever the thread count.
+void take_largest(StiffestPoint& out, const PointData& p, const std::vector<double>& value, bool body_only) {
+  for (std::size_t i = 0; i < p.owned; ++i)
+    if ((!body_only || p.region[i] == 0) && value[i] > out.block_eigenvalue) out = {i, value[i]};
+}
+
 }  // namespace
 
 StiffestPoints stiffest_points(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
   const std::vector<double> value = block_values(p, f, c, false);
-  // The first of the largest, whatever the thread count.
   StiffestPoints out;
-  for (std::size_t i = 0; i < p.owned; ++i) {
-    if (value[i] > out.any.block_eigenvalue) out.any = {i, value[i]};
-    if (p.region[i] == 0 && value[i] > out.body.block_eigenvalue) out.body = {i, value[i]};
-  }
+  take_largest(out.any, p, value, false);
+  take_largest(out.body, p, value, true);
+  return out;
+}
+
+StiffestParts stiffest_parts(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
+  StiffestParts out;
+  if (p.rotation.empty()) return out;
+  const std::array<std::vector<double>, 2> value = part_values(p, f, c);
+  take_largest(out.translational, p, value[0], false);
+  take_largest(out.rotational, p, value[1], false);
   return out;
 }
 

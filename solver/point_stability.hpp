@@ -51,5 +51,13 @@ struct StiffestPoints {
   StiffestPoint body, any;
 };
 StiffestPoints stiffest_points(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
+// With micro-rotations, the stiffest points of the blocks' translational and rotational parts over
+// all points (the largest eigenvalue of M^-1/2 H M^-1/2 restricted to each part): the centres of
+// the patches that name a highest mode mixing both (critical_time_step.cpp). The values of the
+// parts are Eigen's closed forms: a patch centre needs no more accuracy.
+struct StiffestParts {
+  StiffestPoint translational, rotational;
+};
+StiffestParts stiffest_parts(const PointData& points, const BondFamilies& bonds, const CosseratConstants& c);
 
 }  // namespace mppm::solver

@@ -678,6 +678,12 @@ std::string step_estimate_cost(const CriticalTimeStep& critical) {
 std::string naming_cost(const CriticalTimeStep& critical, int dimension) {
   const std::string step_note =
       critical.step_from_patch ? "; the step is a patch's estimate, which the whole model's fell short of" : "";
+  const auto& blocks = critical.naming_block_patch_points;
+  if (blocks[0] > 0)
+    return "the mode, which mixes both blocks, named on the patches of " + std::to_string(blocks[0]) + " and " +
+           std::to_string(blocks[1]) +
+           " points around the stiffest points of the translational and the rotational block, in " +
+           std::to_string(critical.naming_iterations) + " applications of their operators" + step_note;
   if (critical.naming_patch_points == 0)
     return std::to_string(critical.naming_iterations) + " more to name the mode" + step_note;
   std::string centre;

@@ -5,15 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <random>
 #include <tuple>
 
 #include "common/input_error.hpp"
+#include "common/point_cloud.hpp"
 #include "solver/critical_time_step.hpp"
 #include "solver/explicit_dynamics.hpp"
 #include "solver/point_stability.hpp"
+#include "tests/unit/stage_process.hpp"
 #include "tests/verification/solver_test_lattice.hpp"
 
 namespace mppm::solver {
@@ -41,6 +44,19 @@ Scene shear_band_scene(double a3) {
   s.effects.micropolar = true;
   s.time.end = 0.1;
   s.time.step = 7e-6;
+  return s;
+}
+
+// The 3-D benchmark block's rock (workflows/benchmarks/scenes/block.yaml).
+Scene rock_block() {
+  Scene s = make_scene(3, true, 1e-3, 2.05);
+  s.material.density = 2650.0;
+  s.material.solid_fraction = 0.95;
+  s.material.lambda = 14e9;
+  s.material.mu = 14e9;
+  s.material.mu_c = 4.667e9;
+  s.material.couple_moduli = {11.2e3, 56e3, 16.8e3};
+  s.material.length_scale = 2e-3;
   return s;
 }
 
@@ -162,17 +178,21 @@ TEST(SolverTimeStep, ElasticResponseIsTheModelsOwnOperatorWhileNoHistoryIsHeld) 
 // step's). The patch names it where the highest mode is one block's: the shear band's material
 // with a3 in kN (rotational, the bending modulus) and a 3-D block (translational); the lattices
 // are large enough for the patch (4 horizons around a corner, with its neighbours under a tenth
-// of the model, so that it is tried). With a3 in N the highest mode mixes both blocks (the coupled step 8 % below both
-// block steps), and the whole model names it.
+// of the model, so that it is tried). With a3 in N the highest mode mixes both blocks (the coupled
+// step 8 % below both block steps): each block is then named on the patches around its own
+// stiffest point, where they are under a tenth of the model (the larger lattice), else by the
+// whole model.
 TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
   struct Case {
     Scene scene;
     std::array<int, 3> n;
-    bool on_patch;
+    bool on_patch, on_block_patches;
   };
   Scene block = make_scene(3, true, 1e-3, 2.05);
-  for (const Case& k : {Case{shear_band_scene(83.3e3), {64, 56, 1}, true},
-                        Case{shear_band_scene(83.3), {64, 56, 1}, false}, Case{block, {28, 27, 26}, true}}) {
+  for (const Case& k :
+       {Case{shear_band_scene(83.3e3), {64, 56, 1}, true, false},
+        Case{shear_band_scene(83.3), {64, 56, 1}, false, false},
+        Case{shear_band_scene(83.3), {160, 140, 1}, false, false}, Case{block, {28, 27, 26}, true, false}}) {
     const double dx = k.scene.geometry.spacing;
     Model m = make_model(make_lattice(k.scene.dimension, k.n, dx, k.scene.thickness), k.scene);
     // The step on the whole model in both, so that the naming alone is compared.
@@ -180,12 +200,16 @@ TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
     CriticalTimeStep whole = coupled_critical_time_step(m);
     name_limiting_mode_on_whole_model(m, whole);
     std::printf(
-        "%d-D: critical %.6e s; patch of %zu points: %s (%s), translational %.6e s, rotational %.6e s, "
-        "%d applications; whole model: %s, %.6e s, %.6e s, %d applications\n",
-        k.scene.dimension, named.step, named.naming_patch_points, named.limiting_mode.c_str(), named.driver.c_str(),
-        named.translational, named.rotational, named.naming_iterations, whole.limiting_mode.c_str(),
-        whole.translational, whole.rotational, whole.naming_iterations);
+        "%d-D: critical %.6e s; patch of %zu points (block patches %zu, %zu): %s (%s), translational %.6e s, "
+        "rotational %.6e s, %d applications; whole model: %s, %.6e s, %.6e s, %d applications\n",
+        k.scene.dimension, named.step, named.naming_patch_points, named.naming_block_patch_points[0],
+        named.naming_block_patch_points[1], named.limiting_mode.c_str(), named.driver.c_str(), named.translational,
+        named.rotational, named.naming_iterations, whole.limiting_mode.c_str(), whole.translational, whole.rotational,
+        whole.naming_iterations);
     EXPECT_EQ(named.naming_patch_points > 0, k.on_patch);
+    EXPECT_EQ(named.naming_block_patch_points[0] > 0, k.on_block_patches);
+    EXPECT_EQ(named.naming_block_patch_points[1] > 0, k.on_block_patches);
+    EXPECT_LT(named.naming_iterations, k.on_block_patches ? 4 * whole.naming_iterations : 1 << 30);
     EXPECT_LT(named.naming_patch_points, m.points.owned / 2);
     EXPECT_EQ(named.step, whole.step);
     EXPECT_EQ(named.limiting_mode, whole.limiting_mode);
@@ -197,6 +221,42 @@ TEST(SolverTimeStep, PatchNamesTheModeTheWholeModelNames) {
     EXPECT_GE(named.translational, named.step * (1.0 - 1e-12));
     EXPECT_GE(named.rotational, named.step * (1.0 - 1e-12));
   }
+}
+
+// The 3-D benchmark block as mppm-preprocess makes it (workflows/benchmarks/scenes/block.yaml, 20^3
+// points, its bottom a layer of fixed velocity, its top loaded), micro-polar: its highest mode
+// mixes both blocks (the coupled step 0.5 % below the translational one), and each block is named
+// on the patches around its own stiffest point, as the whole model names it: the same limiting
+// mode and driver, both block steps within 1e-3 (the whole model's naming converges to about
+// 1e-3), neither below the coupled step, at a small part of the cost.
+TEST(SolverTimeStep, MixedModeIsNamedOnEachBlocksPatchesAsTheWholeModelNamesIt) {
+  const std::filesystem::path dir = std::filesystem::path(MPPM_BINARY_DIR) / "test_scratch" / "mixed-mode";
+  std::filesystem::create_directories(dir);
+  const std::string points = (dir / "block20.vtp").string();
+  const mppm::testing::StageOutcome pre =
+      mppm::testing::run_stage_process({mppm::testing::binary("mppm-preprocess"),
+                                        std::string(MPPM_SOURCE_DIR) + "/workflows/benchmarks/scenes/block.yaml", "-o",
+                                        points, "--set", "geometry.file=block20.geo"});
+  ASSERT_EQ(pre.code, 0) << pre.err;
+  Model m = make_model(read_point_cloud(points), rock_block());
+  const CriticalTimeStep named = critical_time_step(m);
+  CriticalTimeStep whole = named;
+  name_limiting_mode_on_whole_model(m, whole);
+  std::printf(
+      "block patches of %zu and %zu points: %s, translational %.6e s, rotational %.6e s, %d applications; "
+      "whole model: %s, %.6e s, %.6e s, %d applications (coupled %.6e s)\n",
+      named.naming_block_patch_points[0], named.naming_block_patch_points[1], named.limiting_mode.c_str(),
+      named.translational, named.rotational, named.naming_iterations, whole.limiting_mode.c_str(), whole.translational,
+      whole.rotational, whole.naming_iterations, named.step);
+  EXPECT_GT(named.naming_block_patch_points[0], 0u);
+  EXPECT_GT(named.naming_block_patch_points[1], 0u);
+  EXPECT_EQ(named.naming_patch_points, 0u);
+  EXPECT_EQ(named.limiting_mode, whole.limiting_mode);
+  EXPECT_EQ(named.driver.substr(0, 40), whole.driver.substr(0, 40));
+  EXPECT_NEAR(named.translational, whole.translational, 1e-3 * whole.translational);
+  EXPECT_NEAR(named.rotational, whole.rotational, 1e-3 * whole.rotational);
+  EXPECT_GT(named.translational, named.step);  // mixed: both block steps above the coupled one
+  EXPECT_GT(named.rotational, named.step);
 }
 
 // Where the highest mode spreads over the whole body (a periodic lattice: no surface, no corner, a
