@@ -2,7 +2,6 @@
 #include "solver/bond_breakage.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -64,32 +63,6 @@ double critical_bond_work(const DamageParameters& damage, int dimension, double 
   return dimension == 3 ? g_cr / (s * dx3 * spacing) : g_cr / (s * dx3 * thickness);
 }
 
-namespace {
-
-// The grid's cells: the depth, or larger where cells of the depth would outnumber the boundary
-// points many times over (a depth far below the spacing over a large body); any size of at least
-// the depth finds the same points.
-double no_fail_cell_size(const PointPositions& at, double depth) {
-  std::array<double, 3> low{}, high{};
-  for (int a = 0; a < at.dimension; ++a) {
-    low[a] = high[a] = at.position[a];
-    for (std::size_t k = 1; k < at.count; ++k) {
-      low[a] = std::min(low[a], at.position[k * at.dimension + a]);
-      high[a] = std::max(high[a], at.position[k * at.dimension + a]);
-    }
-  }
-  const double most_cells = 8.0 * static_cast<double>(at.count) + 1024.0;
-  double size = depth;
-  for (;;) {
-    double cells = 1.0;
-    for (int a = 0; a < at.dimension; ++a) cells *= std::floor((high[a] - low[a]) / size) + 1.0;
-    if (cells <= most_cells) return size;
-    size *= 2.0;
-  }
-}
-
-}  // namespace
-
 void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_t>& ignored, const PointCloud* whole) {
   std::fill(p.no_fail.begin(), p.no_fail.end(), 0);
   if (!(depth > 0.0)) return;
@@ -114,7 +87,7 @@ void mark_no_fail_zone(PointData& p, double depth, const std::vector<std::int32_
   // boundary point for every point took 0.5 s of the start-up of a 216 000-point 3-D block with
   // loaded faces; the same comparison of the same squared distances marks the same points.)
   const PointPositions at{D, boundary.data(), boundary.size() / static_cast<std::size_t>(D)};
-  const CellGrid grid = make_grid(at, no_fail_cell_size(at, depth));
+  const CellGrid grid = make_grid(at, depth);
   const double depth2 = depth * depth;
   const auto n = static_cast<std::int64_t>(p.total());
 #pragma omp parallel for schedule(static) if (thread_point_loop(p.total()))

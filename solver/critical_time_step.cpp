@@ -427,50 +427,54 @@ OperatorEstimate patch_estimate(ModelPatch& patch, Block block = Block::coupled)
 }
 
 // With `kept`, the outer patch and its estimate are left there (StepPatch).
+// A block's estimates on the patches of 4 and 3 horizons around a centre, which check that the
+// 4-horizon patch holds the block's highest mode (the step's, patch_step; a mixed mode's blocks',
+// name_mixed_mode_on_block_patches). Not estimated (too_large) where that patch would hold more
+// than a tenth of the model.
+struct PatchPair {
+  ModelPatch outer;
+  bool too_large = false;
+  OperatorEstimate on_outer, on_inner;
+  // The rise from 3 to 4 horizons (Lanczos may leave it a hair below 0).
+  double rise() const { return std::max(0.0, on_outer.lambda - on_inner.lambda); }
+  bool holds_its_mode() const { return rise() <= step_confinement * on_outer.lambda; }
+  // The 4-horizon estimate raised by the rise, which covers its shortfall.
+  double lambda() const { return on_outer.lambda + rise(); }
+  int iterations() const { return on_outer.iterations + on_inner.iterations; }
+};
+PatchPair estimate_on_patches(Model& model, const PatchCentre& centre, Block block) {
+  PatchPair pair{cut_patch(model, centre.position, step_patch_radius * model.horizon), false, {}, {}};
+  pair.too_large = static_cast<double>(pair.outer.model.points.owned) >
+                   patch_largest_share * static_cast<double>(model_points(model));
+  if (pair.too_large) return pair;
+  ModelPatch inner = cut_patch(model, centre.position, step_check_radius * model.horizon);
+  pair.on_outer = patch_estimate(pair.outer, block);
+  pair.on_inner = patch_estimate(inner, block);
+  return pair;
+}
+
+// With `kept`, the outer patch and its estimate are left there (StepPatch).
 PatchStep patch_step(Model& model, const PatchCentre& centre, const char* which,
                      std::optional<StepPatch>* kept = nullptr) {
   PatchStep out;
-  const double points = static_cast<double>(model_points(model));
-  const double radius = step_patch_radius * model.horizon;
-  ModelPatch outer = cut_patch(model, centre.position, radius);
-  if (static_cast<double>(outer.model.points.owned) > patch_largest_share * points) {
+  PatchPair pair = estimate_on_patches(model, centre, Block::coupled);
+  if (pair.too_large) {
     out.refusal = "the patch around the " + std::string(which) + " would hold " +
-                  std::to_string(outer.model.points.owned) + " of the model's " + number(points) +
-                  " points, more than a tenth";
+                  std::to_string(pair.outer.model.points.owned) + " of the model's " +
+                  number(static_cast<double>(model_points(model))) + " points, more than a tenth";
     return out;
   }
-  ModelPatch inner = cut_patch(model, centre.position, step_check_radius * model.horizon);
-  const OperatorEstimate o = patch_estimate(outer), i = patch_estimate(inner);
-  const double rise = std::max(0.0, o.lambda - i.lambda);  // (Lanczos may leave it a hair below 0)
-  out.lambda = o.lambda + rise;
-  out.iterations = o.iterations + i.iterations;
-  out.points_inside = outer.points_inside;
-  if (!(rise <= step_confinement * o.lambda))
+  out.lambda = pair.lambda();
+  out.iterations = pair.iterations();
+  out.points_inside = pair.outer.points_inside;
+  if (!pair.holds_its_mode())
     out.refusal = "the highest mode around the " + std::string(which) + " reaches beyond its patch (omega_max^2 " +
-                  number(rise / o.lambda) + " higher on 4 horizons than on 3, above " + number(step_confinement) + ")";
-  if (kept) kept->emplace(StepPatch{std::move(outer), centre.position, radius, o.lambda});
+                  number(pair.rise() / pair.on_outer.lambda) + " higher on 4 horizons than on 3, above " +
+                  number(step_confinement) + ")";
+  if (kept)
+    kept->emplace(
+        StepPatch{std::move(pair.outer), centre.position, step_patch_radius * model.horizon, pair.on_outer.lambda});
   return out;
-}
-
-// A block's omega^2 on the patches around its own stiffest point, as the step's on patches
-// (patch_step): the 4-horizon estimate raised by the rise from 3 horizons. None where the patch
-// would hold more than a tenth of the model or the rise exceeds step_confinement (the block's
-// highest mode reaches beyond the patch).
-struct BlockOnPatches {
-  ModelPatch outer;
-  double lambda = 0.0;
-  int iterations = 0;
-};
-std::optional<BlockOnPatches> block_on_patches(Model& model, Block block, const PatchCentre& centre) {
-  if (!(centre.block_eigenvalue > 0.0)) return std::nullopt;
-  ModelPatch outer = cut_patch(model, centre.position, step_patch_radius * model.horizon);
-  if (static_cast<double>(outer.model.points.owned) > patch_largest_share * static_cast<double>(model_points(model)))
-    return std::nullopt;
-  ModelPatch inner = cut_patch(model, centre.position, step_check_radius * model.horizon);
-  const OperatorEstimate o = patch_estimate(outer, block), i = patch_estimate(inner, block);
-  const double rise = std::max(0.0, o.lambda - i.lambda);
-  if (!(rise <= step_confinement * o.lambda)) return std::nullopt;
-  return BlockOnPatches{std::move(outer), o.lambda + rise, o.iterations + i.iterations};
 }
 
 // A highest mode that mixes both blocks (name_mode_on_patch: PatchNaming::mixed) named from each
@@ -484,24 +488,24 @@ bool name_mixed_mode_on_block_patches(Model& model, CriticalTimeStep& critical) 
   const StiffestParts parts = stiffest_parts(model.points, model.bonds, model.constants);
   const PatchCentre translational = patch_centre(model, parts.translational);
   const PatchCentre rotational = patch_centre(model, parts.rotational);
-  std::optional<BlockOnPatches> t = block_on_patches(model, Block::translational, translational);
-  if (!t) return false;
-  std::optional<BlockOnPatches> r = block_on_patches(model, Block::rotational, rotational);
-  if (!r) return false;
+  if (!(translational.block_eigenvalue > 0.0 && rotational.block_eigenvalue > 0.0)) return false;
+  PatchPair t = estimate_on_patches(model, translational, Block::translational);
+  if (t.too_large || !t.holds_its_mode()) return false;
+  PatchPair r = estimate_on_patches(model, rotational, Block::rotational);
+  if (r.too_large || !r.holds_its_mode()) return false;
   const double coupled = omega_squared_of(critical.step);
-  const std::array<double, 2> known{std::min(t->lambda, coupled), std::min(r->lambda, coupled)};
+  const std::array<double, 2> known{std::min(t.lambda(), coupled), std::min(r.lambda(), coupled)};
   CriticalTimeStep named = critical;
-  with_operator(t->outer.model, [&](Workspace& on_translational) {
-    on_translational.support = &t->outer.inside;
-    with_operator(r->outer.model, [&](Workspace& on_rotational) {
-      on_rotational.support = &r->outer.inside;
-      name_mode(named, step_convergence, {&t->outer.model, &on_translational}, {&r->outer.model, &on_rotational},
-                known);
+  with_operator(t.outer.model, [&](Workspace& on_translational) {
+    on_translational.support = &t.outer.inside;
+    with_operator(r.outer.model, [&](Workspace& on_rotational) {
+      on_rotational.support = &r.outer.inside;
+      name_mode(named, step_convergence, {&t.outer.model, &on_translational}, {&r.outer.model, &on_rotational}, known);
     });
   });
-  named.naming_iterations += t->iterations + r->iterations;
+  named.naming_iterations += t.iterations() + r.iterations();
   named.naming_patch_points = 0;
-  named.naming_block_patch_points = {t->outer.points_inside, r->outer.points_inside};
+  named.naming_block_patch_points = {t.outer.points_inside, r.outer.points_inside};
   critical = named;
   return true;
 }

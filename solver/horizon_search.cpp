@@ -1,6 +1,7 @@
 // The cell grid of the horizon search (horizon_search.hpp).
 #include "solver/horizon_search.hpp"
 
+#include <cmath>
 #include <numeric>
 
 namespace mppm::solver {
@@ -22,8 +23,18 @@ CellGrid make_grid(const PointPositions& points, double size) {
       g.low[a] = std::min(g.low[a], x[i * D + a]);
       high[a] = std::max(high[a], x[i * D + a]);
     }
+  // Cells larger than asked where cells of `size` would outnumber the points many times over (a
+  // sparse cloud, or a small reach over a large box): any size of at least the reach finds the
+  // same points, and the grid's memory stays of the order of the points'.
+  const double most_cells = 8.0 * static_cast<double>(n) + 1024.0;
+  for (;;) {
+    double cells = 1.0;
+    for (int a = 0; a < D; ++a) cells *= std::floor((high[a] - g.low[a]) / g.size) + 1.0;
+    if (cells <= most_cells) break;
+    g.size *= 2.0;
+  }
   for (int a = 0; a < D; ++a)
-    g.cells[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>((high[a] - g.low[a]) / size) + 1);
+    g.cells[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>((high[a] - g.low[a]) / g.size) + 1);
   const std::int64_t total = g.cells[0] * g.cells[1] * g.cells[2];
   std::vector<std::int64_t> cell_of_point(n);
   g.start.assign(static_cast<std::size_t>(total) + 1, 0);

@@ -41,7 +41,8 @@ struct CellGrid {
   std::int64_t linear(const std::array<std::int64_t, 3>& c) const { return (c[2] * cells[1] + c[1]) * cells[0] + c[0]; }
 };
 
-// The grid of cells of edge `size` (at least the search reach) over all the points.
+// The grid of cells of edge `size` (at least the search reach) over all the points, or of a
+// larger edge where those would number more than 8 per point (plus 1024).
 CellGrid make_grid(const PointPositions& points, double size);
 
 // Visits the points j != i with |x_j - x_i| <= sqrt(reach2), in any order: visit(j, xi) with

@@ -1,4 +1,4 @@
-// Large allocations on transparent huge pages: the replaceable global operator new and delete of
+// Large and medium allocations on transparent huge pages: the replaceable global operator new and delete of
 // the programs that link this file (mppm-solve and the solver's unit tests).
 //
 // Why. The solver's arrays (the points' state, the bonds) are written once at start-up, and each
@@ -9,7 +9,8 @@
 // MADV_HUGEPAGE; the system setting "madvise" or "always"), and
 // glibc's malloc asks only when the environment sets the tunable glibc.malloc.hugetlb=1, which a
 // user should not have to know. So allocations of at least 4 MiB are aligned to 2 MiB and advised
-// here; smaller ones are malloc's as before. Nothing else changes: the memory is still malloc's
+// here, medium ones share advised arenas (below), and small ones are malloc's as before. Nothing
+// else changes: the memory is still malloc's
 // (posix_memalign), freed by free, and its contents and the results are the same bits. Where the
 // system does not give huge pages (the setting "never"), the advice is ignored.
 //

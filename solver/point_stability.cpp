@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "solver/compiled_effects.hpp"
@@ -338,38 +339,28 @@ void point_stiffness_block(const PointData& p, const BondFamilies& f, const Coss
 
 namespace {
 
+// value(i) of every owned point, on the threads (each writes only its own entry).
+template <class Value>
+std::vector<std::invoke_result_t<Value, std::size_t>> per_point(const PointData& p, Value&& value) {
+  const auto n = static_cast<std::int64_t>(p.owned);
+  std::vector<std::invoke_result_t<Value, std::size_t>> out(p.owned);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < n; ++s) out[static_cast<std::size_t>(s)] = value(static_cast<std::size_t>(s));
+  return out;
+}
+
 // Every owned point's block value (0 for the layers' points when `body_only`).
 std::vector<double> block_values(const PointData& p, const BondFamilies& f, const CosseratConstants& c,
                                  bool body_only) {
-  const auto n = static_cast<std::int64_t>(p.owned);
-  std::vector<double> value(p.owned, 0.0);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    if (!body_only || p.region[i] == 0) value[i] = point_block_eigenvalue(p, f, c, i);
-  }
-  return value;
+  return per_point(
+      p, [&](std::size_t i) { return !body_only || p.region[i] == 0 ? point_block_eigenvalue(p, f, c, i) : 0.0; });
 }
 
-// Every owned point's values of its block's translational and rotational parts.
-std::array<std::vector<double>, 2> part_values(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
-  const auto n = static_cast<std::int64_t>(p.owned);
-  std::array<std::vector<double>, 2> value;
-  for (auto& v : value) v.assign(p.owned, 0.0);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    const std::array<double, 2> v =
-        p.dimension == 2 ? part_eigenvalues<2>(p, f, c, i) : part_eigenvalues<3>(p, f, c, i);
-    for (int k = 0; k < 2; ++k) value[k][i] = v[k];
-  }
-  return value;
-}
-
-// The first of the largest of `value`, over the body points or all, whatever the thread count.
-void take_largest(StiffestPoint& out, const PointData& p, const std::vector<double>& value, bool body_only) {
+// The first of the largest of `value(i)`, over the body points or all, whatever the thread count.
+template <class Value>
+void take_largest(StiffestPoint& out, const PointData& p, Value&& value, bool body_only) {
   for (std::size_t i = 0; i < p.owned; ++i)
-    if ((!body_only || p.region[i] == 0) && value[i] > out.block_eigenvalue) out = {i, value[i]};
+    if ((!body_only || p.region[i] == 0) && value(i) > out.block_eigenvalue) out = {i, value(i)};
 }
 
 }  // namespace
@@ -377,17 +368,22 @@ void take_largest(StiffestPoint& out, const PointData& p, const std::vector<doub
 StiffestPoints stiffest_points(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
   const std::vector<double> value = block_values(p, f, c, false);
   StiffestPoints out;
-  take_largest(out.any, p, value, false);
-  take_largest(out.body, p, value, true);
+  const auto at = [&](std::size_t i) { return value[i]; };
+  take_largest(out.any, p, at, false);
+  take_largest(out.body, p, at, true);
   return out;
 }
 
 StiffestParts stiffest_parts(const PointData& p, const BondFamilies& f, const CosseratConstants& c) {
   StiffestParts out;
   if (p.rotation.empty()) return out;
-  const std::array<std::vector<double>, 2> value = part_values(p, f, c);
-  take_largest(out.translational, p, value[0], false);
-  take_largest(out.rotational, p, value[1], false);
+  const std::vector<std::array<double, 2>> value = per_point(p, [&](std::size_t i) {
+    return p.dimension == 2 ? part_eigenvalues<2>(p, f, c, i) : part_eigenvalues<3>(p, f, c, i);
+  });
+  take_largest(
+      out.translational, p, [&](std::size_t i) { return value[i][0]; }, false);
+  take_largest(
+      out.rotational, p, [&](std::size_t i) { return value[i][1]; }, false);
   return out;
 }
 

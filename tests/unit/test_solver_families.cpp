@@ -68,6 +68,39 @@ TEST(SolverFamilies, CellListFindsExactlyThePointsWithinTheHorizonFromBothEnds) 
   EXPECT_EQ(m.bonds.offset[centre + 1] - m.bonds.offset[centre], 48);
 }
 
+// A cloud whose box is far larger than its points' reach (two clusters 10^11 spacings apart: cells
+// of the reach would number 10^10 and more) is searched by a grid of larger cells, with the same
+// families as every pair gives.
+TEST(SolverFamilies, SparseCloudIsSearchedWithoutACellPerReach) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> jitter(-0.2 * kDx, 0.2 * kDx);
+  PointCloud cloud;
+  cloud.dimension = 2;
+  cloud.spacing = kDx;
+  cloud.thickness = 1.0;
+  for (const double shift : {0.0, 1e11 * kDx})
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) {
+        cloud.x.push_back(shift + i * kDx + jitter(random));
+        cloud.y.push_back(j * kDx + jitter(random));
+      }
+  const std::size_t n = cloud.x.size();
+  cloud.z.assign(n, 0.0);
+  cloud.volume.assign(n, kDx * kDx);
+  cloud.region.assign(n, 0);
+  cloud.boundary_id.assign(n, 0);
+  const Model m = make_model(cloud, make_scene(2, false, kDx, 3.05));
+  const double reach = 3.05 * kDx + 1e-9 * kDx;
+  std::set<std::pair<int, int>> expected;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      const double dx = m.points.position[2 * j] - m.points.position[2 * i];
+      const double dy = m.points.position[2 * j + 1] - m.points.position[2 * i + 1];
+      if (i != j && dx * dx + dy * dy <= reach * reach) expected.insert({static_cast<int>(i), static_cast<int>(j)});
+    }
+  EXPECT_EQ(bond_set(m), expected);
+}
+
 // The pair index of the damage effect requires every bond between owned points stored at both
 // ends: a family with a bond at one end only, or twice at one, is refused.
 TEST(SolverFamilies, PairIndexRefusesABondNotStoredAtBothEnds) {
