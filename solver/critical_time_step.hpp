@@ -87,8 +87,14 @@ bool names_mode_on_patch(const Model& model);
 bool patches_need_stiffest_points(const Model& model, StepEstimate where);
 // The same, finding the stiffest point itself.
 void name_limiting_mode(Model& model, CriticalTimeStep& critical);
+// How tightly the whole model's naming estimates converge: `naming`, the naming's own (relative
+// change below 1e-2 over the last 3 of at least 10 iterations: the block steps long by up to about
+// 5e-3),
+// or `converged`, the step's (1e-8 over the last 5 of at least 20), for a reference value.
+enum class NamingConvergence { naming, converged };
 // On the whole model, without a patch.
-void name_limiting_mode_on_whole_model(Model& model, CriticalTimeStep& critical);
+void name_limiting_mode_on_whole_model(Model& model, CriticalTimeStep& critical,
+                                       NamingConvergence convergence = NamingConvergence::naming);
 
 // time.step: auto -> safety * critical; a given step above the critical one is refused with an
 // InputError naming the limiting mode, its critical value and the parameter driving it. With the
