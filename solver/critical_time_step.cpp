@@ -12,6 +12,7 @@
 #include "common/input_error.hpp"
 #include "solver/exact_point_sums.hpp"
 #include "solver/model_patch.hpp"
+#include "solver/parallel_policy.hpp"
 #include "solver/point_stability.hpp"
 #include "solver/shape_tensor.hpp"
 
@@ -360,6 +361,33 @@ enum class PatchNaming {
   too_large,  // over patch_largest_share of the model
 };
 
+// A block's estimate (the coupled one by default) on a patch's own points.
+OperatorEstimate patch_estimate(ModelPatch& patch, Block block = Block::coupled) {
+  OperatorEstimate e;
+  with_operator(patch.model, [&](Workspace& ws) {
+    ws.support = &patch.inside;
+    e = largest_eigenvalue(patch.model, block, step_convergence, ws);
+  });
+  return e;
+}
+
+// Names the mode on a patch (into `named`): its blocks' estimates side by side, the rotational one on
+// a copy of the patch (the same bits as one after the other on the patch; on one thread they are,
+// without the copy), then the modulus credits on the patch.
+void name_mode_on_patch_blocks(ModelPatch& patch, CriticalTimeStep& named) {
+  std::optional<ModelPatch> twin;
+  if (runs_side_by_side()) twin = patch;
+  OperatorEstimate translational, rotational;
+  side_by_side([&] { translational = patch_estimate(patch, Block::translational); },
+               [&] { rotational = patch_estimate(twin ? *twin : patch, Block::rotational); });
+  with_operator(patch.model, [&](Workspace& ws) {
+    ws.support = &patch.inside;
+    name_mode(named, step_convergence, {&patch.model, &ws}, {&patch.model, &ws},
+              std::array<double, 2>{translational.lambda, rotational.lambda});
+  });
+  named.naming_iterations += translational.iterations + rotational.iterations;
+}
+
 // Names the mode on a patch around `centre` of the given radius (into `critical` if named): the
 // step's patch if it is that one (its coupled estimate known), else a patch cut here.
 PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, const PatchCentre& centre, double radius,
@@ -376,12 +404,8 @@ PatchNaming name_mode_on_patch(Model& model, CriticalTimeStep& critical, const P
   if (reuse) coupled.lambda = (*kept)->coupled_lambda;  // its iterations were the step's
   // The patch costs a small fraction of the whole operator: its estimates converge as tightly
   // as the step's.
-  with_operator(patch.model, [&](Workspace& ws) {
-    ws.support = &patch.inside;
-    if (!reuse) coupled = largest_eigenvalue(patch.model, Block::coupled, step_convergence, ws);
-    if (coupled.lambda >= (1.0 - patch_tolerance) * whole)
-      name_mode(named, step_convergence, {&patch.model, &ws}, {&patch.model, &ws});
-  });
+  if (!reuse) coupled = patch_estimate(patch);
+  if (coupled.lambda >= (1.0 - patch_tolerance) * whole) name_mode_on_patch_blocks(patch, named);
   if (coupled.lambda > (1.0 + patch_above_whole) * whole) {
     critical.step = named.step = step_of(coupled.lambda);
     critical.step_from_patch = named.step_from_patch = true;
@@ -418,16 +442,6 @@ struct PatchStep {
   std::string refusal;  // why the patch cannot give the step (empty: it can)
 };
 
-// A block's estimate (the coupled one by default) on a patch's own points.
-OperatorEstimate patch_estimate(ModelPatch& patch, Block block = Block::coupled) {
-  OperatorEstimate e;
-  with_operator(patch.model, [&](Workspace& ws) {
-    ws.support = &patch.inside;
-    e = largest_eigenvalue(patch.model, block, step_convergence, ws);
-  });
-  return e;
-}
-
 // With `kept`, the outer patch and its estimate are left there (StepPatch).
 // A block's estimates on the patches of 4 and 3 horizons around a centre, which check that the
 // 4-horizon patch holds the block's highest mode (the step's, patch_step; a mixed mode's blocks',
@@ -450,8 +464,9 @@ PatchPair estimate_on_patches(Model& model, const PatchCentre& centre, Block blo
                    patch_largest_share * static_cast<double>(model_points(model));
   if (pair.too_large) return pair;
   ModelPatch inner = cut_patch(model, centre.position, step_check_radius * model.horizon);
-  pair.on_outer = patch_estimate(pair.outer, block);
-  pair.on_inner = patch_estimate(inner, block);
+  // Two models of their own: their estimates run side by side (the same bits as one after the other).
+  side_by_side([&] { pair.on_outer = patch_estimate(pair.outer, block); },
+               [&] { pair.on_inner = patch_estimate(inner, block); });
   return pair;
 }
 

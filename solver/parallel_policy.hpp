@@ -2,7 +2,10 @@
 // parallel region costs microseconds, and far more on an oversubscribed machine); the results
 // are the same bits either way, since every loop writes per-point data only.
 #pragma once
+#include <omp.h>
+
 #include <cstddef>
+#include <exception>
 
 namespace mppm::solver {
 
@@ -22,5 +25,31 @@ inline ParallelThresholds& parallel_thresholds() {
 inline bool thread_bond_loop(std::size_t bonds) { return bonds >= parallel_thresholds().bonds; }
 inline bool thread_point_loop(std::size_t points) { return points >= parallel_thresholds().points; }
 inline bool thread_block_loop(std::size_t blocks) { return blocks >= parallel_thresholds().blocks; }
+
+// Two independent tasks, side by side on two threads when the process has them (runs_side_by_side),
+// else one after the other. Each must write only its own data. A parallel region inside a task runs on that task's
+// thread alone (OpenMP's default of one active level), so each task gives the bits it gives on its
+// own. An exception from either is rethrown here once both have ended (the first task's first).
+inline bool runs_side_by_side() { return omp_get_max_threads() > 1; }
+template <class First, class Second>
+void side_by_side(First&& first, Second&& second) {
+  std::exception_ptr failed[2];
+  const auto guarded = [&failed](int k, auto& task) {
+    try {
+      task();
+    } catch (...) {
+      failed[k] = std::current_exception();
+    }
+  };
+#pragma omp parallel sections num_threads(2) if (runs_side_by_side())
+  {
+#pragma omp section
+    guarded(0, first);
+#pragma omp section
+    guarded(1, second);
+  }
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+}
 
 }  // namespace mppm::solver

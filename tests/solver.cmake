@@ -8,6 +8,7 @@ mppm_add_gtest(test_solver_unit unit
   unit/test_solver_energy_gradient.cpp
   unit/test_solver_momentum.cpp
   unit/test_solver_time_step.cpp
+  unit/test_solver_parallel_policy.cpp
   unit/test_solver_model_patch.cpp
   unit/test_solver_bond_sums.cpp
   unit/test_solver_bond_products.cpp

@@ -3,8 +3,11 @@
 // the mode and the parameter. workflows/shear-band/README.md as printed (a3 = 83.3 kN) must be refused at dt = 7 us;
 // with the corrected a3 = 83.3 N it is accepted.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -299,6 +302,36 @@ TEST(SolverTimeStep, MixedModeIsNamedOnEachBlocksPatchesAsTheWholeModelNamesIt) 
     EXPECT_GT(named.translational, named.step) << k.name;  // mixed: both block steps above the coupled one
     EXPECT_GT(named.rotational, named.step) << k.name;
   }
+}
+
+// The patches' estimates run side by side on two threads (the step's patches of 4 and 3 horizons,
+// the naming's two blocks, each on a model of its own) and one after the other on one thread: the
+// same bits. A 3-D lattice block names its mode on the step's patch, the 3-D benchmark block held
+// and loaded on each block's patches.
+TEST(SolverTimeStep, PatchEstimatesGiveTheSameBitsOnOneAndTwoThreads) {
+  const int saved = omp_get_max_threads();
+  Model models[] = {make_model(make_lattice(3, {28, 27, 26}, 1e-3, 1.0), make_scene(3, true, 1e-3, 2.05)),
+                    make_model(read_point_cloud(preprocessed_points("workflows/benchmarks/scenes/block.yaml",
+                                                                    "block20-threads", "geometry.file=block20.geo")),
+                               rock_block())};
+  for (Model& m : models) {
+    omp_set_num_threads(1);
+    const CriticalTimeStep one = critical_time_step(m);
+    omp_set_num_threads(2);
+    const CriticalTimeStep two = critical_time_step(m);
+    EXPECT_GT(one.step_patch_points, 0u) << one.whole_model_reason;
+    EXPECT_GT(one.naming_patch_points + one.naming_block_patch_points[0], 0u);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one.step), std::bit_cast<std::uint64_t>(two.step));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one.translational), std::bit_cast<std::uint64_t>(two.translational));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one.rotational), std::bit_cast<std::uint64_t>(two.rotational));
+    EXPECT_EQ(one.limiting_mode, two.limiting_mode);
+    EXPECT_EQ(one.driver, two.driver);
+    EXPECT_EQ(one.iterations, two.iterations);
+    EXPECT_EQ(one.naming_iterations, two.naming_iterations);
+    EXPECT_EQ(one.naming_patch_points, two.naming_patch_points);
+    EXPECT_EQ(one.naming_block_patch_points, two.naming_block_patch_points);
+  }
+  omp_set_num_threads(saved);
 }
 
 // Where the highest mode spreads over the whole body (a periodic lattice: no surface, no corner, a
