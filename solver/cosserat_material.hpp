@@ -48,14 +48,12 @@ CosseratConstants cosserat_constants(const Scene& scene);
 
 // sigma(eps) and m(kap) of the D x D strain and the R x D wryness: the one Cosserat law
 // (plasticity::isotropic_cosserat_law) with these constants. One copy per source file (static:
-// internal linkage) and never inlined:
-//  - every instantiation of the force kernel calls the same code, so an effect that is on but
-//    inactive gives the bits of the run without it (inlined, the law's multiply-adds would be
-//    fused differently in each instantiation: the kernel's file is compiled with fused
-//    multiply-adds, solver/CMakeLists.txt);
-//  - the files compiled without fused multiply-adds (the energies, the snapshots) keep their own
-//    copy: with one copy shared by the linker, they would round as the kernel does, or the kernel
-//    as they do, depending on the link order (tests/solver.cmake checks that no such copy is shared).
+// internal linkage) and never inlined, so that every instantiation of the force kernel calls the
+// same code. Its rounding does not depend on that: the project compiles without the compiler's
+// contractions (-ffp-contract=off; the kernel fuses only where multiply_add.hpp says), so the law
+// rounds the same in every file, inlined or not, and an effect that is on but inactive gives the
+// bits of the run without it. It stays out of line as it was when the kernel's file was compiled
+// with contractions; that has not been measured since.
 template <int D>
 [[gnu::noinline]] static Eigen::Matrix<double, D, D, Eigen::RowMajor> cosserat_stress(
     const Eigen::Matrix<double, D, D, Eigen::RowMajor>& eps, const CosseratConstants& c) {
