@@ -18,7 +18,7 @@ the same proportion.
 With --block-scene, the same for the 3-D block's effect sets (run_block3d.py: none, micropolar,
 micropolar+damage, the full model) on a 20^3 block of its lattice (scenes/block20.geo: 8000
 points; the per-bond count of the 60^3 block's kernels, with more of its points at faces), no
-boundary condition, as in the side by side.
+boundary condition and energy rows at the first and last step only, as in the side by side.
 
 Writes OUT.csv with case,effects,steps,bonds,instructions,instructions_per_bond_update.
 Exit codes: 0 written; 2 bad input; 1 a run failed.
@@ -116,7 +116,8 @@ def plate_rows(args):
 
 
 def block_rows(args):
-    sets = ["geometry.file=block20.geo", "boundary_conditions=[]"]
+    # Energy rows at the first and last step only, as in the side by side (run_block3d.py).
+    sets = ["geometry.file=block20.geo", "boundary_conditions=[]", "output.load_interval=5us"]
     points = os.path.join(args.work, "block20", "points.vtp")
     run_mppm.preprocess(args, args.block_scene, points, sets)
     rows = []

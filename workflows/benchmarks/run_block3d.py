@@ -4,7 +4,8 @@ simple-cubic lattice (dx = 1 mm, horizon 2.05 dx, 216 000 points, 6 676 552 bond
 each effect set (none, micropolar, micropolar+damage, micropolar+damage+viscoplasticity) and
 thread count, and writes the CSV rows of run_mppm.py plus the start-up (run_info.json's
 start_up_total_seconds). No boundary condition (the families are LAMMPS's exactly; the kernels do
-the same arithmetic at rest). The thread counts of a set take turns over the repeats; each row keeps
+the same arithmetic at rest). Energy rows at the first and the last step only, as LAMMPS computes
+its energies only on thermo steps (every 1000: its first and last). The thread counts of a set take turns over the repeats; each row keeps
 the fastest loop with the slowest beside it. Then the crack-branching plate for 500 steps at each
 thread count (case plate-500), whose rows keep the fastest whole run (run_seconds: start-up, loop
 and the end), for the whole run's two-thread efficiency.
@@ -26,7 +27,8 @@ EFFECT_SETS = {
     "micropolar+damage": ["micropolar", "damage"],
     "micropolar+damage+viscoplasticity": ["micropolar", "damage", "viscoplasticity"],
 }
-BLOCK_SETS = ["geometry.file=block60.geo", "boundary_conditions=[]", "time.end=5us", "output.interval=5us"]
+BLOCK_SETS = ["geometry.file=block60.geo", "boundary_conditions=[]", "time.end=5us", "output.interval=5us",
+              "output.load_interval=5us"]
 # The crack-branching plate (plate.yaml: micro-polar and damage, dx = 0.5 mm, horizon 4.05 dx),
 # 500 steps of 0.025 us: the whole run's two-thread efficiency, start-up included.
 PLATE_EFFECTS = ["micropolar", "damage"]
