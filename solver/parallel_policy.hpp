@@ -27,9 +27,11 @@ inline bool thread_point_loop(std::size_t points) { return points >= parallel_th
 inline bool thread_block_loop(std::size_t blocks) { return blocks >= parallel_thresholds().blocks; }
 
 // Two independent tasks, side by side on two threads when the process has them (runs_side_by_side),
-// else one after the other. Each must write only its own data. A parallel region inside a task runs on that task's
-// thread alone (OpenMP's default of one active level), so each task gives the bits it gives on its
-// own. An exception from either is rethrown here once both have ended (the first task's first).
+// else one after the other. Each must write only its own data. A parallel region inside a task
+// runs on that task's thread alone (OpenMP's default of one active level; with nesting turned on
+// it would take more threads, and give the same bits, as every loop of the solver does), so each
+// task gives the bits it gives on its own. An exception from either is rethrown here once both
+// have ended (the first task's if both failed).
 inline bool runs_side_by_side() { return omp_get_max_threads() > 1; }
 template <class First, class Second>
 void side_by_side(First&& first, Second&& second) {
