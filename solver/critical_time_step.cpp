@@ -371,6 +371,26 @@ OperatorEstimate patch_estimate(ModelPatch& patch, Block block = Block::coupled)
   return e;
 }
 
+// Names the mode (into `named`) from the blocks' omega^2 (`known`: translational, rotational),
+// estimated in `iterations` applications: the modulus credits run on each block's patch (one patch
+// for both, or one each).
+void name_mode_from_blocks(CriticalTimeStep& named, ModelPatch& translational, ModelPatch& rotational,
+                           const std::array<double, 2>& known, int iterations) {
+  const auto name = [&](Workspace& on_translational, Workspace& on_rotational) {
+    name_mode(named, step_convergence, {&translational.model, &on_translational}, {&rotational.model, &on_rotational},
+              known);
+  };
+  with_operator(translational.model, [&](Workspace& on_translational) {
+    on_translational.support = &translational.inside;
+    if (&translational == &rotational) return name(on_translational, on_translational);
+    with_operator(rotational.model, [&](Workspace& on_rotational) {
+      on_rotational.support = &rotational.inside;
+      name(on_translational, on_rotational);
+    });
+  });
+  named.naming_iterations += iterations;
+}
+
 // Names the mode on a patch (into `named`): its blocks' estimates side by side, the rotational one on
 // a copy of the patch (the same bits as one after the other on the patch; on one thread they are,
 // without the copy), then the modulus credits on the patch.
@@ -380,12 +400,8 @@ void name_mode_on_patch_blocks(ModelPatch& patch, CriticalTimeStep& named) {
   OperatorEstimate translational, rotational;
   side_by_side([&] { translational = patch_estimate(patch, Block::translational); },
                [&] { rotational = patch_estimate(twin ? *twin : patch, Block::rotational); });
-  with_operator(patch.model, [&](Workspace& ws) {
-    ws.support = &patch.inside;
-    name_mode(named, step_convergence, {&patch.model, &ws}, {&patch.model, &ws},
-              std::array<double, 2>{translational.lambda, rotational.lambda});
-  });
-  named.naming_iterations += translational.iterations + rotational.iterations;
+  name_mode_from_blocks(named, patch, patch, {translational.lambda, rotational.lambda},
+                        translational.iterations + rotational.iterations);
 }
 
 // Names the mode on a patch around `centre` of the given radius (into `critical` if named): the
@@ -513,14 +529,7 @@ bool name_mixed_mode_on_block_patches(Model& model, CriticalTimeStep& critical) 
   const double coupled = omega_squared_of(critical.step);
   const std::array<double, 2> known{std::min(t.lambda(), coupled), std::min(r.lambda(), coupled)};
   CriticalTimeStep named = critical;
-  with_operator(t.outer.model, [&](Workspace& on_translational) {
-    on_translational.support = &t.outer.inside;
-    with_operator(r.outer.model, [&](Workspace& on_rotational) {
-      on_rotational.support = &r.outer.inside;
-      name_mode(named, step_convergence, {&t.outer.model, &on_translational}, {&r.outer.model, &on_rotational}, known);
-    });
-  });
-  named.naming_iterations += t.iterations() + r.iterations();
+  name_mode_from_blocks(named, t.outer, r.outer, known, t.iterations() + r.iterations());
   named.naming_patch_points = 0;
   named.naming_block_patch_points = {t.outer.points_inside, r.outer.points_inside};
   critical = named;
