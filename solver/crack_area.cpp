@@ -43,15 +43,15 @@ void for_each_initial_bond(const PointData& p, const BondFamilies& f, const Prec
 
 }  // namespace
 
-PrecrackCutBonds record_cut_bonds(const BondFamilies& f, const std::vector<std::uint8_t>& cut) {
+PrecrackCutBonds record_cut_bonds(const BondFamilies& f) {
   PrecrackCutBonds cuts;
   const int D = f.dimension;
   for (std::size_t i = 0; i + 1 < f.offset.size(); ++i) {
     const std::size_t before = cuts.neighbor.size();
     for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
       const auto entry = static_cast<std::size_t>(b);
-      if (!cut[entry]) continue;
-      cuts.neighbor.push_back(f.neighbor[entry]);
+      if (f.acting(b)) continue;
+      cuts.neighbor.push_back(static_cast<std::int32_t>(f.neighbor_of(b)));
       if (!f.xi.empty()) cuts.xi.insert(cuts.xi.end(), f.xi.begin() + entry * D, f.xi.begin() + (entry + 1) * D);
     }
     if (cuts.neighbor.size() == before) continue;

@@ -30,9 +30,9 @@ struct PrecrackCutBonds {
   bool empty() const { return points.empty(); }
 };
 
-// The cut bonds of `families` (cut[b] != 0 for the bond entries a pre-crack cuts), before they are
-// removed.
-PrecrackCutBonds record_cut_bonds(const BondFamilies& families, const std::vector<std::uint8_t>& cut);
+// The cut bonds of `families` (the entries a pre-crack cuts, marked broken before the first step),
+// before they are removed; their neighbours are stored without the mark.
+PrecrackCutBonds record_cut_bonds(const BondFamilies& families);
 
 // A_i [m^2] (m^3 / m in 2-D: the volumes carry the thickness), 0 for a point without broken or cut
 // bonds.

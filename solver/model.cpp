@@ -19,15 +19,15 @@ namespace mppm::solver {
 
 namespace {
 
-// The bond entries whose segment touches a pre-crack element (empty without pre-cracks). The
-// crossing test is symmetric in its end points, so a bond is cut from both ends or from neither.
-std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const PointData& p, const BondFamilies& f,
-                                                 double horizon) {
-  if (cloud.precrack_vertices.empty()) return {};  // (not used with periodic lattices)
+// Marks the bond entries whose segment touches a pre-crack element with the broken bit (nothing
+// is broken before the first step, so the bit is free and no per-bond flag array is needed: 1 B
+// per bond entry at the start-up's peak); returns false without pre-cracks. The crossing test is
+// symmetric in its end points, so a bond is cut from both ends or from neither.
+bool mark_bonds_cut_by_precracks(const PointCloud& cloud, const PointData& p, BondFamilies& f, double horizon) {
+  if (cloud.precrack_vertices.empty()) return false;  // (not used with periodic lattices)
   const PrecrackIndex index(cloud.dimension, cloud.precrack_vertices, horizon);
-  if (index.empty()) return {};
+  if (index.empty()) return false;
   const int D = p.dimension;
-  std::vector<std::uint8_t> cut(f.bond_count(), 0);
   const auto n = static_cast<std::int64_t>(p.owned);
 #pragma omp parallel for schedule(static) if (thread_bond_loop(f.bond_count()))
   for (std::int64_t s = 0; s < n; ++s) {
@@ -37,12 +37,12 @@ std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const 
     for (std::int64_t k = f.offset[i]; k < f.offset[i + 1]; ++k) {
       // The same call (lower global id first, stored positions) from both ends gives the same
       // answer, so a bond is cut from both ends or from neither, on any process.
-      const auto j = static_cast<std::size_t>(f.neighbor[k]);
+      const std::size_t j = f.neighbor_of(k);
       for (int c = 0; c < D; ++c) b[c] = p.position[j * D + c];
-      cut[k] = (p.global_index(j) > p.global_index(i) ? index.crosses(a, b) : index.crosses(b, a)) ? 1 : 0;
+      if (p.global_index(j) > p.global_index(i) ? index.crosses(a, b) : index.crosses(b, a)) f.break_bond(k);
     }
   }
-  return cut;
+  return true;
 }
 
 // Removes the cut bonds from both ends before the first step; returns the bond entries removed (of
@@ -50,13 +50,11 @@ std::vector<std::uint8_t> bonds_cut_by_precracks(const PointCloud& cloud, const 
 // `keep`, they are kept aside in `kept` for the crack area (crack_area.hpp).
 std::size_t cut_precrack_bonds(const PointCloud& cloud, PointData& p, BondFamilies& f, double horizon, bool keep,
                                PrecrackCutBonds& kept) {
-  const std::vector<std::uint8_t> cut = bonds_cut_by_precracks(cloud, p, f, horizon);
-  if (cut.empty()) return 0;
-  std::size_t removed = 0;
-  for (auto v : cut) removed += v;
-  if (keep) kept = record_cut_bonds(f, cut);
-  remove_bonds(f, [&](std::size_t, std::size_t k) { return cut[k] != 0; });
-  return removed;
+  if (!mark_bonds_cut_by_precracks(cloud, p, f, horizon)) return 0;
+  if (keep) kept = record_cut_bonds(f);
+  const std::size_t before = f.bond_count();
+  remove_bonds(f, [&](std::size_t, std::size_t k) { return !f.acting(static_cast<std::int64_t>(k)); });
+  return before - f.bond_count();
 }
 
 // The drain bonds to inert layers that touch a pre-crack are dropped (cracks do not conduct), with the
