@@ -8,17 +8,24 @@
 // takes one fault for 512. Linux gives an allocation huge pages when it asks (madvise
 // MADV_HUGEPAGE; the system setting "madvise" or "always"), and
 // glibc's malloc asks only when the environment sets the tunable glibc.malloc.hugetlb=1, which a
-// user should not have to know. So allocations of at least 4 MiB are aligned to 2 MiB and advised
-// here, medium ones share advised arenas (below), and small ones are malloc's as before. Nothing
-// else changes: the memory is still malloc's
-// (posix_memalign), freed by free, and its contents and the results are the same bits. Where the
+// user should not have to know. So allocations of at least 4 MiB are advised here, medium ones share
+// advised arenas (below), and small ones are malloc's as before. Nothing else changes: the memory
+// is still malloc's, freed by free, and its contents and the results are the same bits. Where the
 // system does not give huge pages (the setting "never"), the advice is ignored.
+//
+// A large block is not aligned to 2 MiB: the kernel gives a huge page to every aligned 2 MiB span
+// inside an advised range, wherever the block starts, and an aligned block would leave a gap of up
+// to 2 MiB before it in malloc's heap (where a large block comes from while the heap's reserve
+// holds it), a free chunk whose header, written by malloc, made the whole span resident: on a
+// 64 000-point plate 2.8 MiB more peak memory than without huge pages, 3-5 MiB on a 68 000-point
+// 3-D block, beyond the memory estimate's program share.
 //
 // Sanitizer builds keep the sanitizer's own operator new, which checks new/delete pairing.
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 
 #include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdlib>
@@ -27,7 +34,7 @@
 namespace {
 
 constexpr std::size_t huge_page_bytes = std::size_t{2} << 20;
-// Below two huge pages the aligned block would hold at most one of them.
+// A block below two huge pages holds at most one aligned 2 MiB span.
 constexpr std::size_t large_allocation_bytes = 2 * huge_page_bytes;
 
 // Medium allocations (64 KiB up to the large ones: a small model's arrays, a reader's buffers)
@@ -56,16 +63,24 @@ void advise_arena_around(const void* block) noexcept {
   (void)madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);
 }
 
+// The pages of a large block (madvise takes a page-aligned start: the block's first page may hold
+// malloc's header and the end of another block, which the advice does not change).
+void advise_block(const void* block, std::size_t bytes) noexcept {
+  // (asked here: an allocation may come before this file's static initialisation)
+  const auto page_bytes = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const auto at = reinterpret_cast<std::uintptr_t>(block);
+  const std::uintptr_t from = at & ~(page_bytes - 1);
+  (void)madvise(reinterpret_cast<void*>(from), at + bytes - from, MADV_HUGEPAGE);
+}
+
 void* allocate_once(std::size_t bytes) noexcept {
-  if (bytes >= large_allocation_bytes) {
-    void* block = nullptr;
-    if (posix_memalign(&block, huge_page_bytes, bytes) != 0) return nullptr;
-    // Advice only: a system without huge pages refuses it, and the block is as good.
-    (void)madvise(block, bytes, MADV_HUGEPAGE);
-    return block;
-  }
   void* block = std::malloc(bytes == 0 ? 1 : bytes);
-  if (block && bytes >= medium_allocation_bytes) advise_arena_around(block);
+  if (!block) return nullptr;
+  // Advice only: a system without huge pages refuses it, and the block is as good.
+  if (bytes >= large_allocation_bytes)
+    advise_block(block, bytes);
+  else if (bytes >= medium_allocation_bytes)
+    advise_arena_around(block);
   return block;
 }
 
