@@ -173,8 +173,9 @@ MemoryEstimateInput scene_input(int dimension, double horizon_factor, std::vecto
   return in;
 }
 
-// Measured (Debian 12, gcc Release): 2-D micropolar 1.07x at 64,000 points; 3-D full model
-// 1.04x at 68,000 points. Few steps: memory does not grow with time.
+// Measured (Debian 12, gcc Release, 2026-12-07): 2-D micropolar 1.05x at 64,000 points (42.9-44.0
+// MiB); 3-D full model 1.00x-1.03x at 68,000 points (97.3-99.4 MiB). Few steps: memory does not
+// grow with time.
 TEST(MemoryEstimate, AgreesWithThePeakMemoryOfARealRun) {
   // The quickstart plate at 0.25 mm: ~65,000 points and ~1.8 million bond entries, so that the
   // run's arrays, not the program, dominate its memory; its scene's three output fields.
