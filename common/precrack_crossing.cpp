@@ -89,6 +89,13 @@ bool PrecrackIndex::element_crosses(std::int32_t element, const Point3& a, const
   return segment_crosses(dimension_, vertices_.data() + static_cast<std::size_t>(element) * stride, a, b);
 }
 
+bool PrecrackIndex::may_cross_within(const Point3& a, double reach) const {
+  if (elements_ == 0) return false;
+  for (int c = 0; c < 3; ++c)
+    if (a[c] + reach < low_[c] || a[c] - reach > high_[c]) return false;
+  return true;
+}
+
 bool PrecrackIndex::crosses(const Point3& a, const Point3& b) const {
   if (elements_ == 0) return false;
   std::array<std::int64_t, 3> first{}, last{};

@@ -32,6 +32,10 @@ class PrecrackIndex {
   PrecrackIndex(int dimension, const std::vector<double>& precrack_vertices, double cell_size);
 
   bool crosses(const Point3& a, const Point3& b) const;
+  // False when no bond from `a` of length up to `reach` can touch a pre-crack: the box of half-width
+  // `reach` around `a` misses the bounding box of all elements. A test per point that spares most
+  // points the test of each of their bonds: `crosses` is false for them too.
+  bool may_cross_within(const Point3& a, double reach) const;
   bool empty() const { return elements_ == 0; }
   std::size_t element_count() const { return elements_; }
 

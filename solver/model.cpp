@@ -34,6 +34,8 @@ bool mark_bonds_cut_by_precracks(const PointCloud& cloud, const PointData& p, Bo
     const auto i = static_cast<std::size_t>(s);
     Point3 a{0, 0, 0}, b{0, 0, 0};
     for (int c = 0; c < D; ++c) a[c] = p.position[i * D + c];
+    // Twice the horizon: every bond is shorter. Most points are far from every pre-crack.
+    if (!index.may_cross_within(a, 2 * horizon)) continue;
     for (std::int64_t k = f.offset[i]; k < f.offset[i + 1]; ++k) {
       // The same call (lower global id first, stored positions) from both ends gives the same
       // answer, so a bond is cut from both ends or from neither, on any process.
