@@ -35,7 +35,8 @@ constexpr double kViscoplasticity2d = 1.58, kViscoplasticity3d = 1.45;
 // (46 bonds per point, 8.37 ms per step: 16.73 s for 2000 steps) and the shear band (12 bonds per
 // point, 0.673 ms per step: workflows/accuracy-cost/estimates.md, its start-up taken off), on one
 // thread. A factor alone put the shear band at 0.62 of its time. 3-D has one measurement: its
-// factor holds both parts.
+// factor holds both parts. A run whose plastic flow spreads costs more per step as it goes, which
+// a scene does not tell: the whole shear band takes 0.98 ms per step (28.1 s, estimated 19.3 s).
 constexpr double kViscoplasticSecondsPerPoint2d = 91e-9;
 constexpr double kPoreFluid = 1.26;
 // The factor above holds the plate's quarter of a flow update per step; each further flow-rate
