@@ -72,9 +72,7 @@ double elastic_seconds_per_update(int dimension, bool micropolar) {
 
 RunCostEstimate estimate_run_cost(const RunCostInput& in) {
   RunCostEstimate e;
-  const bool micropolar = has(in.effects, "micropolar");
-  const double elastic = elastic_seconds_per_update(in.dimension, micropolar);
-  double update = elastic;
+  double update = elastic_seconds_per_update(in.dimension, has(in.effects, "micropolar"));
   if (has(in.effects, "damage")) update *= in.dimension == 3 ? kDamage3d : kDamage2d;
   if (has(in.effects, "viscoplasticity")) update *= in.dimension == 3 ? kViscoplasticity3d : kViscoplasticity2d;
   if (has(in.effects, "pore_fluid")) update *= kPoreFluid;

@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <exception>
 #include <functional>
 #include <vector>
 
 #include "solver/compiled_effects.hpp"
+#include "solver/parallel_policy.hpp"
 
 namespace mppm::solver {
 
@@ -73,25 +73,6 @@ PointData make_point_data(PointCloud&& cloud, const EffectSet& effects) {
 
 namespace {
 
-// Runs the fills side by side on the threads: the arrays' first writes (page faults and zeroing,
-// some hundred MB in a large 3-D model) were the whole of this phase. An exception (an allocation
-// that fails) cannot leave an OpenMP loop: it is kept and rethrown here, after the loop.
-void run_fills(const std::vector<std::function<void()>>& fills) {
-  const auto count = static_cast<std::int64_t>(fills.size());
-  std::vector<std::exception_ptr> failure(fills.size());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t j = 0; j < count; ++j) {
-    const auto u = static_cast<std::size_t>(j);
-    try {
-      fills[u]();
-    } catch (...) {
-      failure[u] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& f : failure)
-    if (f) std::rethrow_exception(f);
-}
-
 void allocate_state(PointData& p, const EffectSet& effects) {
   const int D = p.dimension;
   const int R = p.rotation_components;
@@ -134,7 +115,9 @@ void allocate_state(PointData& p, const EffectSet& effects) {
   }
   if (effects.pore_fluid)  // set by start_fluid (solver/pore_fluid.hpp)
     for (auto* v : {&p.pore_pressure, &p.fluid_content_change, &p.fluid_rate}) fill(*v, n);
-  run_fills(fills);
+  // The fills side by side on the threads: the arrays' first writes (page faults and zeroing, some
+  // hundred MB in a large 3-D model) were the whole of this phase.
+  run_tasks(fills);
 }
 
 }  // namespace
