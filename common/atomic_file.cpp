@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -62,17 +63,70 @@ void rename_temporary(const std::string& temporary, const std::string& path) {
   if (std::rename(temporary.c_str(), path.c_str()) != 0) fail_and_remove(temporary, path, std::strerror(errno));
 }
 
-void make_durable(const std::vector<std::string>& paths, const std::string& directory) {
+namespace {
+
+// sync_files, with `names[k]` the file a failure of `paths[k]` is reported as (a temporary is
+// reported as the file it stands for).
+void sync_named_files(const std::vector<std::string>& paths, const std::vector<std::string>& names) {
+  // Best effort: a file that cannot be opened here fails its fsync below, with the reason.
   for (const std::string& path : paths) {
     const int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd < 0) continue;
+    (void)::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
+    ::close(fd);
+  }
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const int fd = ::open(paths[k].c_str(), O_RDONLY);
     if (fd < 0 || ::fsync(fd) != 0) {
       const std::string why = std::strerror(errno);
       if (fd >= 0) ::close(fd);
-      throw InputError(path + ": cannot write the file to disk (" + why + ")");
+      throw InputError(names[k] + ": cannot write the file to disk (" + why + ")");
     }
     ::close(fd);
   }
+}
+
+}  // namespace
+
+void sync_files(const std::vector<std::string>& paths) { sync_named_files(paths, paths); }
+
+void make_durable(const std::vector<std::string>& paths, const std::string& directory) {
+  sync_files(paths);
   if (!paths.empty()) sync_directory(directory);
+}
+
+StagedFiles::~StagedFiles() {
+  std::error_code ignored;
+  for (const Staged& s : staged_) std::filesystem::remove(s.temporary, ignored);
+}
+
+void StagedFiles::stage(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  staged_.push_back(Staged{write_temporary(path, write), path});
+}
+
+void StagedFiles::commit(const std::vector<std::string>& also_durable,
+                         const std::vector<std::string>& also_directories) {
+  std::vector<std::string> files = also_durable, names = also_durable;
+  for (const Staged& s : staged_) {
+    files.push_back(s.temporary);
+    names.push_back(s.path);
+  }
+  sync_named_files(files, names);
+  for (const std::string& d : also_directories) sync_directory(d);
+  const std::vector<Staged> to_rename = std::move(staged_);
+  staged_.clear();
+  for (std::size_t k = 0; k < to_rename.size(); ++k) {
+    // Every file before the last is on disk under its name before the last is renamed.
+    if (k + 1 == to_rename.size() && k > 0) sync_directory(parent_of(to_rename[k].path));
+    try {
+      rename_temporary(to_rename[k].temporary, to_rename[k].path);
+    } catch (...) {
+      staged_.assign(to_rename.begin() + static_cast<std::ptrdiff_t>(k) + 1,
+                     to_rename.end());  // removed by ~StagedFiles
+      throw;
+    }
+  }
+  if (!to_rename.empty()) sync_directory(parent_of(to_rename.back().path));
 }
 
 std::string write_temporary(const std::string& path, const std::function<void(std::ostream&)>& write) {

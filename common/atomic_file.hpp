@@ -31,8 +31,40 @@ void rename_temporary(const std::string& temporary, const std::string& path);
 
 // fsyncs the files (complete under their names: rename_temporary) and then their directory
 // `directory`, so that after a crash of the machine they are on disk under their names. One
-// journal commit serves them all: a batch of snapshots costs about what one did. Throws
-// InputError naming the first file that fails.
+// journal commit serves them all (sync_files): a batch of snapshots costs about what one did.
+// Throws InputError naming the first file that fails.
 void make_durable(const std::vector<std::string>& paths, const std::string& directory);
+
+// fsyncs the files as one batch: the writeback of every file is started first, so that the first
+// fsync's journal commit carries them all and the others only wait for their data (six small
+// files: 2-13 ms against 10-32 ms one by one, write-fsync-rename-fsync, on the development VM).
+// Throws InputError naming the first file that fails.
+void sync_files(const std::vector<std::string>& paths);
+
+// Files rewritten together (the run files after a snapshot): stage() writes each to its temporary;
+// commit() makes them durable in one batch (sync_files), renames them in the order staged, and
+// syncs the directory before the last rename, so that the last file (run_info.json) never names a
+// state the others have not reached, even after a crash of the machine. A temporary not committed
+// is removed when the batch ends (a write error, an exception in between).
+class StagedFiles {
+ public:
+  StagedFiles() = default;
+  StagedFiles(const StagedFiles&) = delete;
+  StagedFiles& operator=(const StagedFiles&) = delete;
+  ~StagedFiles();
+
+  // Throws InputError as write_file_atomically does (the staged temporaries are removed then).
+  void stage(const std::string& path, const std::function<void(std::ostream&)>& write);
+  // `also_durable`: files already complete under their names (snapshots, rename_temporary), made
+  // durable in the same batch, with their directories `also_directories` synced before the last
+  // rename. Throws InputError naming the file that fails; nothing is renamed then.
+  void commit(const std::vector<std::string>& also_durable = {}, const std::vector<std::string>& also_directories = {});
+
+ private:
+  struct Staged {
+    std::string temporary, path;
+  };
+  std::vector<Staged> staged_;
+};
 
 }  // namespace mppm

@@ -91,7 +91,9 @@ std::string RunWriter::write_resolved_scene(const Scene& scene,
                                             const std::vector<std::pair<std::string, double>>& derived) {
   std::string text = resolved_scene_yaml(scene, derived);
   if (silent_) return text;
-  write_file_atomically(path(run_layout::resolved_scene), [&](std::ostream& out) { out << text; });
+  const std::string target = path(run_layout::resolved_scene);
+  rename_temporary(write_temporary(target, [&](std::ostream& out) { out << text; }), target);
+  not_yet_durable_files_.push_back(target);
   return text;
 }
 
@@ -119,7 +121,9 @@ std::vector<SnapshotFieldSource> reference_fields(const PointData& p) {
 void RunWriter::write_reference(int dimension, std::uint64_t point_count,
                                 const std::vector<SnapshotFieldSource>& fields) {
   if (silent_) return;
-  mppm::write_snapshot(dimension, 0, 0.0, point_count, fields, path(run_layout::reference));
+  const std::string target = path(run_layout::reference);
+  rename_temporary(mppm::write_snapshot_temporary(dimension, 0, 0.0, point_count, fields, target), target);
+  not_yet_durable_files_.push_back(target);
 }
 
 void RunWriter::write_snapshot(int dimension, std::int64_t step, double time, std::uint64_t point_count,
@@ -129,15 +133,6 @@ void RunWriter::write_snapshot(int dimension, std::int64_t step, double time, st
   const std::string target = path(file);
   rename_temporary(mppm::write_snapshot_temporary(dimension, step, time, point_count, fields, target), target);
   not_yet_durable_.push_back(SnapshotRecord{file, step, time});
-}
-
-void RunWriter::make_snapshots_durable() {
-  if (not_yet_durable_.empty()) return;
-  std::vector<std::string> files;
-  for (const SnapshotRecord& r : not_yet_durable_) files.push_back(path(r.file));
-  make_durable(files, path(run_layout::snapshot_dir));
-  snapshots_.insert(snapshots_.end(), not_yet_durable_.begin(), not_yet_durable_.end());
-  not_yet_durable_.clear();
 }
 
 void RunWriter::set_load_header(const std::vector<std::string>& columns, bool pore_fluid) {
@@ -171,12 +166,17 @@ void RunWriter::add_crack_path_row(std::uint64_t point, const std::array<double,
 
 void RunWriter::flush(const RunInfo& info) {
   if (silent_) return;
-  make_snapshots_durable();
-  write_file_atomically(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
-  write_file_atomically(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
-  write_file_atomically(path(run_layout::log), [&](std::ostream& out) { out << log_; });
-  if (crack_path_csv_)
-    write_file_atomically(path(run_layout::crack_path), [&](std::ostream& out) { out << *crack_path_csv_; });
+  StagedFiles files;
+  files.stage(path(run_layout::load), [&](std::ostream& out) { out << load_csv_; });
+  files.stage(path(run_layout::energy), [&](std::ostream& out) { out << energy_csv_; });
+  files.stage(path(run_layout::log), [&](std::ostream& out) { out << log_; });
+  if (crack_path_csv_) files.stage(path(run_layout::crack_path), [&](std::ostream& out) { out << *crack_path_csv_; });
+  // The snapshots since the last flush join run_info.json's list, made durable in this batch with
+  // the files complete under their names since then; kept as they were if the batch fails.
+  std::vector<SnapshotRecord> listed = snapshots_;
+  listed.insert(listed.end(), not_yet_durable_.begin(), not_yet_durable_.end());
+  std::vector<std::string> complete_files = not_yet_durable_files_;
+  for (const SnapshotRecord& r : not_yet_durable_) complete_files.push_back(path(r.file));
   std::string j = "{\n";
   j += "  \"status\": " + json_quote(info.status) + ",\n";
   j += "  \"message\": " + json_quote(info.message) + ",\n";
@@ -209,13 +209,17 @@ void RunWriter::flush(const RunInfo& info) {
     if (info.flow->follows_saturation) j += "  \"flow_follows_saturation\": true,\n";
   }
   j += "  \"snapshots\": [";
-  for (std::size_t k = 0; k < snapshots_.size(); ++k)
-    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_quote(snapshots_[k].file) +
-         ", \"step\": " + std::to_string(snapshots_[k].step) + ", \"time_s\": " + format_number(snapshots_[k].time) +
-         "}";
-  j += snapshots_.empty() ? "],\n" : "\n  ],\n";
+  for (std::size_t k = 0; k < listed.size(); ++k)
+    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_quote(listed[k].file) +
+         ", \"step\": " + std::to_string(listed[k].step) + ", \"time_s\": " + format_number(listed[k].time) + "}";
+  j += listed.empty() ? "],\n" : "\n  ],\n";
   j += "  \"detached_points\": " + std::to_string(info.detached_points) + "\n}\n";
-  write_file_atomically(path(run_layout::run_info), [&](std::ostream& out) { out << j; });
+  files.stage(path(run_layout::run_info), [&](std::ostream& out) { out << j; });
+  const std::vector<std::string> snapshot_directory{path(run_layout::snapshot_dir)};
+  files.commit(complete_files, not_yet_durable_.empty() ? std::vector<std::string>{} : snapshot_directory);
+  snapshots_ = std::move(listed);
+  not_yet_durable_.clear();
+  not_yet_durable_files_.clear();
 }
 
 }  // namespace mppm::solver

@@ -3,8 +3,10 @@
 // with damage crack_path.csv (common/crack_path.hpp).
 // Tables and the log are kept in memory and rewritten atomically (flush) after snapshots, at most
 // once a second of wall time, and at checkpoints, stops and the end (solve_run.cpp), so no file is
-// ever half-written under its final name. A snapshot is renamed to its name as soon as it is
-// written, and made durable (fsync) in a batch by the next flush, before run_info.json lists it.
+// ever half-written under its final name. A snapshot (and the resolved scene and the reference) is
+// renamed to its name as soon as it is written, and made durable (fsync) in a batch by the next
+// flush, before run_info.json lists it: one flush is one batch of fsyncs (common/atomic_file.hpp,
+// StagedFiles), whatever the number of files.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -94,8 +96,10 @@ class RunWriter {
   void add_crack_path_row(std::uint64_t point, const std::array<double, 3>& position, double time);
   std::size_t crack_path_rows() const { return crack_path_rows_; }
 
-  // Makes the snapshots written since the last flush durable, then rewrites load.csv, energy.csv,
-  // log.txt and run_info.json (each atomically). Throws InputError naming a file that fails.
+  // Rewrites load.csv, energy.csv, log.txt, crack_path.csv and run_info.json, each atomically, in
+  // one batch (StagedFiles) that also makes the files written since the last flush durable;
+  // run_info.json is renamed last, once the others are on disk. Throws InputError naming a file
+  // that fails; the files of the last flush stay then.
   void flush(const RunInfo& info);
 
   // The tables and the snapshot list so far (what a checkpoint records of them, after a flush) and
@@ -124,7 +128,9 @@ class RunWriter {
   std::vector<SnapshotRecord> snapshots_;
   // Snapshots complete under their names but not yet fsynced (listed after the next flush).
   std::vector<SnapshotRecord> not_yet_durable_;
-  void make_snapshots_durable();
+  // The resolved scene and the reference, complete under their names but not yet fsynced (made
+  // durable by the first flush, which a new run makes at its first step's snapshot).
+  std::vector<std::string> not_yet_durable_files_;
 };
 
 // The reference configuration's fields (run_layout::reference): position (3 components), volume,

@@ -149,5 +149,62 @@ TEST(AtomicFile, MissingDirectoryIsAnInputErrorNamingTheFile) {
   }
 }
 
+// The run files after a snapshot are rewritten as one batch: all complete under their names
+// after commit, none changed when any of them fails, and no temporary left either way.
+TEST(StagedFiles, CommitRenamesEveryFileAndLeavesNoTemporary) {
+  const std::string dir = scratch("staged");
+  const std::vector<std::string> names{"load.csv", "log.txt", "run_info.json"};
+  for (int round = 0; round < 2; ++round) {
+    StagedFiles files;
+    for (const std::string& name : names)
+      files.stage(dir + "/" + name, [&](std::ostream& out) { out << name << ' ' << round << '\n'; });
+    for (const std::string& name : names)  // staged, not yet renamed: the previous round's files
+      EXPECT_EQ(contents(dir + "/" + name), round ? name + " 0\n" : "") << name;
+    files.commit();
+  }
+  for (const std::string& name : names) EXPECT_EQ(contents(dir + "/" + name), name + " 1\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
+}
+
+TEST(StagedFiles, AFailedWriteChangesNoFileOfTheBatch) {
+  const std::string dir = scratch("staged_failure");
+  const std::string table = dir + "/load.csv", info = dir + "/run_info.json";
+  write_file_atomically(table, [](std::ostream& out) { out << "old table\n"; });
+  write_file_atomically(info, [](std::ostream& out) { out << "old info\n"; });
+  std::string message;
+  {
+    StagedFiles files;
+    files.stage(table, [](std::ostream& out) { out << "new table\n"; });
+    FileSizeLimit limit(64 * 1024);
+    try {
+      files.stage(info, [](std::ostream& out) { out << std::string(1 << 20, 'n'); });
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+  }  // the batch ends uncommitted: its first temporary is removed
+  EXPECT_NE(message.find(info), std::string::npos) << message;
+  EXPECT_EQ(contents(table), "old table\n");
+  EXPECT_EQ(contents(info), "old info\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+}
+
+TEST(StagedFiles, AFileThatCannotBeMadeDurableStopsTheCommitBeforeAnyRename) {
+  const std::string dir = scratch("staged_missing");
+  const std::string info = dir + "/run_info.json", gone = dir + "/snapshot_000010.snap";
+  std::string message;
+  {
+    StagedFiles files;
+    files.stage(info, [](std::ostream& out) { out << "lists the snapshot\n"; });
+    try {
+      files.commit({gone});
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+  }
+  EXPECT_NE(message.find(gone), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(info)) << "run_info.json names a snapshot that is not on disk";
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 0);
+}
+
 }  // namespace
 }  // namespace mppm
