@@ -238,8 +238,9 @@ void check_movie_field(const std::string& field, const FirstSnapshot& first) {
   throw InputError("--movie: the run has no field '" + field + "' (available: " + available + ")");
 }
 
-// Creates (or with --force replaces) the post directory and its results/ folder.
-void prepare_post_directory(const PostprocessOptions& options) {
+// Creates (or with --force replaces) the post directory and its results/ folder; the earlier
+// post directory is deleted beside the stage (keep the returned object while it runs).
+EarlierOutputRemoval prepare_post_directory(const PostprocessOptions& options) {
   const fs::path post(options.output_directory);
   std::error_code ec;
   // --force replaces the whole directory: it must not hold the run being read.
@@ -253,11 +254,12 @@ void prepare_post_directory(const PostprocessOptions& options) {
       std::mismatch(post_path.begin(), post_path.end(), run_path.begin(), run_path.end()).first == post_path.end())
     throw InputError(options.output_directory + ": the post directory must not be (or contain) the run directory " +
                      options.run_directory);
-  prepare_output_directory(
+  EarlierOutputRemoval earlier = prepare_output_directory(
       options.output_directory, options.force,
       {"post directory", "-o POST_DIR", {"results.pvd", "summary.json", "load_curve.csv", kVtuDirectory}});
   fs::create_directories(post / kVtuDirectory, ec);
   if (ec) throw InputError(options.output_directory + ": cannot create the output directory (" + ec.message() + ")");
+  return earlier;
 }
 
 // Reference positions and tags of the points, for the metrics.
@@ -704,7 +706,7 @@ PostprocessResult postprocess_run(const PostprocessOptions& options) {
   const PointGeometry points = point_geometry(run.reference);
   const bool has_damage = first.snapshot.find("damage") != nullptr;
   check_crack_angle_options(options.crack_angle, run, points, has_damage);
-  prepare_post_directory(options);
+  const EarlierOutputRemoval earlier_output = prepare_post_directory(options);
   const fs::path post(options.output_directory);
 
   const bool crack_data = has_damage || crack_table.has_value();  // damage snapshots or the table

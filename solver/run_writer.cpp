@@ -72,7 +72,7 @@ RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(d
                                  "-o RUN_DIR",
                                  {run_layout::run_info, run_layout::resolved_scene, run_layout::reference,
                                   run_layout::log, run_layout::snapshot_dir}};
-  prepare_output_directory(directory_, force, kind);
+  earlier_output_.emplace(prepare_output_directory(directory_, force, kind));
   std::error_code ec;
   fs::create_directories(fs::path(directory_) / run_layout::snapshot_dir, ec);
   if (ec) throw InputError(directory_ + ": cannot create the run directory (" + ec.message() + ")");

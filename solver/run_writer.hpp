@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/output_directory.hpp"
 #include "common/scene.hpp"
 #include "common/snapshot_file.hpp"
 #include "solver/partition_summary.hpp"
@@ -121,6 +122,8 @@ class RunWriter {
 
  private:
   std::string directory_;
+  // The run directory replaced by --force, deleted beside the run (waited for by the destructor).
+  std::optional<EarlierOutputRemoval> earlier_output_;
   bool silent_ = false;
   std::string load_csv_, energy_csv_, log_;
   std::optional<std::string> crack_path_csv_;  // damage runs only

@@ -1,5 +1,6 @@
 // prepare_output_directory (common/output_directory.hpp): create, refuse without --force,
-// replace as a whole with it, and never delete a directory that is not an earlier output.
+// replace as a whole with it (the earlier output deleted beside the stage, EarlierOutputRemoval),
+// and never delete a directory that is not an earlier output.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -29,7 +30,7 @@ void touch(const fs::path& path) {
 
 std::string message_of(const std::string& dir, bool force) {
   try {
-    prepare_output_directory(dir, force, kRun);
+    const EarlierOutputRemoval removal = prepare_output_directory(dir, force, kRun);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -38,9 +39,10 @@ std::string message_of(const std::string& dir, bool force) {
 
 TEST(OutputDirectory, MissingOrEmptyDirectoryIsCreatedOrKept) {
   const std::string dir = scratch("fresh") + "/nested/run";
-  prepare_output_directory(dir, false, kRun);
+  EarlierOutputRemoval none = prepare_output_directory(dir, false, kRun);
   EXPECT_TRUE(fs::is_directory(dir));
-  prepare_output_directory(dir, false, kRun);  // empty: no --force needed
+  EXPECT_EQ(none.wait(), "");
+  const EarlierOutputRemoval still_none = prepare_output_directory(dir, false, kRun);  // empty: no --force needed
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
@@ -59,9 +61,12 @@ TEST(OutputDirectory, ForceReplacesAnEarlierOutputAsAWhole) {
     touch(fs::path(dir) / "run_info.json");
     touch(fs::path(dir) / "snapshots" / "snapshot_000099.snap");
     touch(fs::path(dir) / "anything_else.txt");
-    prepare_output_directory(dir + suffix, true, kRun);
+    EarlierOutputRemoval removal = prepare_output_directory(dir + suffix, true, kRun);
+    // Under its name at once: an empty directory (the earlier output moved aside) ...
     EXPECT_TRUE(fs::is_directory(dir)) << suffix;
     EXPECT_TRUE(fs::is_empty(dir)) << suffix;
+    // ... and once the deletion beside the stage has ended, nothing of it anywhere.
+    EXPECT_EQ(removal.wait(), "") << suffix;
     for (const auto& entry : fs::directory_iterator(fs::path(dir).parent_path()))
       EXPECT_EQ(entry.path().filename().string().find(".replaced-"), std::string::npos) << entry.path();
   }
