@@ -65,6 +65,48 @@ double start_up_total(const std::vector<PhaseTimer::Phase>& phases) {
   return total;
 }
 
+// run_info.json (docs/stages.md) with `listed` as its snapshots.
+std::string run_info_json(const RunInfo& info, const std::vector<RunWriter::SnapshotRecord>& listed) {
+  std::string j = "{\n";
+  j += "  \"status\": " + json_quote(info.status) + ",\n";
+  j += "  \"message\": " + json_quote(info.message) + ",\n";
+  j += "  \"points\": " + std::to_string(info.points) + ",\n";
+  j += "  \"bonds\": " + std::to_string(info.bonds) + ",\n";
+  j += "  \"steps\": " + std::to_string(info.steps) + ",\n";
+  j += "  \"time_s\": " + format_number(info.time) + ",\n";
+  j += "  \"wall_seconds\": " + format_number(info.wall_seconds) + ",\n";
+  j += "  \"loop_wall_seconds\": " + format_number(info.loop_wall_seconds) + ",\n";
+  j += "  \"start_up_seconds\": " + start_up_json(info.start_up) + ",\n";
+  j += "  \"start_up_total_seconds\": " + format_number(start_up_total(info.start_up)) + ",\n";
+  j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
+  j += "  \"processes\": " + std::to_string(info.partition ? info.partition->points.size() : 1) + ",\n";
+  if (info.partition) j += "  \"partition\": " + partition_json(*info.partition) + ",\n";
+  j += "  \"effects\": [";
+  for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_quote(info.effects[k]);
+  j += "],\n";
+  j += "  \"dimension\": " + std::to_string(info.dimension) + ",\n";
+  j += "  \"time_step_s\": " + format_number(info.time_step) + ",\n";
+  j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
+  j += "  \"largest_time_step_s\": " + format_number(info.largest_time_step) + ",\n";
+  j += "  \"critical_step_estimate\": " + json_quote(info.critical_step_estimate) + ",\n";
+  j += "  \"limiting_mode\": " + json_quote(info.limiting_mode) + ",\n";
+  if (info.flow) {
+    j += "  \"fluid_time_step_s\": " + format_number(info.flow->fluid_step) + ",\n";
+    j += "  \"flow_update_interval_steps\": " + std::to_string(info.flow->interval) + ",\n";
+    j += "  \"flow_substeps\": " + std::to_string(info.flow->substeps) + ",\n";
+    j += "  \"flow_rkl2_stages\": " + std::to_string(info.flow->stages > 1 ? info.flow->stages : 0) + ",\n";
+    // Unsaturated: the schedule above is the start's; it is chosen again before every update.
+    if (info.flow->follows_saturation) j += "  \"flow_follows_saturation\": true,\n";
+  }
+  j += "  \"snapshots\": [";
+  for (std::size_t k = 0; k < listed.size(); ++k)
+    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_quote(listed[k].file) +
+         ", \"step\": " + std::to_string(listed[k].step) + ", \"time_s\": " + format_number(listed[k].time) + "}";
+  j += listed.empty() ? "],\n" : "\n  ],\n";
+  j += "  \"detached_points\": " + std::to_string(info.detached_points) + "\n}\n";
+  return j;
+}
+
 }  // namespace
 
 RunWriter::RunWriter(std::string directory, bool force) : directory_(std::move(directory)) {
@@ -177,44 +219,7 @@ void RunWriter::flush(const RunInfo& info) {
   listed.insert(listed.end(), not_yet_durable_.begin(), not_yet_durable_.end());
   std::vector<std::string> complete_files = not_yet_durable_files_;
   for (const SnapshotRecord& r : not_yet_durable_) complete_files.push_back(path(r.file));
-  std::string j = "{\n";
-  j += "  \"status\": " + json_quote(info.status) + ",\n";
-  j += "  \"message\": " + json_quote(info.message) + ",\n";
-  j += "  \"points\": " + std::to_string(info.points) + ",\n";
-  j += "  \"bonds\": " + std::to_string(info.bonds) + ",\n";
-  j += "  \"steps\": " + std::to_string(info.steps) + ",\n";
-  j += "  \"time_s\": " + format_number(info.time) + ",\n";
-  j += "  \"wall_seconds\": " + format_number(info.wall_seconds) + ",\n";
-  j += "  \"loop_wall_seconds\": " + format_number(info.loop_wall_seconds) + ",\n";
-  j += "  \"start_up_seconds\": " + start_up_json(info.start_up) + ",\n";
-  j += "  \"start_up_total_seconds\": " + format_number(start_up_total(info.start_up)) + ",\n";
-  j += "  \"threads\": " + std::to_string(info.threads) + ",\n";
-  j += "  \"processes\": " + std::to_string(info.partition ? info.partition->points.size() : 1) + ",\n";
-  if (info.partition) j += "  \"partition\": " + partition_json(*info.partition) + ",\n";
-  j += "  \"effects\": [";
-  for (std::size_t k = 0; k < info.effects.size(); ++k) j += (k ? ", " : "") + json_quote(info.effects[k]);
-  j += "],\n";
-  j += "  \"dimension\": " + std::to_string(info.dimension) + ",\n";
-  j += "  \"time_step_s\": " + format_number(info.time_step) + ",\n";
-  j += "  \"critical_time_step_s\": " + format_number(info.critical_time_step) + ",\n";
-  j += "  \"largest_time_step_s\": " + format_number(info.largest_time_step) + ",\n";
-  j += "  \"critical_step_estimate\": " + json_quote(info.critical_step_estimate) + ",\n";
-  j += "  \"limiting_mode\": " + json_quote(info.limiting_mode) + ",\n";
-  if (info.flow) {
-    j += "  \"fluid_time_step_s\": " + format_number(info.flow->fluid_step) + ",\n";
-    j += "  \"flow_update_interval_steps\": " + std::to_string(info.flow->interval) + ",\n";
-    j += "  \"flow_substeps\": " + std::to_string(info.flow->substeps) + ",\n";
-    j += "  \"flow_rkl2_stages\": " + std::to_string(info.flow->stages > 1 ? info.flow->stages : 0) + ",\n";
-    // Unsaturated: the schedule above is the start's; it is chosen again before every update.
-    if (info.flow->follows_saturation) j += "  \"flow_follows_saturation\": true,\n";
-  }
-  j += "  \"snapshots\": [";
-  for (std::size_t k = 0; k < listed.size(); ++k)
-    j += std::string(k ? "," : "") + "\n    {\"file\": " + json_quote(listed[k].file) +
-         ", \"step\": " + std::to_string(listed[k].step) + ", \"time_s\": " + format_number(listed[k].time) + "}";
-  j += listed.empty() ? "],\n" : "\n  ],\n";
-  j += "  \"detached_points\": " + std::to_string(info.detached_points) + "\n}\n";
-  files.stage(path(run_layout::run_info), [&](std::ostream& out) { out << j; });
+  files.stage(path(run_layout::run_info), [&](std::ostream& out) { out << run_info_json(info, listed); });
   const std::vector<std::string> snapshot_directory{path(run_layout::snapshot_dir)};
   files.commit(complete_files, not_yet_durable_.empty() ? std::vector<std::string>{} : snapshot_directory);
   snapshots_ = std::move(listed);
