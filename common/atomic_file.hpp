@@ -37,8 +37,9 @@ void make_durable(const std::vector<std::string>& paths, const std::string& dire
 
 // fsyncs the files as one batch: the writeback of every file is started first, so that the first
 // fsync's journal commit carries them all and the others only wait for their data (six small
-// files: 2-13 ms against 10-32 ms one by one, write-fsync-rename-fsync, on the development VM).
-// Throws InputError naming the first file that fails.
+// files on the development VM, idle, 8 rounds: 2.4-4.5 ms, against 4.2-12.1 ms written, fsynced,
+// renamed and their directory fsynced one by one). Throws InputError naming the first file that
+// fails.
 void sync_files(const std::vector<std::string>& paths);
 
 // Files rewritten together (the run files after a snapshot): stage() writes each to its temporary;
