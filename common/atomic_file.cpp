@@ -65,8 +65,8 @@ void rename_temporary(const std::string& temporary, const std::string& path) {
 
 namespace {
 
-// sync_files, with `names[k]` the file a failure of `paths[k]` is reported as (a temporary is
-// reported as the file it stands for).
+// fsyncs the files as one batch (StagedFiles::commit), with `names[k]` the file a failure of
+// `paths[k]` is reported as (a temporary is reported as the file it stands for).
 void sync_named_files(const std::vector<std::string>& paths, const std::vector<std::string>& names) {
   // Best effort: a file that cannot be opened here fails its fsync below, with the reason.
   for (const std::string& path : paths) {
@@ -87,13 +87,6 @@ void sync_named_files(const std::vector<std::string>& paths, const std::vector<s
 }
 
 }  // namespace
-
-void sync_files(const std::vector<std::string>& paths) { sync_named_files(paths, paths); }
-
-void make_durable(const std::vector<std::string>& paths, const std::string& directory) {
-  sync_files(paths);
-  if (!paths.empty()) sync_directory(directory);
-}
 
 StagedFiles::~StagedFiles() {
   std::error_code ignored;

@@ -25,26 +25,13 @@ std::string temporary_name_for(const std::string& path);
 void commit_temporary(const std::string& temporary, const std::string& path);
 
 // Renames `temporary` onto `path` without waiting for the disk: the file is complete under its
-// name for every process at once (the rename is atomic), and durable after make_durable. Throws
-// InputError on failure, with the temporary removed.
+// name for every process at once (the rename is atomic), and durable after a StagedFiles commit
+// that names it (also_durable). Throws InputError on failure, with the temporary removed.
 void rename_temporary(const std::string& temporary, const std::string& path);
 
-// fsyncs the files (complete under their names: rename_temporary) and then their directory
-// `directory`, so that after a crash of the machine they are on disk under their names. One
-// journal commit serves them all (sync_files): a batch of snapshots costs about what one did.
-// Throws InputError naming the first file that fails.
-void make_durable(const std::vector<std::string>& paths, const std::string& directory);
-
-// fsyncs the files as one batch: the writeback of every file is started first, so that the first
-// fsync's journal commit carries them all and the others only wait for their data (six small
-// files on the development VM, idle, 8 rounds: 2.4-4.5 ms, against 4.2-12.1 ms written, fsynced,
-// renamed and their directory fsynced one by one). Throws InputError naming the first file that
-// fails.
-void sync_files(const std::vector<std::string>& paths);
-
 // Files rewritten together (the run files after a snapshot): stage() writes each to its temporary;
-// commit() makes them durable in one batch (sync_files), renames them in the order staged, and
-// syncs the directory before the last rename, so that the last file (run_info.json) never names a
+// commit() makes them durable in one batch, renames them in the order staged, and syncs the
+// directory before the last rename, so that the last file (run_info.json) never names a
 // state the others have not reached, even after a crash of the machine. A temporary not committed
 // is removed when the batch ends (a write error, an exception in between).
 class StagedFiles {
@@ -56,6 +43,10 @@ class StagedFiles {
 
   // Throws InputError as write_file_atomically does (the staged temporaries are removed then).
   void stage(const std::string& path, const std::function<void(std::ostream&)>& write);
+  // The batch: the writeback of every file is started first, so that the first fsync's journal
+  // commit carries them all and the others only wait for their data (six small files on the
+  // development VM, idle, 8 rounds: 2.4-4.5 ms, against 4.2-12.1 ms written, fsynced, renamed and
+  // their directory fsynced one by one).
   // `also_durable`: files already complete under their names (snapshots, rename_temporary), made
   // durable in the same batch, with their directories `also_directories` synced before the last
   // rename. Throws InputError naming the file that fails; nothing is renamed then.
