@@ -18,8 +18,11 @@ struct LatticeGrid {
   std::int64_t size() const { return count[0] * count[1] * count[2]; }
   std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const { return (k * count[1] + j) * count[0] + i; }
   double coordinate(int axis, std::int64_t i) const { return origin[axis] + static_cast<double>(i) * spacing; }
+  std::array<std::int64_t, 3> site(std::int64_t flat) const {
+    return {flat % count[0], (flat / count[0]) % count[1], flat / (count[0] * count[1])};
+  }
   Vec3 position(std::int64_t flat) const {
-    const std::int64_t i = flat % count[0], j = (flat / count[0]) % count[1], k = flat / (count[0] * count[1]);
+    const auto [i, j, k] = site(flat);
     return {coordinate(0, i), coordinate(1, j), dimension == 2 ? 0.0 : coordinate(2, k)};
   }
 };

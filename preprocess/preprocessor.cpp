@@ -19,6 +19,7 @@
 #include "preprocess/geometry_model.hpp"
 #include "preprocess/inside_test.hpp"
 #include "preprocess/lattice.hpp"
+#include "preprocess/site_order.hpp"
 
 namespace mppm::pre {
 namespace {
@@ -228,9 +229,10 @@ std::int64_t count_points_per_region(const Scene& scene, const GeometryModel& mo
   return total;
 }
 
-// Body points first (lattice order), then each layer k in turn: the solver finds the body
-// as a prefix and every layer as a contiguous block. Loaded body points carry their
-// boundary's id and the normal of their nearest facet; each boundary counts its points.
+// Body points first, then each layer k in turn: the solver finds the body as a prefix and every
+// layer as a contiguous block. Within each, the points follow the Z-order curve through their
+// sites (site_order.hpp: neighbours near in memory). Loaded body points carry their boundary's id
+// and the normal of their nearest facet; each boundary counts its points.
 void place_points(PointCloud& cloud, const LatticeGrid& grid, const std::vector<std::uint8_t>& inside,
                   const LayerTags& layers, const LayerTags& tractions, const FacetMesh& boundary,
                   const std::vector<std::int64_t>& points_per_region, std::int64_t total) {
@@ -241,9 +243,11 @@ void place_points(PointCloud& cloud, const LatticeGrid& grid, const std::vector<
   std::vector<std::int64_t> next(nb + 1, 0);
   for (std::size_t r = 1; r <= nb; ++r) next[r] = next[r - 1] + points_per_region[r - 1];
   cloud.boundaries.resize(nb);
-  for (std::size_t g = 0; g < inside.size(); ++g) {
+  std::vector<std::uint8_t> occupied(inside.size());
+  for (std::size_t g = 0; g < inside.size(); ++g) occupied[g] = inside[g] || layers.boundary[g] != 0;
+  for (const std::int64_t site : sites_in_z_order(grid, occupied)) {
+    const auto g = static_cast<std::size_t>(site);
     const std::int32_t region = inside[g] ? 0 : layers.boundary[g];
-    if (!inside[g] && region == 0) continue;
     const auto i = static_cast<std::size_t>(next[static_cast<std::size_t>(region)]++);
     const Vec3 p = grid.position(static_cast<std::int64_t>(g));
     cloud.x[i] = p[0];

@@ -51,8 +51,8 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
         found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
       });
       // By global id: a distributed run's process then sums each point's bonds in the order of the
-      // single process (its local indices put the ghosts after the owned points). On a lattice
-      // numbered site by site the search finds them in that order already.
+      // single process (its local indices put the ghosts after the owned points). A lattice's
+      // search finds them by offset, in index order only where the points are numbered row by row.
       if (p.global_id.empty()) {
         const auto by_index = [](const auto& a, const auto& b) { return a.first < b.first; };
         if (!std::is_sorted(found.begin(), found.end(), by_index)) std::sort(found.begin(), found.end(), by_index);

@@ -8,6 +8,7 @@ mppm_add_gtest(test_preprocess unit
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_fluid_layers.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_precrack.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_boundary.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/unit/test_preprocess_site_order.cpp
 )
 target_include_directories(test_preprocess PRIVATE ${CMAKE_CURRENT_LIST_DIR}/unit)
 

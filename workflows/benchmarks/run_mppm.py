@@ -104,7 +104,13 @@ def run(command, what):
 
 
 def preprocess(args, scene, points, extra_sets):
-    if os.path.exists(points):
+    """The points file of the scene, made again when the preprocessor or a file of the scene's folder
+    (the scene, its geometry) is newer than it: a points file of an earlier preprocessor may number
+    its points otherwise (a slower run) or lack what the solver now reads."""
+    binary = os.path.join(args.bin, "mppm-preprocess")
+    folder = os.path.dirname(os.path.abspath(scene))
+    inputs = [binary] + [os.path.join(folder, name) for name in os.listdir(folder)]
+    if os.path.exists(points) and os.path.getmtime(points) >= max(os.path.getmtime(path) for path in inputs):
         return
     os.makedirs(os.path.dirname(points), exist_ok=True)
     # mppm-preprocess writes its file atomically: a points file is there only when complete.
