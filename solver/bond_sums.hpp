@@ -89,6 +89,11 @@ template <int K>
   return _mm256_permute4x64_pd(v, K * 0x55);
 }
 
+// The fourth lanes of r0, r1, r2 in lanes 0-2 (lane 3: r2's again).
+[[gnu::always_inline]] inline __m256d fourth_lanes(__m256d r0, __m256d r1, __m256d r2) {
+  const __m256d high01 = _mm256_unpackhi_pd(r0, r1);  // r0_1 r1_1 r0_3 r1_3
+  return _mm256_permute2f128_pd(high01, _mm256_permute4x64_pd(r2, 0xFF), 0x31);
+}
 // 3-D, a bond's components as vector lanes. The scalar loop's operations per component:
 // xi = pos_j - pos_i (or stored), U = (u_j - u_i) - [wm_1 xi_2 - wm_2 xi_1, ...] with wm = 1/2 (w_i + w_j)
 // (composite_state: fma(wm_1, xi_2, -(wm_2 xi_1)) and its cyclic permutations), vu = V_j U,
@@ -104,17 +109,24 @@ template <class Effects, bool StoredXi>
   const double* __restrict xis = f.xi.data();
   const double* __restrict pos = p.position.data();
   const std::int32_t* __restrict nb = f.neighbor.data();
-  const __m256d pos_i = load3(pos + i * 3), ui = load3(u + i * 3);
+  // xi's fourth lane is 1 (pos_i's is -1, a neighbour's position loads with 0 there), so that the
+  // fourth lane of row r of S, fma(vu_r, 1, .), sums s_r exactly as s_r + vu_r does, and that of
+  // row r of Sk sums sw_r: two accumulators fewer, which keeps the others in registers (with them
+  // the compiler kept some on the stack, a store and a load per bond).
+  const __m256d fourth_lane_one = _mm256_set_pd(1.0, 0.0, 0.0, 0.0);
+  const __m256d pos_i = _mm256_blend_pd(load3(pos + i * 3), _mm256_set_pd(-1.0, 0.0, 0.0, 0.0), 0x8);
+  const __m256d ui = load3(u + i * 3);
   const __m256d wi = polar ? load3(w + i * 3) : _mm256_setzero_pd();
   const __m256d half = _mm256_set1_pd(0.5);
-  __m256d S0 = _mm256_setzero_pd(), S1 = S0, S2 = S0, s = S0, m = S0;
-  __m256d K0 = S0, K1 = S0, K2 = S0, sw = S0;
+  __m256d S0 = _mm256_setzero_pd(), S1 = S0, S2 = S0, m = S0;
+  __m256d K0 = S0, K1 = S0, K2 = S0;
   for (std::int64_t b = f.offset[i]; b < f.offset[i + 1]; ++b) {
     const std::int32_t entry = nb[b];
     if constexpr (Effects::damage)
       if (entry < 0) continue;  // broken (BondFamilies::kBrokenBit)
     const auto j = static_cast<std::size_t>(entry);
-    const __m256d xi = StoredXi ? load3(xis + b * 3) : _mm256_sub_pd(load3(pos + j * 3), pos_i);
+    const __m256d xi =
+        StoredXi ? _mm256_blend_pd(load3(xis + b * 3), fourth_lane_one, 0x8) : _mm256_sub_pd(load3(pos + j * 3), pos_i);
     const __m256d vj = _mm256_broadcast_sd(vol + j);
     __m256d U = _mm256_sub_pd(load3(u + j * 3), ui);
     __m256d wj = _mm256_setzero_pd();
@@ -127,16 +139,15 @@ template <class Effects, bool StoredXi>
     S0 = _mm256_fmadd_pd(lane<0>(vu), xi, S0);
     S1 = _mm256_fmadd_pd(lane<1>(vu), xi, S1);
     S2 = _mm256_fmadd_pd(lane<2>(vu), xi, S2);
-    s = _mm256_add_pd(s, vu);
     m = _mm256_fmadd_pd(vj, xi, m);
     if constexpr (polar) {
       const __m256d om = _mm256_mul_pd(vj, _mm256_sub_pd(wj, wi));
       K0 = _mm256_fmadd_pd(lane<0>(om), xi, K0);
       K1 = _mm256_fmadd_pd(lane<1>(om), xi, K1);
       K2 = _mm256_fmadd_pd(lane<2>(om), xi, K2);
-      sw = _mm256_add_pd(sw, om);
     }
   }
+  const __m256d s = fourth_lanes(S0, S1, S2), sw = fourth_lanes(K0, K1, K2);
   // Whole 4-lane stores in member order, each overwriting the previous one's fourth lane (a masked
   // store is slow on some processors, and a later load cannot take its value from it).
   static_assert(sizeof(BondSums<3, 3>) == 28 * sizeof(double), "BondSums<3, 3>: members packed in order");
