@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 
@@ -12,6 +13,28 @@
 #include "solver/parallel_policy.hpp"
 
 namespace mppm::solver {
+
+namespace {
+
+// Sorts one family's entries [first, last) by their neighbours' order: the index, or the global id
+// in a distributed run, whose process then sums each point's bonds in the order of the single
+// process (its local indices put the ghosts after the owned points). A lattice's search finds them
+// by offset, already in index order only where the points are numbered row by row.
+template <class Iterator, class NeighbourOf>
+void sort_by_neighbour_order(Iterator first, Iterator last, const PointData& p, NeighbourOf neighbour_of) {
+  using Value = typename std::iterator_traits<Iterator>::value_type;
+  if (p.global_id.empty()) {
+    const auto by_index = [&](const Value& a, const Value& b) { return neighbour_of(a) < neighbour_of(b); };
+    if (!std::is_sorted(first, last, by_index)) std::sort(first, last, by_index);
+  } else {
+    std::sort(first, last, [&](const Value& a, const Value& b) {
+      return p.global_id[static_cast<std::size_t>(neighbour_of(a))] <
+             p.global_id[static_cast<std::size_t>(neighbour_of(b))];
+    });
+  }
+}
+
+}  // namespace
 
 BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   if (!(o.horizon > 0.0)) throw std::invalid_argument("build_families: horizon must be positive");
@@ -41,31 +64,28 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   if (periodic) f.xi.resize(bonds * D);
 #pragma omp parallel if (thread_bond_loop(bonds))
   {
-    // One list per thread, reused from point to point.
+    // With periods, one list per thread of the neighbours and their bond vectors (a period shifts
+    // the search's), reused from point to point; without, the indices go straight into the family.
     std::vector<std::pair<std::int32_t, std::array<double, 3>>> found;
 #pragma omp for schedule(static)
     for (std::int64_t s = 0; s < sn; ++s) {
       const auto i = static_cast<std::size_t>(s);
+      const auto first = f.neighbor.begin() + f.offset[i];
+      if (!periodic) {
+        auto next = first;
+        search.for_each(i, [&](std::size_t j, const double*) { *next++ = static_cast<std::int32_t>(j); });
+        sort_by_neighbour_order(first, next, p, [](std::int32_t j) { return j; });
+        continue;
+      }
       found.clear();
       search.for_each(i, [&](std::size_t j, const double* xi) {
         found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
       });
-      // By global id: a distributed run's process then sums each point's bonds in the order of the
-      // single process (its local indices put the ghosts after the owned points). A lattice's
-      // search finds them by offset, in index order only where the points are numbered row by row.
-      if (p.global_id.empty()) {
-        const auto by_index = [](const auto& a, const auto& b) { return a.first < b.first; };
-        if (!std::is_sorted(found.begin(), found.end(), by_index)) std::sort(found.begin(), found.end(), by_index);
-      } else {
-        std::sort(found.begin(), found.end(), [&](const auto& a, const auto& b) {
-          return p.global_id[static_cast<std::size_t>(a.first)] < p.global_id[static_cast<std::size_t>(b.first)];
-        });
-      }
+      sort_by_neighbour_order(found.begin(), found.end(), p, [](const auto& e) { return e.first; });
       std::int64_t b = f.offset[i];
       for (const auto& [j, xi] : found) {
         f.neighbor[b] = j;
-        if (periodic)
-          for (int a = 0; a < D; ++a) f.xi[b * D + a] = xi[a];
+        for (int a = 0; a < D; ++a) f.xi[b * D + a] = xi[a];
         ++b;
       }
     }
