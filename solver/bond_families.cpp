@@ -16,22 +16,17 @@ namespace mppm::solver {
 
 namespace {
 
-// Sorts one family's entries [first, last) by their neighbours' order: the index, or the global id
-// in a distributed run, whose process then sums each point's bonds in the order of the single
-// process (its local indices put the ghosts after the owned points). A lattice's search finds them
-// by offset, already in index order only where the points are numbered row by row.
+// Sorts one family's entries [first, last) by their neighbours' PointOrder: the index, or the
+// global id in a distributed run, whose process then sums each point's bonds in the order of the
+// single process (its local indices put the ghosts after the owned points). A lattice's search finds
+// them by offset, already in that order only where the points are numbered row by row.
 template <class Iterator, class NeighbourOf>
-void sort_by_neighbour_order(Iterator first, Iterator last, const PointData& p, NeighbourOf neighbour_of) {
+void sort_by_neighbour_order(Iterator first, Iterator last, const PointOrder& order, NeighbourOf neighbour_of) {
   using Value = typename std::iterator_traits<Iterator>::value_type;
-  if (p.global_id.empty()) {
-    const auto by_index = [&](const Value& a, const Value& b) { return neighbour_of(a) < neighbour_of(b); };
-    if (!std::is_sorted(first, last, by_index)) std::sort(first, last, by_index);
-  } else {
-    std::sort(first, last, [&](const Value& a, const Value& b) {
-      return p.global_id[static_cast<std::size_t>(neighbour_of(a))] <
-             p.global_id[static_cast<std::size_t>(neighbour_of(b))];
-    });
-  }
+  const auto before = [&](const Value& a, const Value& b) {
+    return order(static_cast<std::size_t>(neighbour_of(a))) < order(static_cast<std::size_t>(neighbour_of(b)));
+  };
+  if (!std::is_sorted(first, last, before)) std::sort(first, last, before);
 }
 
 }  // namespace
@@ -62,6 +57,7 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
   if (bonds > static_cast<std::size_t>(INT32_MAX) * 64) throw std::length_error("build_families: too many bonds");
   f.neighbor.resize(bonds);
   if (periodic) f.xi.resize(bonds * D);
+  const PointOrder order(p);
 #pragma omp parallel if (thread_bond_loop(bonds))
   {
     // With periods, one list per thread of the neighbours and their bond vectors (a period shifts
@@ -74,14 +70,14 @@ BondFamilies build_families(const PointData& p, const FamilyOptions& o) {
       if (!periodic) {
         auto next = first;
         search.for_each(i, [&](std::size_t j, const double*) { *next++ = static_cast<std::int32_t>(j); });
-        sort_by_neighbour_order(first, next, p, [](std::int32_t j) { return j; });
+        sort_by_neighbour_order(first, next, order, [](std::int32_t j) { return j; });
         continue;
       }
       found.clear();
       search.for_each(i, [&](std::size_t j, const double* xi) {
         found.push_back({static_cast<std::int32_t>(j), {xi[0], xi[1], D == 3 ? xi[2] : 0.0}});
       });
-      sort_by_neighbour_order(found.begin(), found.end(), p, [](const auto& e) { return e.first; });
+      sort_by_neighbour_order(found.begin(), found.end(), order, [](const auto& e) { return e.first; });
       std::int64_t b = f.offset[i];
       for (const auto& [j, xi] : found) {
         f.neighbor[b] = j;
