@@ -1,5 +1,6 @@
 // The products t = A xi + C U of a bond in the force kernel's pass 2 (docs/theory.md sections 4
-// and 7), A a tensor in rows (row-major), C a symmetric one packed (symmetric_tensor.hpp):
+// and 7), A a tensor stored by columns (point_data.hpp), C a symmetric one packed
+// (symmetric_tensor.hpp):
 //   - the neighbour's share of the force, A_j xi + C:K_j^-1 U, added to point i's force as V_j t
 //     (the kernel also needs t itself for the moment's 1/2 xi x t): add_neighbour_share;
 //   - the pair force of the bond work's increment, with both ends' tensors and both evaluations
@@ -11,12 +12,11 @@
 // from zero (each entry of A or C, and each U_c, the sum of its two terms first in the pair form).
 // With vector lanes (vector_lanes.hpp) the rows are the lanes of one vector, and each lane does its
 // row's scalar operations in their order, so both forms give the same bits (`BondProducts`,
-// tests/unit/test_solver_bond_products.cpp). In 2-D the columns of A are two unpack operations of
-// its rows and those of a packed C (entries 00 01 11) plain loads; in 3-D, lanes 0-2 of 4, the
-// columns of A come from an in-register transpose of its rows and those of C from two loads of its
-// packed entries (00 01 02 11 and 02 11 12 22), and the moments' rows are lanes 0-2 too (in 2-D
-// the moment has one component, and stays scalar). The 3-D forms write 4 doubles to t, force,
-// moment and the pair force and moment (the fourth is not used): their arrays are lane_slots long
+// tests/unit/test_solver_bond_products.cpp). A column of A or Q is one load, as they are stored by
+// columns; in 2-D those of a packed C (entries 00 01 11) are plain loads too; in 3-D, lanes 0-2 of
+// 4, the columns of C come from two loads of its packed entries (00 01 02 11 and 02 11 12 22), and
+// the moments' rows are lanes 0-2 too (in 2-D the moment has one component, and stays scalar). The 3-D forms write 4
+// doubles to t, force, moment and the pair force and moment (the fourth is not used): their arrays are lane_slots long
 // (vector_lanes.hpp).
 #pragma once
 
@@ -32,7 +32,7 @@ template <int D>
   for (int r = 0; r < D; ++r) {
     double sum = 0.0;
     for (int col = 0; col < D; ++col) {
-      sum = multiply_add(aj[r * D + col], xi[col], sum);
+      sum = multiply_add(aj[col * D + r], xi[col], sum);
       sum = multiply_add(ckj[symmetric_index<D>(r, col)], U[col], sum);
     }
     t[r] = sum;
@@ -47,7 +47,7 @@ template <int D>
   for (int r = 0; r < D; ++r) {
     double sum = 0.0;
     for (int col = 0; col < D; ++col) {
-      sum = multiply_add(ai[r * D + col] + aj[r * D + col], xi[col], sum);
+      sum = multiply_add(ai[col * D + r] + aj[col * D + r], xi[col], sum);
       const int s = symmetric_index<D>(r, col);
       sum = multiply_add(cki[s] + ckj[s], U0[col] + U[col], sum);
     }
@@ -75,7 +75,7 @@ template <int D, int R>
                                                            double vj, double* moment) {
   for (int r = 0; r < R; ++r) {
     double sum = gj * (wj[r] - wi[r]);
-    for (int col = 0; col < D; ++col) sum = multiply_add(qj[r * D + col], xi[col], sum);
+    for (int col = 0; col < D; ++col) sum = multiply_add(qj[col * R + r], xi[col], sum);
     moment[r] = multiply_add(vj, sum, moment[r]);
   }
   add_cross<D>(xi, t, 0.5 * vj, moment);
@@ -91,20 +91,20 @@ template <int D, int R>
   for (int r = 0; r < R; ++r) {
     const double om = wj[r] - wi[r], om0 = wj0[r] - wi0[r];
     double sum = g * (om0 + om);
-    for (int col = 0; col < D; ++col) sum = multiply_add(qi[r * D + col] + qj[r * D + col], xi[col], sum);
+    for (int col = 0; col < D; ++col) sum = multiply_add(qi[col * R + r] + qj[col * R + r], xi[col], sum);
     both[r] = sum;
     change[r] = om - om0;
   }
 }
 
 #ifdef MPPM_VECTOR_LANES
-// 2-D: t's two rows as lanes, from A's rows and C's packed entries 00 01 (ck_lo) and 01 11 (ck_hi).
-[[gnu::always_inline]] inline __m128d bond_product_lanes_2d(__m128d a_row0, __m128d a_row1, __m128d ck_lo,
+// 2-D: t's two rows as lanes, from A's columns and C's packed entries 00 01 (ck_lo) and 01 11 (ck_hi).
+[[gnu::always_inline]] inline __m128d bond_product_lanes_2d(__m128d a_col0, __m128d a_col1, __m128d ck_lo,
                                                             __m128d ck_hi, double xi0, double xi1, double U0,
                                                             double U1) {
-  __m128d sum = _mm_fmadd_pd(_mm_unpacklo_pd(a_row0, a_row1), _mm_set1_pd(xi0), _mm_setzero_pd());
+  __m128d sum = _mm_fmadd_pd(a_col0, _mm_set1_pd(xi0), _mm_setzero_pd());
   sum = _mm_fmadd_pd(ck_lo, _mm_set1_pd(U0), sum);
-  sum = _mm_fmadd_pd(_mm_unpackhi_pd(a_row0, a_row1), _mm_set1_pd(xi1), sum);
+  sum = _mm_fmadd_pd(a_col1, _mm_set1_pd(xi1), sum);
   return _mm_fmadd_pd(ck_hi, _mm_set1_pd(U1), sum);
 }
 
@@ -119,25 +119,27 @@ template <int D, int R>
 [[gnu::always_inline]] inline void pair_force_sum_vector_2d(const double* ai, const double* aj, const double* cki,
                                                             const double* ckj, const double* xi, const double* U0,
                                                             const double* U, double* both) {
-  const __m128d a_row0 = _mm_add_pd(_mm_loadu_pd(ai), _mm_loadu_pd(aj));
-  const __m128d a_row1 = _mm_add_pd(_mm_loadu_pd(ai + 2), _mm_loadu_pd(aj + 2));
+  const __m128d a_col0 = _mm_add_pd(_mm_loadu_pd(ai), _mm_loadu_pd(aj));
+  const __m128d a_col1 = _mm_add_pd(_mm_loadu_pd(ai + 2), _mm_loadu_pd(aj + 2));
   const __m128d ck_lo = _mm_add_pd(_mm_loadu_pd(cki), _mm_loadu_pd(ckj));
   const __m128d ck_hi = _mm_add_pd(_mm_loadu_pd(cki + 1), _mm_loadu_pd(ckj + 1));
-  _mm_storeu_pd(both, bond_product_lanes_2d(a_row0, a_row1, ck_lo, ck_hi, xi[0], xi[1], U0[0] + U[0], U0[1] + U[1]));
+  _mm_storeu_pd(both, bond_product_lanes_2d(a_col0, a_col1, ck_lo, ck_hi, xi[0], xi[1], U0[0] + U[0], U0[1] + U[1]));
 }
 
-// 3-D: the columns of A (lanes 0-2) from its rows, each read as 4 doubles (the third masked, so
-// that the last point's tensor is read without touching memory past it).
+// 3-D: the columns of A or Q (lanes 0-2), each read as 4 doubles from the tensor stored by columns
+// (lane 3 holds the next column's first entry, or 0: it is not used), the third masked, so that
+// the last point's tensor is read without touching memory past it.
 struct Columns3 {
   __m256d c0, c1, c2;
 };
-[[gnu::always_inline]] inline Columns3 columns_of_rows(__m256d r0, __m256d r1, __m256d r2) {
-  const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);  // 00 10 02 12, 01 11 . .
-  const __m256d t2 = _mm256_unpacklo_pd(r2, r2), t3 = _mm256_unpackhi_pd(r2, r2);  // 20 20 22 22, 21 21 . .
-  return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
-          _mm256_permute2f128_pd(t0, t2, 0x31)};
+[[gnu::always_inline]] inline Columns3 load_columns(const double* a) {
+  return {_mm256_loadu_pd(a), _mm256_loadu_pd(a + 3), load3(a + 6)};
 }
-[[gnu::always_inline]] inline __m256d third_row(const double* a) { return load3(a + 6); }
+// The columns of the sum of two tensors stored by columns.
+[[gnu::always_inline]] inline Columns3 load_column_sums(const double* a, const double* b) {
+  return {_mm256_add_pd(_mm256_loadu_pd(a), _mm256_loadu_pd(b)),
+          _mm256_add_pd(_mm256_loadu_pd(a + 3), _mm256_loadu_pd(b + 3)), _mm256_add_pd(load3(a + 6), load3(b + 6))};
+}
 // The columns of a packed symmetric C from lo = (00 01 02 11) and hi = (02 11 12 22): lo itself,
 // (01 11 12) and (02 12 22).
 [[gnu::always_inline]] inline Columns3 columns_of_packed(__m256d lo, __m256d hi) {
@@ -155,7 +157,7 @@ struct Columns3 {
 
 [[gnu::always_inline]] inline void neighbour_share_vector_3d(const double* aj, const double* ckj, const double* xi,
                                                              const double* U, double vj, double* t, double* force) {
-  const Columns3 a = columns_of_rows(_mm256_loadu_pd(aj), _mm256_loadu_pd(aj + 3), third_row(aj));
+  const Columns3 a = load_columns(aj);
   const Columns3 c = columns_of_packed(_mm256_loadu_pd(ckj), _mm256_loadu_pd(ckj + 2));
   const __m256d sum = bond_product_lanes_3d(a, c, xi, U[0], U[1], U[2]);
   _mm256_storeu_pd(t, sum);
@@ -165,9 +167,7 @@ struct Columns3 {
 [[gnu::always_inline]] inline void pair_force_sum_vector_3d(const double* ai, const double* aj, const double* cki,
                                                             const double* ckj, const double* xi, const double* U0,
                                                             const double* U, double* both) {
-  const Columns3 a = columns_of_rows(_mm256_add_pd(_mm256_loadu_pd(ai), _mm256_loadu_pd(aj)),
-                                     _mm256_add_pd(_mm256_loadu_pd(ai + 3), _mm256_loadu_pd(aj + 3)),
-                                     _mm256_add_pd(third_row(ai), third_row(aj)));
+  const Columns3 a = load_column_sums(ai, aj);
   const Columns3 c = columns_of_packed(_mm256_add_pd(_mm256_loadu_pd(cki), _mm256_loadu_pd(ckj)),
                                        _mm256_add_pd(_mm256_loadu_pd(cki + 2), _mm256_loadu_pd(ckj + 2)));
   _mm256_storeu_pd(both, bond_product_lanes_3d(a, c, xi, U0[0] + U[0], U0[1] + U[1], U0[2] + U[2]));
@@ -176,7 +176,7 @@ struct Columns3 {
 [[gnu::always_inline]] inline void neighbour_moment_vector_3d(const double* qj, double gj, const double* wi,
                                                               const double* wj, const double* xi, const double* t,
                                                               double vj, double* moment) {
-  const Columns3 q = columns_of_rows(_mm256_loadu_pd(qj), _mm256_loadu_pd(qj + 3), third_row(qj));
+  const Columns3 q = load_columns(qj);
   __m256d sum = _mm256_mul_pd(_mm256_set1_pd(gj), _mm256_sub_pd(load3(wj), load3(wi)));
   sum = _mm256_fmadd_pd(q.c0, _mm256_set1_pd(xi[0]), sum);
   sum = _mm256_fmadd_pd(q.c1, _mm256_set1_pd(xi[1]), sum);
@@ -194,9 +194,7 @@ struct Columns3 {
                                                              double* change) {
   const __m256d om = _mm256_sub_pd(load3(wj), load3(wi));
   const __m256d om0 = _mm256_sub_pd(load3(wj0), load3(wi0));
-  const Columns3 q = columns_of_rows(_mm256_add_pd(_mm256_loadu_pd(qi), _mm256_loadu_pd(qj)),
-                                     _mm256_add_pd(_mm256_loadu_pd(qi + 3), _mm256_loadu_pd(qj + 3)),
-                                     _mm256_add_pd(third_row(qi), third_row(qj)));
+  const Columns3 q = load_column_sums(qi, qj);
   __m256d sum = _mm256_mul_pd(_mm256_set1_pd(g), _mm256_add_pd(om0, om));
   sum = _mm256_fmadd_pd(q.c0, _mm256_set1_pd(xi[0]), sum);
   sum = _mm256_fmadd_pd(q.c1, _mm256_set1_pd(xi[1]), sum);

@@ -66,12 +66,12 @@ class BondWorkPolicy<D, Effects, true> {
     if constexpr (polar)
       for (int k = 0; k < RD; ++k) p.moment_tensor_sum[i * RD + k] = p.moment_tensor[i * RD + k];
   }
-  // A + A_prev, before A (a, row-major) is stored.
+  // A + A_prev, before A (a, by columns as stored) is stored.
   static void force_tensor_sum(PointData& p, std::size_t i, const double* a, bool advancing) {
     if (advancing)
       for (int k = 0; k < DD; ++k) p.force_tensor_sum[i * DD + k] = a[k] + p.force_tensor[i * DD + k];
   }
-  // Q + Q_prev, before Q (q, row-major) is stored.
+  // Q + Q_prev, before Q (q, by columns as stored) is stored.
   static void moment_tensor_sum(PointData& p, std::size_t i, const double* q, bool advancing) {
     if (advancing)
       for (int k = 0; k < RD; ++k) p.moment_tensor_sum[i * RD + k] = q[k] + p.moment_tensor[i * RD + k];

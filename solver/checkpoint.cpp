@@ -64,12 +64,14 @@ void visit_carried_arrays(ModelRef& model, Visit&& visit) {
     // The bond-work increment of the next step starts from the last evaluation: its displacement
     // and rotation, and its force / moment tensors, which the next evaluation swaps into the
     // previous_* arrays (the previous_* tensors held now are overwritten before being read).
+    // The tensors as stored, by columns (point_data.hpp); named so, a checkpoint of the former
+    // layout (by rows, named force_tensor and moment_tensor) is refused rather than misread.
     visit("previous_displacement", p.previous_displacement);
-    visit("force_tensor", p.force_tensor);
+    visit("force_tensor_by_columns", p.force_tensor);
     if (model.effects.micropolar) {
       visit("stabilization_rot", p.stabilization_rot);
       visit("previous_rotation", p.previous_rotation);
-      visit("moment_tensor", p.moment_tensor);
+      visit("moment_tensor_by_columns", p.moment_tensor);
     }
   }
 }

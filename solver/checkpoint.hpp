@@ -14,7 +14,8 @@
 //    starts the step from them);
 //  - damage: bond flags and bond work, the shape tensors and stabilization factors (breaks change
 //    them), detached and no-fail flags, the last evaluation's displacement, rotation and force /
-//    moment tensors (the bond-work increment starts from them), the broken-bond and detachment
+//    moment tensors (the bond-work increment starts from them; by columns, as stored: a checkpoint
+//    written when they were stored by rows is refused), the broken-bond and detachment
 //    counters, and the crack arrivals (the points on the crack path and when each got there: a
 //    restart writes crack_path.csv from them). A damage checkpoint without them (written before
 //    the table existed) is refused with a message: the times of the points already on the path

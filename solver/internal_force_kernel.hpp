@@ -46,6 +46,11 @@ template <int D>
 using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
 template <int R, int D>
 using RMat = Eigen::Matrix<double, R, D, Eigen::RowMajor>;
+// The force and moment tensors A and Q as PointData stores them: by columns, which the bond
+// products of pass 2 load as they use them (bond_products.hpp). A one-row Q (2-D) is the same
+// either way, and Eigen allows a single row only row-major.
+template <int R, int D>
+using ColumnTensor = Eigen::Matrix<double, R, D, R == 1 ? Eigen::RowMajor : Eigen::ColMajor>;
 
 // The bond loops work on plain doubles with loops over compile-time extents: Eigen's small
 // expression templates are not reliably inlined in a loop this large (measured: 4x slower in 3-D).
@@ -307,7 +312,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   constexpr int RD = R * D;
   [[maybe_unused]] const double* __restrict vol = p.volume.data();
   Eigen::Map<Mat<D>> eps_out(&p.strain[i * DD]);
-  Eigen::Map<Mat<D>> a_out(&p.force_tensor[i * DD]);
+  Eigen::Map<ColumnTensor<D, D>> a_out(&p.force_tensor[i * DD]);
   using Work = BondWorkPolicy<D, Effects>;
   // Damage, advancing: the tensor sums of the bond work, before the tensors are overwritten.
   const bool advancing = advance != nullptr;
@@ -318,7 +323,7 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     for (int r = 0; r < D; ++r) p.force[i * D + r] = 0.0;
     if constexpr (polar) {
       Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]).setZero();
-      Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]).setZero();
+      Eigen::Map<ColumnTensor<R, D>>(&p.moment_tensor[i * RD]).setZero();
       for (int r = 0; r < R; ++r) p.moment[i * R + r] = 0.0;
     }
     if constexpr (Effects::viscoplasticity)
@@ -354,8 +359,9 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
   const Mat<D> ck = unpack_symmetric<D>(&p.stabilization_ck[i * symmetric_components<D>]);
   eps_out = eps;
   const Mat<D> a = sigma * kinv - ck * eps;
-  Work::force_tensor_sum(p, i, a.data(), advancing);
-  a_out = a;
+  const ColumnTensor<D, D> a_columns = a;
+  Work::force_tensor_sum(p, i, a_columns.data(), advancing);
+  a_out = a_columns;
   [[maybe_unused]] RMat<R, D> q;
   [[maybe_unused]] double g = 0.0;
   if constexpr (polar) {
@@ -364,9 +370,10 @@ MPPM_INLINE void pass1_point(PointData& p, const BondFamilies& f, const Cosserat
     const RMat<R, D> m = couple_stress<D, R>(kap_elastic, c);
     g = p.stabilization_rot[i];
     q = m * kinv - g * kap;
-    Work::moment_tensor_sum(p, i, q.data(), advancing);
+    const ColumnTensor<R, D> q_columns = q;
+    Work::moment_tensor_sum(p, i, q_columns.data(), advancing);
     Eigen::Map<RMat<R, D>>(&p.wryness[i * RD]) = kap;
-    Eigen::Map<RMat<R, D>>(&p.moment_tensor[i * RD]) = q;
+    Eigen::Map<ColumnTensor<R, D>>(&p.moment_tensor[i * RD]) = q_columns;
   }
   own_share<D, polar>(a, ck, kinv, q, g, sums, &p.force[i * D], polar ? &p.moment[i * R] : nullptr);
 }

@@ -59,7 +59,9 @@ struct PointData {
   std::vector<double> stabilization_rot;  // G_s B_w tr(K^-1) / d (micropolar)
   std::vector<std::uint8_t> detached;
 
-  // Products of the strain pass, read by the force pass for i and its neighbours.
+  // Products of the strain pass, read by the force pass for i and its neighbours. eps and kap are
+  // stored by rows, A and Q by columns (A_00 A_10 A_20 A_01 ...): pass 2's bond products use A and
+  // Q column by column (bond_products.hpp).
   std::vector<double> strain;         // eps, D*D
   std::vector<double> force_tensor;   // A = sigma K^-1 - G_s (C:K^-1) eps, D*D
   std::vector<double> wryness;        // kap, R*D

@@ -461,8 +461,11 @@ TEST(CheckpointRestart, CheckpointHoldsTheStateOfTheEffectsOnly) {
   EXPECT_EQ(elastic.header.effects, checkpoint_effect_bits(elastic_bar().scene.effects));
   EXPECT_EQ(elastic.header.step, 10);
   const CheckpointFile damage = read_checkpoint_file(checkpoint_path(stopped_run(damage_bar(), "contents_damage")));
-  for (const char* name : {"bond_neighbor", "bond_work", "shape_inverse", "detached", "previous_displacement"})
+  for (const char* name : {"bond_neighbor", "bond_work", "shape_inverse", "detached", "previous_displacement",
+                           "force_tensor_by_columns", "moment_tensor_by_columns"})
     EXPECT_TRUE(damage.has(name)) << name;
+  // The tensors were stored by rows under these names once: such a file must not be read as columns.
+  for (const char* name : {"force_tensor", "moment_tensor"}) EXPECT_FALSE(damage.has(name)) << name;
   const CheckpointFile plastic =
       read_checkpoint_file(checkpoint_path(stopped_run(softening_compression(), "contents_plastic")));
   for (const char* name : {"plastic_strain", "plastic_wryness", "equivalent_plastic_strain", "strain"})
