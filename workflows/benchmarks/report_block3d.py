@@ -100,7 +100,8 @@ def main(argv):
              "The same 60^3 simple-cubic lattice in both codes (dx = 1 mm, horizon 2.05 dx, 216 000 points, "
              f"{mppm[0]['bonds']} bonds from both ends), 100 steps, energies at the first and the last step in both "
              "(LAMMPS's thermo output, mppm's energy rows); threads are MPI ranks for LAMMPS. The loop "
-             "time is the time integration only (LAMMPS's Loop time); each row is the fastest of its repeats.", "",
+             "time is the time integration only (LAMMPS's Loop time). The two codes ran in the same sweeps, taking "
+             "turns (run_block3d.py); each row is the fastest of its sweeps.", "",
              "| code, model | threads | loop [s] | bond updates/s | start-up [s] | of it: the step's estimate, "
              "the mode's naming [s] | start-up in steps |",
              "|---|---|---|---|---|---|---|"]

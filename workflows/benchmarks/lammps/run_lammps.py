@@ -215,6 +215,14 @@ def run_one(args, plate, model, ranks, open_mpi, log_dir):
             str(plate["steps"]), f"{loop_seconds:.6g}", f"{rate:.6g}", str(peak_bytes)]
 
 
+def fastest_row(done):
+    """The row of the fastest of `done` (run_one's rows of one model and rank count), with the
+    slowest loop and the number of runs beside it."""
+    fastest = min(done, key=lambda r: float(r[6]))
+    slowest = max(float(r[6]) for r in done)
+    return fastest + [f"{slowest:.6g}", str(len(done))]
+
+
 def append_rows(csv_path, rows):
     """Existing rows + new rows written to a temporary file, then renamed: never half-written."""
     existing = ""
@@ -272,9 +280,7 @@ def main(argv):
                 for ranks in args.ranks:
                     runs[ranks].append(run_one(args, plate, model, ranks, open_mpi, log_dir))
             for ranks in args.ranks:
-                fastest = min(runs[ranks], key=lambda r: float(r[6]))
-                slowest = max(float(r[6]) for r in runs[ranks])
-                rows.append(fastest + [f"{slowest:.6g}", str(args.repeats)])
+                rows.append(fastest_row(runs[ranks]))
     except RunError as error:
         print(f"run_lammps.py: {error}", file=sys.stderr)
         return 1
