@@ -15,9 +15,9 @@
 // tests/unit/test_solver_bond_products.cpp). A column of A or Q is one load, as they are stored by
 // columns; in 2-D those of a packed C (entries 00 01 11) are plain loads too; in 3-D, lanes 0-2 of
 // 4, the columns of C come from two loads of its packed entries (00 01 02 11 and 02 11 12 22), and
-// the moments' rows are lanes 0-2 too (in 2-D the moment has one component, and stays scalar). The 3-D forms write 4
-// doubles to t, force, moment and the pair force and moment (the fourth is not used): their arrays are lane_slots long
-// (vector_lanes.hpp).
+// the moments' rows are lanes 0-2 too (in 2-D the moment has one component, and stays scalar).
+// The 3-D forms write 4 doubles to t, force, moment and the pair force and moment (the fourth is
+// not used): their arrays are lane_slots long (vector_lanes.hpp).
 #pragma once
 
 #include "solver/multiply_add.hpp"
