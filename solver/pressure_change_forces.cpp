@@ -17,7 +17,6 @@ bool in_force_state(const PointData& p, std::size_t j) { return p.region[j] == 0
 // change(j): the change of point j's pore stress (0 outside the force state).
 template <int D, class Change>
 void add_changes(PointData& p, const BondFamilies& f, double b, Change&& pressure_change) {
-  using Mat = Eigen::Matrix<double, D, D, Eigen::RowMajor>;
   using Vec = Eigen::Matrix<double, D, 1>;
   constexpr int S = symmetric_components<D>;
   const int R = p.rotation_components;
@@ -61,7 +60,8 @@ void add_changes(PointData& p, const BondFamilies& f, double b, Change&& pressur
     const auto i = static_cast<std::size_t>(s);
     const double dpi = pressure_change(i);
     if (dpi == 0.0) continue;
-    Eigen::Map<Mat> a(&p.force_tensor[i * D * D]);
+    // A as stored, by columns (point_data.hpp).
+    Eigen::Map<Eigen::Matrix<double, D, D, Eigen::ColMajor>> a(&p.force_tensor[i * D * D]);
     a -= b * dpi * unpack_symmetric<D>(&p.shape_inverse[i * S]);
   }
 }

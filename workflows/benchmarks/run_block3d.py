@@ -70,9 +70,7 @@ class LammpsBlock:
         ranks = ",".join(str(t) for t in threads)
         self.args = run_lammps.parse_arguments([csv, "--inputs", inputs, "--benchmark", "block", "--ranks", ranks])
         self.plate = run_lammps.load_plate(self.args.inputs, self.args.models, "block")
-        for tool in (self.args.lmp, self.args.mpirun, "/usr/bin/time"):
-            if shutil.which(tool) is None:
-                raise InputError(f"{tool}: not found (install Debian packages lammps, openmpi-bin and time)")
+        run_lammps.require_tools(self.args)
         self.open_mpi = run_lammps.is_open_mpi(self.args.mpirun)
         self.log_dir = os.path.abspath(self.args.inputs)
 

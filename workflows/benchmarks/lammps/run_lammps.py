@@ -84,6 +84,12 @@ def load_plate(inputs, models, benchmark="plate"):
     return plate
 
 
+def require_tools(args):
+    for tool in (args.lmp, args.mpirun, "/usr/bin/time"):
+        if shutil.which(tool) is None:
+            raise InputError(f"{tool}: not found (install Debian packages lammps, openmpi-bin and time)")
+
+
 def is_open_mpi(mpirun):
     try:
         text = subprocess.run([mpirun, "--version"], capture_output=True, text=True,
@@ -249,10 +255,7 @@ def main(argv):
             raise InputError(f"--models: unknown model(s) {unknown or args.models} "
                              "(expected lps and/or pmb)")
         plate = load_plate(args.inputs, args.models, args.benchmark)
-        for tool in (args.lmp, args.mpirun, "/usr/bin/time"):
-            if shutil.which(tool) is None:
-                raise InputError(f"{tool}: not found (install Debian packages lammps, "
-                                 "openmpi-bin and time)")
+        require_tools(args)
         if os.path.exists(args.csv) and os.path.getsize(args.csv) > 0:
             with open(args.csv) as stream:
                 if stream.readline().strip() != CSV_HEADER:
